@@ -15,7 +15,7 @@ inline constexpr int kSubPixelScale = 1 << kSubPixelBits;
 // clips against these planes only when a vertex would fall outside them.
 inline constexpr float kGuardBand = 16384.0f;
 
-static_assert(FrameBuffer::kMaxDimension < kGuardBand / 2,
-              "the guard band must be much larger than any framebuffer");
+static_assert(FrameBuffer::kMaxDimension <= kGuardBand / 2,
+              "the guard band must reach at least one framebuffer size beyond every edge");
 
 } // namespace sr
