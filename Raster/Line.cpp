@@ -1,0 +1,137 @@
+// DDA line drawer: canonical ordering, Liang-Barsky clipping, snapping and the framebuffer writer.
+#include "Raster/Line.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace sr {
+
+namespace {
+
+bool finite(const LineVertex& v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+
+bool inGuardBand(const LineVertex& v) {
+    return std::fabs(v.x) <= kGuardBand && std::fabs(v.y) <= kGuardBand;
+}
+
+// Liang-Barsky (1984): clips the parameter range [t0, t1] of p(t) = a + t (b - a) against
+// lo <= p <= hi on one axis. Returns false when the segment is entirely outside.
+bool clipAxis(double a, double d, double lo, double hi, double& t0, double& t1) {
+    const double p[2] = {-d, d};
+    const double q[2] = {a - lo, hi - a};
+    for (int k = 0; k < 2; ++k) {
+        if (p[k] == 0.0) {
+            if (q[k] < 0.0) return false; // parallel to and outside this boundary
+            continue;
+        }
+        const double t = q[k] / p[k];
+        if (p[k] < 0.0) t0 = std::max(t0, t);
+        else t1 = std::min(t1, t);
+    }
+    return t0 <= t1;
+}
+
+void unpack(Pixel p, float out[3]) {
+    out[0] = float(pixelR(p));
+    out[1] = float(pixelG(p));
+    out[2] = float(pixelB(p));
+}
+
+} // namespace
+
+std::optional<LineSetup> setupLine(const LineVertex& inA, const LineVertex& inB, const Scissor& s) {
+    if (!finite(inA) || !finite(inB) || s.x0 >= s.x1 || s.y0 >= s.y1) return std::nullopt;
+
+    // --- Canonical order first (rule 4): lexicographic on (x, y), so everything below is a
+    // function of the unordered pair {A, B} ---------------------------------------------------
+    LineSetup l;
+    l.flatColour = inA.colour;
+    const bool swap = (inB.x < inA.x) || (inB.x == inA.x && inB.y < inA.y);
+    LineVertex a = swap ? inB : inA, b = swap ? inA : inB;
+    l.reversed = swap;
+
+    // --- Clip in double to the scissor grown by one pixel (rule 5) ----------------------------
+    const double ax = a.x, ay = a.y, dx = double(b.x) - ax, dy = double(b.y) - ay;
+    double t0 = 0.0, t1 = 1.0;
+    if (!clipAxis(ax, dx, s.x0 - 1.0, s.x1 + 1.0, t0, t1)) return std::nullopt;
+    if (!clipAxis(ay, dy, s.y0 - 1.0, s.y1 + 1.0, t0, t1)) return std::nullopt;
+    const double cx0 = ax + t0 * dx, cy0 = ay + t0 * dy; // visible part, for narrowing
+    const double cx1 = ax + t1 * dx, cy1 = ay + t1 * dy;
+    float za = a.z, zb = b.z;
+    unpack(a.colour, l.colourA);
+    unpack(b.colour, l.colourB);
+    if (!inGuardBand(a) || !inGuardBand(b)) {
+        // Replace the endpoints by the clipped ones (attributes interpolated to match).
+        float ca[3], cb[3];
+        for (int k = 0; k < 3; ++k) {
+            ca[k] = float(l.colourA[k] + t0 * (l.colourB[k] - l.colourA[k]));
+            cb[k] = float(l.colourA[k] + t1 * (l.colourB[k] - l.colourA[k]));
+        }
+        std::copy(ca, ca + 3, l.colourA);
+        std::copy(cb, cb + 3, l.colourB);
+        const double z0 = za + t0 * (double(zb) - za), z1 = za + t1 * (double(zb) - za);
+        za = float(z0);
+        zb = float(z1);
+        a.x = float(cx0);
+        a.y = float(cy0);
+        b.x = float(cx1);
+        b.y = float(cy1);
+    }
+
+    // --- Snap, pick the major axis, order along it --------------------------------------------
+    const std::int64_t fxA = snapToFixed(a.x), fyA = snapToFixed(a.y);
+    const std::int64_t fxB = snapToFixed(b.x), fyB = snapToFixed(b.y);
+    l.yMajor = std::llabs(fyB - fyA) > std::llabs(fxB - fxA);
+    l.majorA = l.yMajor ? fyA : fxA;
+    l.minorA = l.yMajor ? fxA : fyA;
+    l.majorB = l.yMajor ? fyB : fxB;
+    l.minorB = l.yMajor ? fxB : fyB;
+    l.zA = za;
+    l.zB = zb;
+    if (l.majorB < l.majorA) { // only possible for y-major; still a function of the pair
+        std::swap(l.majorA, l.majorB);
+        std::swap(l.minorA, l.minorB);
+        std::swap(l.zA, l.zB);
+        for (int k = 0; k < 3; ++k) std::swap(l.colourA[k], l.colourB[k]);
+        l.reversed = !l.reversed;
+    }
+
+    // --- Columns: the whole line's end columns, narrowed to the visible part and scissor -------
+    l.columnA = floorDiv(l.majorA, kSubPixelScale);
+    l.columnB = floorDiv(l.majorB, kSubPixelScale);
+    const double v0 = l.yMajor ? std::min(cy0, cy1) : std::min(cx0, cx1);
+    const double v1 = l.yMajor ? std::max(cy0, cy1) : std::max(cx0, cx1);
+    const std::int64_t lo = l.yMajor ? s.y0 : s.x0, hi = (l.yMajor ? s.y1 : s.x1) - 1;
+    l.firstColumn = std::max({l.columnA, lo, std::int64_t(std::floor(v0)) - 1});
+    l.lastColumn = std::min({l.columnB, hi, std::int64_t(std::floor(v1)) + 1});
+    if (l.firstColumn > l.lastColumn) return std::nullopt;
+    return l;
+}
+
+void drawLine(FrameBuffer& fb, const LineVertex& a, const LineVertex& b, const LineOptions& o) {
+    const Scissor s = fullScissor(fb);
+    const std::optional<LineSetup> l = setupLine(a, b, s);
+    if (!l) return;
+    forEachLinePixel(*l, s, [&](int x, int y, float t) {
+        t = std::clamp(t, 0.0f, 1.0f);
+        if (o.depthTest) {
+            const float z = l->zA + t * (l->zB - l->zA);
+            float& d = fb.depthRow(y)[x];
+            if (!(z >= d)) return;
+            if (o.depthWrite) d = z;
+        }
+        Pixel c = l->flatColour;
+        if (o.interpolateColour) {
+            std::uint8_t ch[3];
+            for (int k = 0; k < 3; ++k) {
+                const float v = l->colourA[k] + t * (l->colourB[k] - l->colourA[k]);
+                ch[k] = std::uint8_t(std::clamp(v + 0.5f, 0.0f, 255.0f));
+            }
+            c = packBgra(ch[0], ch[1], ch[2]);
+        }
+        fb.colorRow(y)[x] = c;
+    });
+}
+
+} // namespace sr

@@ -1,0 +1,109 @@
+// Triangle setup: fixed-point snapping, exact area, y-sorted edges and attribute plane gradients.
+#include "Raster/TriangleSetup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace sr {
+
+namespace {
+
+struct FixedPoint2 {
+    Fixed x, y;
+};
+
+bool inGuardBand(const ScreenVertex& v) {
+    // Also false for NaN (every comparison with NaN is false).
+    return std::fabs(v.x) <= kGuardBand && std::fabs(v.y) <= kGuardBand;
+}
+
+FixedEdge makeEdge(FixedPoint2 from, FixedPoint2 to) {
+    assert(to.y >= from.y);
+    return FixedEdge{from.x, from.y, to.x - from.x, to.y - from.y};
+}
+
+// First pixel row whose centre y is >= Y (fixed point): the smallest j with j*256 + 128 >= Y.
+int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
+
+// Attribute value of one plane at each input vertex, in double.
+double attributeAt(const ScreenVertex& v, int plane) {
+    if (plane == kPlaneZ) return double(v.z);
+    if (plane == kPlaneInvW) return double(v.invW);
+    return double(v.varyings[std::size_t(plane - kPlaneVarying0)]) * double(v.invW);
+}
+
+} // namespace
+
+std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenVertex& v1,
+                                           const ScreenVertex& v2, int varyingCount) {
+    // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
+    const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
+    assert(valid && "triangle setup: vertex outside the guard band or not finite");
+    assert(varyingCount >= 0 && varyingCount <= kMaxVaryings);
+    if (!valid) return std::nullopt;
+    varyingCount = std::clamp(varyingCount, 0, kMaxVaryings);
+
+    // --- Snap to 1/256 pixel and compute twice the signed area exactly --------------------
+    // |coordinate| <= 2^22, so each difference is < 2^23 and each product < 2^46: exact in int64.
+    const FixedPoint2 p[3] = {{snapToFixed(v0.x), snapToFixed(v0.y)},
+                              {snapToFixed(v1.x), snapToFixed(v1.y)},
+                              {snapToFixed(v2.x), snapToFixed(v2.y)}};
+    const std::int64_t e1x = p[1].x - p[0].x, e1y = p[1].y - p[0].y;
+    const std::int64_t e2x = p[2].x - p[0].x, e2y = p[2].y - p[0].y;
+    const std::int64_t doubleArea = e1x * e2y - e2x * e1y;
+    if (doubleArea == 0) return std::nullopt; // collinear or coincident after snapping
+
+    TriangleSetup t;
+    t.doubleArea = doubleArea;
+
+    // --- Sort by y (top = smallest y, the screen is y-down) and build the three edges ------
+    int top = 0, mid = 1, bot = 2;
+    if (p[mid].y < p[top].y) std::swap(mid, top);
+    if (p[bot].y < p[mid].y) std::swap(bot, mid);
+    if (p[mid].y < p[top].y) std::swap(mid, top);
+    const FixedPoint2 pt = p[top], pm = p[mid], pb = p[bot];
+
+    t.longEdge = makeEdge(pt, pb);
+    t.upperEdge = makeEdge(pt, pm);
+    t.lowerEdge = makeEdge(pm, pb);
+    // The middle vertex is right of the long edge when cross(bottom - top, mid - top) > 0
+    // (y-down: the sign of (m.x*d.y - m.y*d.x) compares m.x with the long edge's x at m.y).
+    const std::int64_t side = std::int64_t(pm.x - pt.x) * t.longEdge.dy -
+                              std::int64_t(pm.y - pt.y) * t.longEdge.dx;
+    assert(side != 0); // non-zero area
+    t.longEdgeOnLeft = side > 0;
+
+    // --- Rows: centre y in [yTop, yBottom), the lower part from the first centre >= yMid ----
+    t.firstRow = firstRowAtOrBelow(pt.y);
+    t.midRow = firstRowAtOrBelow(pm.y);
+    t.endRow = firstRowAtOrBelow(pb.y);
+    if (t.firstRow >= t.endRow) return std::nullopt; // thinner than one row of centres
+    const Fixed minX = std::min({pt.x, pm.x, pb.x}), maxX = std::max({pt.x, pm.x, pb.x});
+    t.minX = int(floorDiv(minX, kSubPixelScale));
+    t.maxX = int(floorDiv(maxX, kSubPixelScale));
+
+    // --- Attribute planes from the snapped positions ---------------------------------------
+    // For a plane a = a0 + A (x - x0) + B (y - y0) through the three vertices, Cramer's rule
+    // gives A = (da1 e2y - da2 e1y) / area2 and B = (da2 e1x - da1 e2x) / area2 (e = edge
+    // vectors from vertex 0, in pixels). Done in double; the origin stays at vertex 0 so the
+    // stored float value is exact and only the gradients are rounded.
+    const double inv = double(kSubPixelScale) * double(kSubPixelScale) / double(doubleArea);
+    const double ex1 = double(e1x) / kSubPixelScale, ey1 = double(e1y) / kSubPixelScale;
+    const double ex2 = double(e2x) / kSubPixelScale, ey2 = double(e2y) / kSubPixelScale;
+    t.originX = fixedToFloat(p[0].x);
+    t.originY = fixedToFloat(p[0].y);
+    t.varyingCount = varyingCount;
+    const int planes = kPlaneVarying0 + varyingCount;
+    for (int k = 0; k < planes; ++k) {
+        const double a0 = attributeAt(v0, k);
+        const double da1 = attributeAt(v1, k) - a0;
+        const double da2 = attributeAt(v2, k) - a0;
+        t.value[k] = float(a0);
+        t.ddx[k] = float((da1 * ey2 - da2 * ey1) * inv);
+        t.ddy[k] = float((da2 * ex1 - da1 * ex2) * inv);
+    }
+    return t;
+}
+
+} // namespace sr

@@ -1,0 +1,71 @@
+// Triangle setup: snaps a screen triangle to fixed point and builds the one record the fill reads.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "Raster/FixedPoint.hpp"
+#include "Raster/Vertex.hpp"
+
+namespace sr {
+
+// One triangle edge in 1/256-pixel fixed point, always walked downwards (dy >= 0).
+// The x of the edge at a fixed-point height Y is x0 + (Y - y0) * dx / dy, kept as an exact
+// rational by the edge walker (ScanlineFill.hpp); nothing is rounded at setup.
+struct FixedEdge {
+    Fixed x0 = 0, y0 = 0; // start (upper vertex)
+    Fixed dx = 0, dy = 0; // end - start, dy >= 0 (|dx|, dy < 2^24)
+};
+
+// Attribute planes. Slot 0 is depth z (interpolated linearly in screen space, as D3D does:
+// z/w is affine in screen space), slot 1 is 1/w, slots 2.. are varying_i / w. The fill
+// recovers perspective-correct varyings as (v/w) / (1/w) per pixel (Hecker, "Perspective
+// Texture Mapping, Part 1", Game Developer, April 1995: u/z and 1/z are linear in screen space).
+inline constexpr int kPlaneZ = 0;
+inline constexpr int kPlaneInvW = 1;
+inline constexpr int kPlaneVarying0 = 2;
+inline constexpr int kMaxPlanes = kPlaneVarying0 + kMaxVaryings;
+
+// The per-triangle record: everything the span loop needs, computed once.
+struct TriangleSetup {
+    // --- Coverage (exact fixed point) ------------------------------------------------------
+    // Vertices sorted by y (top, mid, bottom). The long edge runs top -> bottom; the short
+    // edges top -> mid (upper part) and mid -> bottom (lower part).
+    FixedEdge longEdge;
+    FixedEdge upperEdge;
+    FixedEdge lowerEdge;
+    bool longEdgeOnLeft = true; // true when the middle vertex lies right of the long edge
+    // Pixel rows whose centre y is in [yTop, yBottom): [firstRow, endRow). Rows from midRow on
+    // (centre y >= yMid) use lowerEdge, earlier rows upperEdge.
+    int firstRow = 0, midRow = 0, endRow = 0;
+    // Pixel-column bounds of the snapped triangle (inclusive), for scissor rejection.
+    int minX = 0, maxX = 0;
+    // Twice the signed area in (1/256 px)^2 for the vertices in INPUT order: > 0 is clockwise
+    // on screen (y down), < 0 counter-clockwise (Math/Conventions.hpp). Never 0.
+    std::int64_t doubleArea = 0;
+
+    // --- Attribute planes a(x, y) = value + ddx * (x - originX) + ddy * (y - originY) -----
+    // Origin = the first input vertex, snapped (in pixels, exact in float). Gradients are
+    // computed in double from the snapped positions and stored as float.
+    float originX = 0.0f, originY = 0.0f;
+    int varyingCount = 0;
+    float value[kMaxPlanes] = {};
+    float ddx[kMaxPlanes] = {};
+    float ddy[kMaxPlanes] = {};
+
+    // Plane value at a screen point (pixels); for tests and one-off evaluations, not per pixel.
+    float planeAt(int plane, float x, float y) const {
+        return value[plane] + ddx[plane] * (x - originX) + ddy[plane] * (y - originY);
+    }
+};
+
+// Snaps v0, v1, v2 (any winding) to the 1/256 grid and builds the record, or returns nullopt
+// for a triangle that can cover nothing: zero area after snapping (collinear or coincident
+// vertices), or a triangle that misses every pixel-centre row. Preconditions (asserted, and
+// also rejected in release builds): finite coordinates within the guard band
+// (|x|, |y| <= kGuardBand) and 0 <= varyingCount <= kMaxVaryings. Only the first
+// varyingCount varyings are read.
+std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenVertex& v1,
+                                           const ScreenVertex& v2, int varyingCount);
+
+} // namespace sr
