@@ -1,0 +1,30 @@
+// Mesh: an indexed triangle list in object space, the unit a draw call submits.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "Math/Vec.hpp"
+
+namespace sr {
+
+// Vertex attributes are parallel arrays (structure of arrays): positions always; normals and
+// uvs either empty or one per position. Triangles are index triples into them, counter-
+// clockwise for front faces (Math/Conventions.hpp). A stage reads only the arrays it needs.
+struct Mesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;
+    std::vector<Vec2> uvs;
+    std::vector<std::uint32_t> indices; // 3 per triangle
+
+    std::size_t vertexCount() const { return positions.size(); }
+    std::size_t triangleCount() const { return indices.size() / 3; }
+    bool hasNormals() const { return !normals.empty() && normals.size() == positions.size(); }
+    bool hasUvs() const { return !uvs.empty() && uvs.size() == positions.size(); }
+};
+
+// Every index refers to an existing vertex and the index count is a multiple of 3. Loaders
+// check this for outside input; draws assert it.
+bool indicesValid(const Mesh& mesh);
+
+} // namespace sr
