@@ -41,10 +41,16 @@ inline void drawWireEdge(FrameBuffer& fb, const ScreenVertex& a, const ScreenVer
              options);
 }
 
-// Culls, sets up and fills one screen-space triangle. Returns true when it was not culled.
-template <int kVaryings, class FragmentShader>
-bool rasterizeTriangle(RenderContext& ctx, const DrawState& state, const ScreenVertex& v0, const ScreenVertex& v1,
-                       const ScreenVertex& v2, FragmentShader& shader) {
+// A triangle hook that does nothing (draws without per-triangle work).
+struct NoTriangleHook {
+    void operator()(std::size_t, const TriangleSetup&) const {}
+};
+
+// Culls, sets up and fills one screen-space triangle (index t of the draw). Returns true when
+// it was not culled. The hook runs once per set-up triangle, right before its fill.
+template <int kVaryings, class TriangleHook, class FragmentShader>
+bool rasterizeTriangle(RenderContext& ctx, const DrawState& state, std::size_t t, const ScreenVertex& v0,
+                       const ScreenVertex& v1, const ScreenVertex& v2, TriangleHook& hook, FragmentShader& shader) {
     if (isCulled(state.cull, v0, v1, v2)) {
         ++ctx.stats.culled;
         return false;
@@ -53,6 +59,7 @@ bool rasterizeTriangle(RenderContext& ctx, const DrawState& state, const ScreenV
     const auto setup = setupTriangle(v0, v1, v2, kVaryings);
     if (!setup) return true; // covers no pixel-centre row: nothing to do, but not culled
     ++ctx.stats.rasterized;
+    hook(t, *setup);
     FrameBuffer& fb = ctx.target();
     switch (state.depth) {
     case DepthMode::Off: fillTriangle<DepthMode::Off, kVaryings>(*setup, fb, shader); break;
@@ -76,10 +83,15 @@ bool rasterizeTriangle(RenderContext& ctx, const DrawState& state, const ScreenV
 // Per triangle: trivial reject / accept first (an on-screen triangle costs no clipping), else
 // homogeneous clipping (near plane always, guard band and far plane when needed), then the
 // divide (cached per vertex for accepted triangles), cull, setup and fill.
+//  - triangleHook(std::size_t t, const TriangleSetup&) runs once per triangle that reaches the
+//    fill (t = index of the triangle in this draw, i.e. indices[3t..3t+2]), before its pixels:
+//    per-triangle work such as flat shading, or keeping the setup's gradients for texture
+//    derivatives, goes there, never in the fragment shader.
 // Precondition (asserted): every index < vertexCount and indexCount % 3 == 0.
-template <int kVaryings, class VertexShader, class FragmentShader>
+template <int kVaryings, class VertexShader, class TriangleHook, class FragmentShader>
 void drawIndexed(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
-                 std::size_t indexCount, VertexShader&& vertexShader, FragmentShader&& fragmentShader) {
+                 std::size_t indexCount, VertexShader&& vertexShader, TriangleHook&& triangleHook,
+                 FragmentShader&& fragmentShader) {
     static_assert(kVaryings >= 0 && kVaryings <= kMaxVaryings, "too many varyings");
     assert(indexCount % 3 == 0);
     FrameBuffer& fb = ctx.target();
@@ -126,7 +138,7 @@ void drawIndexed(RenderContext& ctx, const DrawState& state, std::size_t vertexC
             const ScreenVertex& s1 = ctx.screenVertices[i1];
             const ScreenVertex& s2 = ctx.screenVertices[i2];
             assert(ctx.usable[i0] && ctx.usable[i1] && ctx.usable[i2]);
-            if (detail::rasterizeTriangle<kVaryings>(ctx, state, s0, s1, s2, fragmentShader) && state.wireframe) {
+            if (detail::rasterizeTriangle<kVaryings>(ctx, state, t / 3, s0, s1, s2, triangleHook, fragmentShader) && state.wireframe) {
                 detail::drawWireEdge(fb, s0, s1, state.wireColour, wireDepthTest);
                 detail::drawWireEdge(fb, s1, s2, state.wireColour, wireDepthTest);
                 detail::drawWireEdge(fb, s2, s0, state.wireColour, wireDepthTest);
@@ -140,8 +152,8 @@ void drawIndexed(RenderContext& ctx, const DrawState& state, std::size_t vertexC
             // The fan keeps the input winding, so every piece gets the same cull decision.
             bool drawn = false;
             for (int k = 0; k < polygon.triangleCount(); ++k) {
-                drawn |= detail::rasterizeTriangle<kVaryings>(ctx, state, screen[0], screen[k + 1], screen[k + 2],
-                                                              fragmentShader);
+                drawn |= detail::rasterizeTriangle<kVaryings>(ctx, state, t / 3, screen[0], screen[k + 1],
+                                                              screen[k + 2], triangleHook, fragmentShader);
             }
             if (drawn && state.wireframe) {
                 for (int k = 0; k < n; ++k)
@@ -151,6 +163,14 @@ void drawIndexed(RenderContext& ctx, const DrawState& state, std::size_t vertexC
         }
         }
     }
+}
+
+// The same draw without per-triangle work.
+template <int kVaryings, class VertexShader, class FragmentShader>
+void drawIndexed(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
+                 std::size_t indexCount, VertexShader&& vertexShader, FragmentShader&& fragmentShader) {
+    detail::NoTriangleHook none;
+    drawIndexed<kVaryings>(ctx, state, vertexCount, indices, indexCount, vertexShader, none, fragmentShader);
 }
 
 } // namespace sr
