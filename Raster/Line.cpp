@@ -15,21 +15,44 @@ bool inGuardBand(const LineVertex& v) {
     return std::fabs(v.x) <= kGuardBand && std::fabs(v.y) <= kGuardBand;
 }
 
-// Liang-Barsky (1984): clips the parameter range [t0, t1] of p(t) = a + t (b - a) against
+// Where a clipped segment end lies: parameter t and, when a boundary moved it, which one.
+struct ClipEnd {
+    double t;
+    int axis = -1; // -1: not clipped, 0: x = bound, 1: y = bound
+    double bound = 0.0;
+};
+
+// Liang-Barsky (1984): clips the parameter range [t0, t1] of p(t) = a + t d against
 // lo <= p <= hi on one axis. Returns false when the segment is entirely outside.
-bool clipAxis(double a, double d, double lo, double hi, double& t0, double& t1) {
+bool clipAxis(int axis, double a, double d, double lo, double hi, ClipEnd& t0, ClipEnd& t1) {
     const double p[2] = {-d, d};
     const double q[2] = {a - lo, hi - a};
+    const double bound[2] = {lo, hi};
     for (int k = 0; k < 2; ++k) {
         if (p[k] == 0.0) {
             if (q[k] < 0.0) return false; // parallel to and outside this boundary
             continue;
         }
         const double t = q[k] / p[k];
-        if (p[k] < 0.0) t0 = std::max(t0, t);
-        else t1 = std::min(t1, t);
+        if (p[k] < 0.0 && t > t0.t) t0 = {t, axis, bound[k]};
+        if (p[k] > 0.0 && t < t1.t) t1 = {t, axis, bound[k]};
     }
-    return t0 <= t1;
+    return t0.t <= t1.t;
+}
+
+// The clipped point, computed ON the boundary that clipped it (x = bound exactly, y from the
+// slope), not as a + t d: with |a| ~ 1e38 the latter cancels catastrophically.
+void clippedPoint(const ClipEnd& c, double ax, double ay, double dx, double dy, double& x, double& y) {
+    if (c.axis == 0) {
+        x = c.bound;
+        y = ay + (c.bound - ax) * (dy / dx);
+    } else if (c.axis == 1) {
+        y = c.bound;
+        x = ax + (c.bound - ay) * (dx / dy);
+    } else {
+        x = ax + c.t * dx; // t is exactly 0 or 1 here
+        y = ay + c.t * dy;
+    }
 }
 
 void unpack(Pixel p, float out[3]) {
@@ -53,11 +76,12 @@ std::optional<LineSetup> setupLine(const LineVertex& inA, const LineVertex& inB,
 
     // --- Clip in double to the scissor grown by one pixel (rule 5) ----------------------------
     const double ax = a.x, ay = a.y, dx = double(b.x) - ax, dy = double(b.y) - ay;
-    double t0 = 0.0, t1 = 1.0;
-    if (!clipAxis(ax, dx, s.x0 - 1.0, s.x1 + 1.0, t0, t1)) return std::nullopt;
-    if (!clipAxis(ay, dy, s.y0 - 1.0, s.y1 + 1.0, t0, t1)) return std::nullopt;
-    const double cx0 = ax + t0 * dx, cy0 = ay + t0 * dy; // visible part, for narrowing
-    const double cx1 = ax + t1 * dx, cy1 = ay + t1 * dy;
+    ClipEnd t0{0.0}, t1{1.0};
+    if (!clipAxis(0, ax, dx, s.x0 - 1.0, s.x1 + 1.0, t0, t1)) return std::nullopt;
+    if (!clipAxis(1, ay, dy, s.y0 - 1.0, s.y1 + 1.0, t0, t1)) return std::nullopt;
+    double cx0, cy0, cx1, cy1; // the visible part, for narrowing (and clipping, below)
+    clippedPoint(t0, ax, ay, dx, dy, cx0, cy0);
+    clippedPoint(t1, ax, ay, dx, dy, cx1, cy1);
     float za = a.z, zb = b.z;
     unpack(a.colour, l.colourA);
     unpack(b.colour, l.colourB);
@@ -65,12 +89,12 @@ std::optional<LineSetup> setupLine(const LineVertex& inA, const LineVertex& inB,
         // Replace the endpoints by the clipped ones (attributes interpolated to match).
         float ca[3], cb[3];
         for (int k = 0; k < 3; ++k) {
-            ca[k] = float(l.colourA[k] + t0 * (l.colourB[k] - l.colourA[k]));
-            cb[k] = float(l.colourA[k] + t1 * (l.colourB[k] - l.colourA[k]));
+            ca[k] = float(l.colourA[k] + t0.t * (l.colourB[k] - l.colourA[k]));
+            cb[k] = float(l.colourA[k] + t1.t * (l.colourB[k] - l.colourA[k]));
         }
         std::copy(ca, ca + 3, l.colourA);
         std::copy(cb, cb + 3, l.colourB);
-        const double z0 = za + t0 * (double(zb) - za), z1 = za + t1 * (double(zb) - za);
+        const double z0 = za + t0.t * (double(zb) - za), z1 = za + t1.t * (double(zb) - za);
         za = float(z0);
         zb = float(z1);
         a.x = float(cx0);

@@ -109,9 +109,9 @@ enum class DepthMode { Off, Test, TestWrite };
 // The span loop: fills the covered pixels of `t` inside the scissor. Per pixel, in order:
 // depth test (if enabled), depth write (TestWrite), colour = shader(fragment). kVaryings
 // (<= t.varyingCount) perspective-correct varyings are interpolated; with kVaryings == 0 no
-// divide runs at all. Attributes at a span start are evaluated from the plane equation (never
-// accumulated from row to row); along the span pixel k gets start + k * gradient (one
-// multiply-add per attribute, and no error build-up on long spans).
+// divide runs at all. Attributes at a span start are evaluated from the plane equation in double
+// (never accumulated from row to row); along the span pixel k gets start + k * gradient in float
+// (one multiply-add per attribute, and no error build-up on long spans).
 // Shader: any callable `Pixel(const Fragment<kVaryings>&)`, inlined: no virtual call per pixel.
 template <DepthMode kDepth, int kVaryings, class Shader>
 void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Shader&& shader) {
@@ -121,11 +121,10 @@ void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Sha
     constexpr int kPlanes = kVaryings > 0 ? kPlaneVarying0 + kVaryings : 1;
 
     forEachSpan(t, s, [&](int y, int x0, int x1) {
-        // Plane values at the centre of the span's first pixel.
-        const float dx = (float(x0) + 0.5f) - t.originX; // exact: both on the 1/256 grid
-        const float dy = (float(y) + 0.5f) - t.originY;
+        // Plane values at the centre of the span's first pixel (double, once per span).
+        const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
         float start[kPlanes];
-        for (int k = 0; k < kPlanes; ++k) start[k] = t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy;
+        for (int k = 0; k < kPlanes; ++k) start[k] = float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy);
 
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);
@@ -133,18 +132,18 @@ void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Sha
         f.y = y;
         float step = 0.0f; // pixel index along the span, exact in float
         for (int x = x0; x < x1; ++x, step += 1.0f) {
-            f.z = start[kPlaneZ] + t.ddx[kPlaneZ] * step;
+            f.z = start[kPlaneZ] + t.ddxStep[kPlaneZ] * step;
             if constexpr (kDepth != DepthMode::Off) {
                 if (!(f.z > depth[x])) continue;
                 if constexpr (kDepth == DepthMode::TestWrite) depth[x] = f.z;
             }
             f.x = x;
             if constexpr (kVaryings > 0) {
-                f.invW = start[kPlaneInvW] + t.ddx[kPlaneInvW] * step;
+                f.invW = start[kPlaneInvW] + t.ddxStep[kPlaneInvW] * step;
                 const float w = 1.0f / f.invW;
                 for (int k = 0; k < kVaryings; ++k) {
                     const int p = kPlaneVarying0 + k;
-                    f.varyings[std::size_t(k)] = (start[p] + t.ddx[p] * step) * w;
+                    f.varyings[std::size_t(k)] = (start[p] + t.ddxStep[p] * step) * w;
                 }
             }
             colour[x] = shader(static_cast<const Fragment<kVaryings>&>(f));

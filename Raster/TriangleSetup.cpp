@@ -86,22 +86,22 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
     // --- Attribute planes from the snapped positions ---------------------------------------
     // For a plane a = a0 + A (x - x0) + B (y - y0) through the three vertices, Cramer's rule
     // gives A = (da1 e2y - da2 e1y) / area2 and B = (da2 e1x - da1 e2x) / area2 (e = edge
-    // vectors from vertex 0, in pixels). Done in double; the origin stays at vertex 0 so the
-    // stored float value is exact and only the gradients are rounded.
+    // vectors from vertex 0, in pixels), in double; the origin stays at vertex 0.
     const double inv = double(kSubPixelScale) * double(kSubPixelScale) / double(doubleArea);
     const double ex1 = double(e1x) / kSubPixelScale, ey1 = double(e1y) / kSubPixelScale;
     const double ex2 = double(e2x) / kSubPixelScale, ey2 = double(e2y) / kSubPixelScale;
-    t.originX = fixedToFloat(p[0].x);
-    t.originY = fixedToFloat(p[0].y);
+    t.originX = double(p[0].x) / kSubPixelScale;
+    t.originY = double(p[0].y) / kSubPixelScale;
     t.varyingCount = varyingCount;
     const int planes = kPlaneVarying0 + varyingCount;
     for (int k = 0; k < planes; ++k) {
         const double a0 = attributeAt(v0, k);
         const double da1 = attributeAt(v1, k) - a0;
         const double da2 = attributeAt(v2, k) - a0;
-        t.value[k] = float(a0);
-        t.ddx[k] = float((da1 * ey2 - da2 * ey1) * inv);
-        t.ddy[k] = float((da2 * ex1 - da1 * ex2) * inv);
+        t.value[k] = a0;
+        t.ddx[k] = (da1 * ey2 - da2 * ey1) * inv;
+        t.ddy[k] = (da2 * ex1 - da1 * ex2) * inv;
+        t.ddxStep[k] = float(t.ddx[k]);
     }
     return t;
 }

@@ -45,16 +45,19 @@ struct TriangleSetup {
     std::int64_t doubleArea = 0;
 
     // --- Attribute planes a(x, y) = value + ddx * (x - originX) + ddy * (y - originY) -----
-    // Origin = the first input vertex, snapped (in pixels, exact in float). Gradients are
-    // computed in double from the snapped positions and stored as float.
-    float originX = 0.0f, originY = 0.0f;
+    // Origin = the first input vertex, snapped (pixels). Gradients come from the snapped
+    // positions. The plane is kept in double: the fill evaluates it once per span start, where
+    // float would lose ~|ddx| * distance * 2^-24 to cancellation on thin triangles (large
+    // gradients far from the origin); along a span it steps with the float copy ddxStep.
+    double originX = 0.0, originY = 0.0;
     int varyingCount = 0;
-    float value[kMaxPlanes] = {};
-    float ddx[kMaxPlanes] = {};
-    float ddy[kMaxPlanes] = {};
+    double value[kMaxPlanes] = {};
+    double ddx[kMaxPlanes] = {};
+    double ddy[kMaxPlanes] = {};
+    float ddxStep[kMaxPlanes] = {};
 
-    // Plane value at a screen point (pixels); for tests and one-off evaluations, not per pixel.
-    float planeAt(int plane, float x, float y) const {
+    // Plane value at a screen point (pixels); for span starts, tests and one-off evaluations.
+    double planeAt(int plane, double x, double y) const {
         return value[plane] + ddx[plane] * (x - originX) + ddy[plane] * (y - originY);
     }
 };
