@@ -37,6 +37,22 @@
 // Non-finite values
 //  - Math functions propagate NaN/Inf (IEEE semantics) unless their comment says otherwise;
 //    the pipeline drops any primitive with a non-finite vertex before rasterization.
+//  - The exceptions, each tested in Tests/Math and documented at its declaration:
+//    * normalize (Vec.hpp): zero -> zero; a vector with infinite components -> the unit vector
+//      along their signs; any NaN -> all NaN. length() never overflows or underflows.
+//    * inverse / affineInverse / normalMatrix (Mat4.hpp): an EMPTY optional for any non-finite
+//      input element, for a matrix singular within the rounding of its float elements, and when
+//      the inverse would overflow float. A returned inverse is always finite.
+//    * determinant (Mat4.hpp): computed in double; +-Inf only when the value exceeds FLT_MAX.
+//    * lookAt (Transform.hpp): any non-finite argument -> every element NaN. Degenerate finite
+//      input (eye == target, up zero or parallel to the view) gets a deterministic fallback.
+//    * perspective / perspectiveInfinite / orthographic: non-finite or out-of-range arguments are
+//      programming errors (assert); release builds substitute documented values, so these
+//      matrices are ALWAYS finite. far = +Inf is valid (the infinite-far projection).
+//    * aspectRatio / viewport: sizes <= 0 (a minimised 0x0 window) give aspect 1 and a finite
+//      zero-size viewport, never a division by zero.
+//    * packBgra8 / toUnorm8 (Color.hpp): NaN -> 0, +Inf -> 255, -Inf -> 0.
+//    * clamp (Vec.hpp, Color.hpp) keeps NaN as NaN; transformPoint divides by a w of 0 (IEEE).
 
 namespace sr {
 

@@ -84,6 +84,9 @@ float determinant(const Mat4& a);
 //    row or column, so scale(1e-30) and scale(1e30) both invert) and, unlike |det| / ||a||^4, it
 //    does not reject affine matrices with large translations (perm = det for those);
 //  - some element of the inverse overflows float (e.g. scale(1e-39), whose inverse 1e39 > FLT_MAX).
+// The test only knows the rounding of the elements themselves: a matrix whose elements carry larger
+// errors from how they were computed (e.g. a projection onto a plane, I - n n^T, built in float)
+// can pass it and come back with a finite but huge inverse. Do not invert such matrices.
 // Precision: each element of the result is the correctly computed double value rounded to float,
 // so a * inverse(a) = I within about 2u * (|a| |inverse(a)|)_ij per element (the tests check it).
 std::optional<Mat4> inverse(const Mat4& a);

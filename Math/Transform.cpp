@@ -51,7 +51,7 @@ PerspectiveArgs sanitizePerspective(float fovY, float aspect, float nearZ, float
     double fov = std::isnan(fovY) ? kPiD / 2.0 : static_cast<double>(fovY);
     fov = fov < 1e-6 ? 1e-6 : (fov > kPiD - 1e-6 ? kPiD - 1e-6 : fov);
     const double asp = (std::isfinite(aspect) && aspect > 0.0f) ? static_cast<double>(aspect) : 1.0;
-    p.n = (std::isfinite(nearZ) && nearZ > 0.0f) ? static_cast<double>(nearZ) : 0.1;
+    p.n = (std::isfinite(nearZ) && nearZ > 0.0f) ? static_cast<double>(nearZ) : static_cast<double>(0.1f);
     p.f = (farZ > p.n) ? static_cast<double>(farZ) : HUGE_VAL; // NaN compares false -> infinite
     p.yScale = 1.0 / std::tan(fov / 2.0);                       // cot(fovY / 2), in [5e-7, 2e6]
     p.xScale = p.yScale / asp;
@@ -165,9 +165,8 @@ Mat4 lookAt(Vec3 eye, Vec3 target, Vec3 up) {
             s = cross(f, u0);
         }
     }
-    s = s * (1.0 / norm(s));
-    // Gram-Schmidt: remove the rounding residue of s along f, then renormalise.
-    s = s - f * dot(s, f);
+    // With sin(f, up) > 1e-6 the double cross product is orthogonal to f to ~1e-16 / 1e-6 = 1e-10,
+    // far below float's rounding, so no Gram-Schmidt pass is needed.
     s = s * (1.0 / norm(s));
     const D3 u = cross(s, f); // unit and orthogonal to both, up to double rounding
 

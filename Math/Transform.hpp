@@ -22,8 +22,8 @@ Mat4 rotate(float radians, Vec3 axis);
 // down its -Z axis, +Y of the view is the component of `up` orthogonal to the view direction,
 // +X = forward x up. With f = forward, s = side, u = up (all unit), the rows are
 //   [ s  -s.eye ]   [ u  -u.eye ]   [ -f  f.eye ]   [ 0 0 0 1 ]
-// Computed in double with Gram-Schmidt re-orthogonalisation, so the rotation rows are orthonormal
-// to within one float rounding per element. Degenerate inputs get a deterministic fallback:
+// Computed in double and rounded once, so the rotation rows are orthonormal to within one float
+// rounding per element. Degenerate inputs get a deterministic fallback:
 //  - eye == target: forward is -Z (the default camera orientation);
 //  - up is zero or parallel to forward (sine of their angle <= 1e-6): up becomes +Y, or, when
 //    forward is itself along +-Y, up = (0, 0, sign(forward.y)) - the orientation of the default
@@ -42,7 +42,7 @@ Mat4 lookAt(Vec3 eye, Vec3 target, Vec3 up);
 // far = 1e9). far = +infinity is accepted and equals perspectiveInfinite().
 // Invalid arguments are programming errors (assert); release builds substitute, so the matrix is
 // always finite: fovY NaN -> pi/2, otherwise clamped into [1e-6, pi - 1e-6]; aspect <= 0 or not
-// finite -> 1; near <= 0 or not finite -> 0.1; far NaN or far <= near -> infinite far.
+// finite -> 1; near <= 0 or not finite -> 0.1f; far NaN or far <= near -> infinite far.
 // Coefficients that would overflow float saturate at +-FLT_MAX.
 Mat4 perspective(float fovYRadians, float aspect, float nearZ, float farZ);
 
