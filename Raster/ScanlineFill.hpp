@@ -126,24 +126,26 @@ void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Sha
         float start[kPlanes];
         for (int k = 0; k < kPlanes; ++k) start[k] = float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy);
 
+        float gradient[kPlanes]; // per-pixel gradients in locals: stores to the buffers can't alias them
+        for (int k = 0; k < kPlanes; ++k) gradient[k] = t.ddxStep[k];
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);
         Fragment<kVaryings> f;
         f.y = y;
         float step = 0.0f; // pixel index along the span, exact in float
         for (int x = x0; x < x1; ++x, step += 1.0f) {
-            f.z = start[kPlaneZ] + t.ddxStep[kPlaneZ] * step;
+            f.z = start[kPlaneZ] + gradient[kPlaneZ] * step;
             if constexpr (kDepth != DepthMode::Off) {
                 if (!(f.z > depth[x])) continue;
                 if constexpr (kDepth == DepthMode::TestWrite) depth[x] = f.z;
             }
             f.x = x;
             if constexpr (kVaryings > 0) {
-                f.invW = start[kPlaneInvW] + t.ddxStep[kPlaneInvW] * step;
+                f.invW = start[kPlaneInvW] + gradient[kPlaneInvW] * step;
                 const float w = 1.0f / f.invW;
                 for (int k = 0; k < kVaryings; ++k) {
                     const int p = kPlaneVarying0 + k;
-                    f.varyings[std::size_t(k)] = (start[p] + t.ddxStep[p] * step) * w;
+                    f.varyings[std::size_t(k)] = (start[p] + gradient[p] * step) * w;
                 }
             }
             colour[x] = shader(static_cast<const Fragment<kVaryings>&>(f));

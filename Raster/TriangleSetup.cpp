@@ -54,7 +54,9 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
     const std::int64_t doubleArea = e1x * e2y - e2x * e1y;
     if (doubleArea == 0) return std::nullopt; // collinear or coincident after snapping
 
-    TriangleSetup t;
+    // Built in place in the returned optional (one named return value: no copy of the record).
+    std::optional<TriangleSetup> result(std::in_place);
+    TriangleSetup& t = *result;
     t.doubleArea = doubleArea;
 
     // --- Sort by y (top = smallest y, the screen is y-down) and build the three edges ------
@@ -78,7 +80,10 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
     t.firstRow = firstRowAtOrBelow(pt.y);
     t.midRow = firstRowAtOrBelow(pm.y);
     t.endRow = firstRowAtOrBelow(pb.y);
-    if (t.firstRow >= t.endRow) return std::nullopt; // thinner than one row of centres
+    if (t.firstRow >= t.endRow) { // thinner than one row of centres
+        result.reset();
+        return result;
+    }
     const Fixed minX = std::min({pt.x, pm.x, pb.x}), maxX = std::max({pt.x, pm.x, pb.x});
     t.minX = int(floorDiv(minX, kSubPixelScale));
     t.maxX = int(floorDiv(maxX, kSubPixelScale));
@@ -103,7 +108,7 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
         t.ddy[k] = (da2 * ex1 - da1 * ex2) * inv;
         t.ddxStep[k] = float(t.ddx[k]);
     }
-    return t;
+    return result;
 }
 
 } // namespace sr
