@@ -5,7 +5,11 @@
 #include <cmath>
 #include <utility>
 
+#include "Raster/RasterLimits.hpp"
+
 namespace sr {
+
+static_assert(kClipGuardBand < kGuardBand, "the clipper's band must sit inside the rasterizer's");
 
 namespace {
 
@@ -134,11 +138,8 @@ int Clipper::clipAgainst(int plane, const ClipVertex* in, int inCount, ClipVerte
         d[std::size_t(i)] = distance(plane, in[i].position);
         anyOutside |= d[std::size_t(i)] < 0.0;
     }
-    if (!anyOutside) { // the pass would be the identity: skip it
-        for (int i = 0; i < inCount; ++i)
-            out[i] = in[i];
-        return inCount;
-    }
+    if (!anyOutside)
+        return -1; // the pass would be the identity: the caller keeps `in`
     int n = 0;
     for (int i = 0; i < inCount; ++i) {
         const int s = (i + inCount - 1) % inCount;
@@ -188,7 +189,10 @@ int Clipper::clip(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c,
     for (int plane = 0; plane < kClipPlaneCount && n >= 3; ++plane) {
         if (plane == kPlaneFar && !params_.clipFar)
             continue;
-        n = clipAgainst(plane, src, n, dst);
+        const int m = clipAgainst(plane, src, n, dst);
+        if (m < 0)
+            continue; // no vertex outside this plane
+        n = m;
         std::swap(src, dst);
     }
     if (n < 3) {

@@ -108,7 +108,8 @@ private:
     unsigned outcode(const Vec4& p) const;
     // Bit mask of the view-volume planes (near, MinW, far if enabled, x/y = +-w) it is outside.
     unsigned viewOutcode(const Vec4& p) const;
-    // One Sutherland-Hodgman pass of `in` against `plane` into `out`; returns out's count.
+    // One Sutherland-Hodgman pass of `in` against `plane` into `out`; returns out's count, or
+    // -1 without writing `out` when no vertex is outside (the pass would be the identity).
     int clipAgainst(int plane, const ClipVertex* in, int inCount, ClipVertex* out) const;
     // The point where edge (inside, outside) crosses `plane`, position and varyings.
     ClipVertex intersect(int plane, const ClipVertex& inside, double dInside, const ClipVertex& outside,

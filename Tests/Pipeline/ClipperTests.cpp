@@ -389,6 +389,7 @@ TEST_CASE("the far plane is clipped only when the projection has one", "[pipelin
 TEST_CASE("random triangles: every clipped output keeps the invariants", "[pipeline][clip]") {
     Rng rng(777);
     ClipStats stats;
+    int maxCount = 0;
     for (int iter = 0; iter < 20000; ++iter) {
         const bool clipFar = (iter % 3) == 0;
         const int W = 1 + int(rng.next() % 4000), H = 1 + int(rng.next() % 3000);
@@ -405,6 +406,7 @@ TEST_CASE("random triangles: every clipped output keeps the invariants", "[pipel
         INFO("iteration " << iter);
         if (n == 0)
             continue;
+        maxCount = std::max(maxCount, n);
         checkInvariants(poly, p);
         if (std::fabs(homogeneousDet(v[0].position, v[1].position, v[2].position)) > 1e-3)
             checkWinding(poly, v[0], v[1], v[2], p);
@@ -414,6 +416,7 @@ TEST_CASE("random triangles: every clipped output keeps the invariants", "[pipel
     CHECK(stats.clipped > 1000);
     CHECK(stats.trivialRejected > 1000);
     CHECK(stats.trivialAccepted > 10);
+    CHECK(maxCount >= 7); // polygons cut by several planes at once were exercised
 }
 
 TEST_CASE("toScreen follows the viewport conventions", "[pipeline][viewport]") {
@@ -435,4 +438,18 @@ TEST_CASE("toScreen follows the viewport conventions", "[pipeline][viewport]") {
     CHECK(n.y == 0.0f);
     CHECK(n.z == 1.0f);
     CHECK(n.invW == Approx(10.0f));
+}
+
+TEST_CASE("a triangle cut by many planes at once fits the polygon buffer", "[pipeline][clip]") {
+    // Found by a random search: near, far and guard-band planes all cut this one, leaving a
+    // 9-gon (kMaxClipVertices = 10 is the bound for 7 planes).
+    const ClipVertex a = makeVertex({121.256638f, -268.075989f, 2.05789876f, -0.398781508f});
+    const ClipVertex b = makeVertex({-2.83029509f, 155.191238f, -2.18403411f, 3.17873192f});
+    const ClipVertex c = makeVertex({-217.537064f, 270.530212f, 1.99066031f, 3.44468451f});
+    const ClipParams p = params(0, true);
+    ClippedPolygon poly;
+    CHECK(clipTriangle(a, b, c, p, poly) == 9);
+    CHECK(poly.triangleCount() == 7);
+    checkInvariants(poly, p);
+    checkWinding(poly, a, b, c, p);
 }
