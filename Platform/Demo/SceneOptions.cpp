@@ -1,0 +1,167 @@
+// Parsing and validation of the scene and quality flags.
+#include "Platform/Demo/SceneOptions.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+
+#include "Raster/FrameBuffer.hpp"
+
+namespace sr::demo {
+namespace {
+
+std::optional<double> parseNumber(const std::string& text) {
+    if (text.empty()) return std::nullopt;
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(text.c_str(), &end);
+    if (end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(v)) return std::nullopt;
+    return v;
+}
+
+std::optional<int> parseInt(const std::string& text) {
+    if (text.empty()) return std::nullopt;
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (end != text.c_str() + text.size() || errno == ERANGE || v < -2147483647L || v > 2147483647L)
+        return std::nullopt;
+    return int(v);
+}
+
+} // namespace
+
+std::optional<Vec3> parseVec3(const std::string& text) {
+    double v[3];
+    std::size_t start = 0;
+    for (int k = 0; k < 3; ++k) {
+        const std::size_t comma = text.find(',', start);
+        if ((k < 2) != (comma != std::string::npos)) return std::nullopt;
+        const auto n = parseNumber(text.substr(start, k < 2 ? comma - start : std::string::npos));
+        if (!n) return std::nullopt;
+        v[k] = *n;
+        start = comma + 1;
+    }
+    const Vec3 r{float(v[0]), float(v[1]), float(v[2])};
+    if (!isFinite(r)) return std::nullopt; // e.g. 1e39 overflows float
+    return r;
+}
+
+FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, SceneOptions& o, std::string& error) {
+    std::string flag = args[i];
+    std::optional<std::string> inlineValue;
+    if (const auto eq = flag.find('='); flag.rfind("--", 0) == 0 && eq != std::string::npos) {
+        inlineValue = flag.substr(eq + 1);
+        flag = flag.substr(0, eq);
+    }
+    static const char* const kFlags[] = {"--obj",   "--width",   "--height", "--eye",     "--target", "--up",
+                                         "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
+                                         "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe"};
+    bool known = false;
+    for (const char* f : kFlags) known |= flag == f;
+    if (!known) return FlagResult::NotMine;
+
+    if (flag == "--wireframe") {
+        if (inlineValue) {
+            error = "--wireframe takes no value";
+            return FlagResult::Error;
+        }
+        o.wireframe = true;
+        return FlagResult::Consumed;
+    }
+    std::string value;
+    if (inlineValue) {
+        value = *inlineValue;
+    } else {
+        if (i + 1 >= args.size()) {
+            error = "missing value for " + flag;
+            return FlagResult::Error;
+        }
+        value = args[++i];
+    }
+    auto bad = [&](const std::string& expected) {
+        error = "bad value for " + flag + ": '" + value + "' (expected " + expected + ")";
+        return FlagResult::Error;
+    };
+
+    if (flag == "--obj") {
+        if (value.empty()) return bad("a file path");
+        o.obj = value;
+    } else if (flag == "--texture") {
+        if (value.empty()) return bad("a file path");
+        o.texture = value;
+    } else if (flag == "--width" || flag == "--height") {
+        const auto v = parseInt(value);
+        if (!v || *v < 1 || *v > FrameBuffer::kMaxDimension)
+            return bad("an integer from 1 to " + std::to_string(FrameBuffer::kMaxDimension));
+        (flag == "--width" ? o.width : o.height) = *v;
+    } else if (flag == "--threads") {
+        const auto v = parseInt(value);
+        if (!v || *v < 0 || *v > kMaxThreads) return bad("an integer from 0 to " + std::to_string(kMaxThreads));
+        o.threads = *v;
+    } else if (flag == "--eye" || flag == "--target" || flag == "--up" || flag == "--light" || flag == "--kd") {
+        const auto v = parseVec3(value);
+        if (!v) return bad("three finite numbers x,y,z");
+        if (flag == "--eye") o.eye = *v;
+        else if (flag == "--target") o.target = *v;
+        else if (flag == "--up") o.up = *v;
+        else if (flag == "--light") o.light = *v;
+        else o.kd = Color{v->x, v->y, v->z, 1.0f};
+    } else if (flag == "--fov") {
+        const auto v = parseNumber(value);
+        if (!v || !(*v > 0.0 && *v < 180.0)) return bad("degrees in (0, 180)");
+        o.fovDegrees = *v;
+    } else if (flag == "--near" || flag == "--far") {
+        const auto v = parseNumber(value);
+        if (!v || !(*v > 0.0)) return bad("a positive number");
+        (flag == "--near" ? o.nearZ : o.farZ) = *v;
+    } else if (flag == "--shading") {
+        const auto m = parseShadingMode(value);
+        if (!m) return bad("unlit, flat, gouraud or phong");
+        o.shading = *m;
+    } else if (flag == "--cull") {
+        const auto m = parseCullMode(value);
+        if (!m) return bad("none, cw or ccw");
+        o.cull = *m;
+    } else if (flag == "--filter") {
+        const auto m = parseFilter(value);
+        if (!m) return bad("nearest, bilinear or trilinear");
+        o.filter = *m;
+    } else if (flag == "--wrap") {
+        const auto m = parseWrap(value);
+        if (!m) return bad("repeat, clamp or mirror");
+        o.wrap = *m;
+    }
+    return FlagResult::Consumed;
+}
+
+std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
+    if (o.nearZ && o.farZ && !(*o.farZ > *o.nearZ))
+        return "--far (" + std::to_string(*o.farZ) + ") must be greater than --near (" + std::to_string(*o.nearZ) + ")";
+    if (o.eye && o.target && *o.eye == *o.target) return "--eye and --target must differ";
+    if (length(o.light) == 0.0f) return "--light must not be the zero vector";
+    return std::nullopt;
+}
+
+std::string sceneFlagsHelp() {
+    return "scene (same flags and defaults as the llvmpipe reference renderer):\n"
+           "  --obj PATH            Wavefront OBJ (+MTL) to render; default: the built-in scene\n"
+           "  --width N --height N  image size (default 800 x 600)\n"
+           "  --eye x,y,z           camera position (default: auto-fit the model's bounding sphere)\n"
+           "  --target x,y,z        look-at point (default: the bounding box centre)\n"
+           "  --up x,y,z            up vector (default 0,1,0)\n"
+           "  --fov DEG             vertical field of view in degrees (default 60)\n"
+           "  --near Z --far Z      clip distances (default: auto-fitted, or 0.1 / 100 with --eye)\n"
+           "  --light x,y,z         direction to the light (default 1,1,1)\n"
+           "  --shading MODE        unlit | flat | gouraud | phong (default phong)\n"
+           "  --texture PATH        texture for every material (overrides map_Kd)\n"
+           "  --cull MODE           none | cw | ccw (default none; front faces are CCW)\n"
+           "  --threads N           render threads (default 1)\n"
+           "quality:\n"
+           "  --filter F            nearest | bilinear | trilinear (default bilinear)\n"
+           "  --wrap W              repeat | clamp | mirror (default repeat)\n"
+           "  --kd r,g,b            colour of untextured surfaces (default 0.8,0.8,0.8)\n"
+           "  --wireframe           overlay triangle edges\n";
+}
+
+} // namespace sr::demo

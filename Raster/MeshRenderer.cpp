@@ -1,0 +1,179 @@
+// The eight specialised mesh pipelines (shading mode x textured) behind drawMesh().
+#include "Raster/MeshRenderer.hpp"
+
+#include <cmath>
+
+#include "Raster/Pipeline.hpp"
+#include "Raster/TextureLod.hpp"
+
+namespace sr {
+namespace {
+
+// Face normal of triangle (p0, p1, p2): normalize((p1 - p0) x (p2 - p0)) in double, as the
+// reference renderer computes it; not flipped toward the viewer. Zero area -> (0, 0, 1).
+Vec3 faceNormal(Vec3 p0, Vec3 p1, Vec3 p2) {
+    const double ax = double(p1.x) - p0.x, ay = double(p1.y) - p0.y, az = double(p1.z) - p0.z;
+    const double bx = double(p2.x) - p0.x, by = double(p2.y) - p0.y, bz = double(p2.z) - p0.z;
+    const double nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
+    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+    if (!(len > 0.0) || !std::isfinite(len)) return {0.0f, 0.0f, 1.0f};
+    return {float(nx / len), float(ny / len), float(nz / len)};
+}
+
+// The state every specialised pipeline shares; one instance per drawMesh call.
+struct DrawContext {
+    const FrameView& view;
+    const RenderSettings& settings;
+    const Mesh& mesh;
+    const std::uint32_t* indices;
+    const Texture* texture; // non-null only when the draw is textured
+    Color kd;
+};
+
+// Diffuse colour at a fragment whose varyings 0 and 1 are (u, v). Trilinear filtering needs the
+// screen-space uv derivatives, taken analytically from the triangle's planes (no quad shading).
+template <int kVaryings>
+Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
+    const Vec2 uv{f.varyings[0], f.varyings[1]};
+    float lod = 0.0f;
+    if (d.settings.filter == TextureFilter::Trilinear) {
+        const UvDerivatives g =
+            uvDerivatives(*setup, kPlaneVarying0 + 0, kPlaneVarying0 + 1, f.invW, uv.x, uv.y);
+        lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, d.texture->width(), d.texture->height());
+    }
+    return d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
+}
+
+DrawState drawStateFor(const DrawContext& d) {
+    DrawState s;
+    s.cull = d.settings.cull;
+    s.clipFar = d.view.finiteFar;
+    s.wireframe = d.settings.wireframe;
+    return s;
+}
+
+// Writes the clip position and, when textured, the uv into varyings 0-1.
+template <bool kTextured>
+void transformVertex(const DrawContext& d, std::size_t i, ClipVertex& out) {
+    out.position = d.view.viewProj * Vec4(d.mesh.positions[i], 1.0f);
+    if constexpr (kTextured) {
+        out.varyings[0] = d.mesh.uvs[i].x;
+        out.varyings[1] = d.mesh.uvs[i].y;
+    }
+}
+
+template <bool kTextured>
+void drawUnlit(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
+    constexpr int kV = kTextured ? 2 : 0;
+    const TriangleSetup* setup = nullptr;
+    const Pixel flat = packBgra8(d.kd);
+    drawIndexed<kV>(
+        ctx, drawStateFor(d), d.mesh.vertexCount(), d.indices, indexCount,
+        [&](std::size_t i, ClipVertex& out) { transformVertex<kTextured>(d, i, out); },
+        [&](std::size_t, const TriangleSetup& s) { setup = &s; },
+        [&](const Fragment<kV>& f) {
+            if constexpr (kTextured) return packBgra8(sampleKd(d, setup, f));
+            else return flat;
+        });
+}
+
+// Flat: lit ONCE per triangle (face normal, view vector at the centroid) in the triangle hook.
+template <bool kTextured>
+void drawFlat(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
+    constexpr int kV = kTextured ? 2 : 0;
+    const TriangleSetup* setup = nullptr;
+    LightTerms terms;
+    Pixel flat = 0;
+    drawIndexed<kV>(
+        ctx, drawStateFor(d), d.mesh.vertexCount(), d.indices, indexCount,
+        [&](std::size_t i, ClipVertex& out) { transformVertex<kTextured>(d, i, out); },
+        [&](std::size_t t, const TriangleSetup& s) {
+            setup = &s;
+            const Vec3 p0 = d.mesh.positions[d.indices[3 * t]], p1 = d.mesh.positions[d.indices[3 * t + 1]],
+                       p2 = d.mesh.positions[d.indices[3 * t + 2]];
+            const Vec3 centroid = (p0 + p1 + p2) / 3.0f;
+            terms = blinnPhong(d.view.lighting, faceNormal(p0, p1, p2), normalize(d.view.eye - centroid));
+            if constexpr (!kTextured) flat = packBgra8(applyTerms(d.kd, terms));
+        },
+        [&](const Fragment<kV>& f) {
+            if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(d, setup, f), terms));
+            else return flat;
+        });
+}
+
+// Gouraud: Blinn-Phong per vertex; the diffuse and specular terms are interpolated
+// (perspective-correct) and combined per pixel, so a texture still modulates per pixel.
+template <bool kTextured>
+void drawGouraud(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
+    constexpr int kT = kTextured ? 2 : 0; // first varying of the lighting terms
+    constexpr int kV = kT + 2;
+    const TriangleSetup* setup = nullptr;
+    drawIndexed<kV>(
+        ctx, drawStateFor(d), d.mesh.vertexCount(), d.indices, indexCount,
+        [&](std::size_t i, ClipVertex& out) {
+            transformVertex<kTextured>(d, i, out);
+            const Vec3 p = d.mesh.positions[i];
+            const LightTerms t = blinnPhong(d.view.lighting, normalize(d.mesh.normals[i]), normalize(d.view.eye - p));
+            out.varyings[kT] = t.diffuse;
+            out.varyings[kT + 1] = t.specular;
+        },
+        [&](std::size_t, const TriangleSetup& s) { setup = &s; },
+        [&](const Fragment<kV>& f) {
+            const LightTerms t{f.varyings[kT], f.varyings[kT + 1]};
+            if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(d, setup, f), t));
+            else return packBgra8(applyTerms(d.kd, t));
+        });
+}
+
+// Phong shading: world position and normal interpolated (perspective-correct), the normal
+// renormalised and Blinn-Phong evaluated per pixel.
+template <bool kTextured>
+void drawPhong(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
+    constexpr int kP = kTextured ? 2 : 0; // position varyings kP..kP+2, normal kP+3..kP+5
+    constexpr int kV = kP + 6;
+    const TriangleSetup* setup = nullptr;
+    drawIndexed<kV>(
+        ctx, drawStateFor(d), d.mesh.vertexCount(), d.indices, indexCount,
+        [&](std::size_t i, ClipVertex& out) {
+            transformVertex<kTextured>(d, i, out);
+            const Vec3 p = d.mesh.positions[i], n = d.mesh.normals[i];
+            out.varyings[kP] = p.x;
+            out.varyings[kP + 1] = p.y;
+            out.varyings[kP + 2] = p.z;
+            out.varyings[kP + 3] = n.x;
+            out.varyings[kP + 4] = n.y;
+            out.varyings[kP + 5] = n.z;
+        },
+        [&](std::size_t, const TriangleSetup& s) { setup = &s; },
+        [&](const Fragment<kV>& f) {
+            const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
+            const Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
+            const LightTerms t = blinnPhong(d.view.lighting, n, normalize(d.view.eye - p));
+            if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(d, setup, f), t));
+            else return packBgra8(applyTerms(d.kd, t));
+        });
+}
+
+template <bool kTextured>
+void drawShaded(RenderContext& ctx, const DrawContext& d, ShadingMode mode, std::size_t indexCount) {
+    switch (mode) {
+    case ShadingMode::Unlit: drawUnlit<kTextured>(ctx, d, indexCount); break;
+    case ShadingMode::Flat: drawFlat<kTextured>(ctx, d, indexCount); break;
+    case ShadingMode::Gouraud: drawGouraud<kTextured>(ctx, d, indexCount); break;
+    case ShadingMode::Phong: drawPhong<kTextured>(ctx, d, indexCount); break;
+    }
+}
+
+} // namespace
+
+void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& settings, const Mesh& mesh,
+              const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& material) {
+    const bool textured = material.texture != nullptr && mesh.hasUvs();
+    ShadingMode mode = settings.shading;
+    if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong)) mode = ShadingMode::Flat;
+    const DrawContext d{view, settings, mesh, indices, textured ? material.texture : nullptr, material.kd};
+    if (textured) drawShaded<true>(ctx, d, mode, indexCount);
+    else drawShaded<false>(ctx, d, mode, indexCount);
+}
+
+} // namespace sr

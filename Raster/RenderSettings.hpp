@@ -1,0 +1,33 @@
+// The run-time quality and mode knobs of a frame, and the per-frame view they render with.
+#pragma once
+
+#include "Math/Mat4.hpp"
+#include "Raster/Cull.hpp"
+#include "Raster/Shading.hpp"
+#include "Raster/Texture.hpp"
+
+namespace sr {
+
+struct RenderSettings {
+    ShadingMode shading = ShadingMode::Phong;
+    CullMode cull = CullMode::None;
+    TextureFilter filter = TextureFilter::Bilinear;
+    WrapMode wrap = WrapMode::Repeat;
+    bool wireframe = false; // overlay triangle edges (DDA lines) on the shaded image
+};
+
+// What every draw of one frame shares.
+struct FrameView {
+    Mat4 viewProj;          // world -> clip (reversed-Z)
+    Vec3 eye;               // world-space camera position (for the view vector)
+    bool finiteFar = true;  // the projection has a far plane to clip against
+    Lighting lighting;
+};
+
+// The surface of one draw: a texture (used when the mesh has uvs) or the flat colour kd.
+struct SurfaceMaterial {
+    const Texture* texture = nullptr;
+    Color kd{0.8f, 0.8f, 0.8f, 1.0f};
+};
+
+} // namespace sr

@@ -1,0 +1,38 @@
+// Scene: world-space meshes, textures and the draws that bind them; rendered by renderScene().
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "Raster/Mesh.hpp"
+#include "Raster/MeshRenderer.hpp"
+#include "Raster/Texture.hpp"
+
+namespace sr {
+
+// One draw: a range of a mesh's index list with its surface.
+struct SceneDraw {
+    int mesh = 0;
+    std::uint32_t firstIndex = 0;
+    std::uint32_t indexCount = 0;
+    int texture = -1;                    // index into Scene::textures, or -1 for kd
+    Color kd{0.8f, 0.8f, 0.8f, 1.0f};
+};
+
+// Static geometry is stored in world space, prepared once (no per-frame vertex work besides
+// the transform to clip space).
+struct Scene {
+    std::vector<Mesh> meshes;
+    std::vector<Texture> textures;
+    std::vector<SceneDraw> draws;
+    Vec3 boundsMin{0, 0, 0}, boundsMax{0, 0, 0}; // for the auto-fit camera
+
+    std::size_t triangleCount() const;
+};
+
+// Draws every SceneDraw in order (the order matters only for exact depth ties: first wins).
+// `textureOverride`, when not null, replaces every draw's texture.
+void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
+                 const Texture* textureOverride = nullptr);
+
+} // namespace sr

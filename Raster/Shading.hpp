@@ -1,0 +1,63 @@
+// Blinn-Phong lighting terms and the shading modes (unlit, flat, Gouraud, Phong shading).
+#pragma once
+
+#include <algorithm>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "Math/Color.hpp"
+#include "Math/Vec.hpp"
+
+namespace sr {
+
+// Unlit: kd only. Flat: lit once per triangle with its face normal. Gouraud: lit per vertex,
+// the terms interpolated. Phong: normals and positions interpolated, lit per pixel.
+enum class ShadingMode { Unlit, Flat, Gouraud, Phong };
+
+const char* shadingModeName(ShadingMode mode);
+// "unlit", "flat", "gouraud", "phong" (ASCII case-insensitive); anything else: nullopt.
+std::optional<ShadingMode> parseShadingMode(std::string_view text);
+
+// White directional lights of intensity 1 and the material constants every surface shares.
+// The defaults mirror the llvmpipe reference renderer (shared/tools/llvmpipe-ref, "Shading").
+struct Lighting {
+    std::vector<Vec3> toLight{normalize(Vec3(1, 1, 1))}; // unit directions TO each light (world)
+    float ambient = 0.1f;
+    float ks = 0.5f;         // white specular
+    float shininess = 32.0f;
+};
+
+// The two scalar terms a colour is built from: c = kd * diffuse + specular.
+struct LightTerms {
+    float diffuse = 0.0f;  // ambient + sum over lights of max(N.L, 0)
+    float specular = 0.0f; // ks * sum over lights of (N.L > 0 ? max(N.H, 0)^shininess : 0)
+};
+
+// x^s for x in [0, 1]: exact repeated squaring/multiplication when s is a whole number in
+// [0, 1024] (32 -> five squarings), std::pow otherwise.
+float shininessPow(float x, float s);
+
+// Blinn-Phong (Blinn, "Models of light reflection for computer synthesized pictures",
+// SIGGRAPH 1977) with the half vector H = normalize(L + V). N and V must be unit vectors.
+// One-sided: a normal facing away from a light gets neither diffuse nor specular from it.
+inline LightTerms blinnPhong(const Lighting& lighting, Vec3 n, Vec3 v) {
+    LightTerms t;
+    t.diffuse = lighting.ambient;
+    for (const Vec3& l : lighting.toLight) {
+        const float ndl = dot(n, l);
+        if (ndl > 0.0f) {
+            t.diffuse += ndl;
+            const Vec3 h = normalize(l + v);
+            t.specular += shininessPow(std::max(dot(n, h), 0.0f), lighting.shininess);
+        }
+    }
+    t.specular *= lighting.ks;
+    return t;
+}
+
+inline Color applyTerms(Color kd, LightTerms t) {
+    return {kd.r * t.diffuse + t.specular, kd.g * t.diffuse + t.specular, kd.b * t.diffuse + t.specular, 1.0f};
+}
+
+} // namespace sr
