@@ -37,8 +37,11 @@ Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fragment<
     const Vec2 uv{f.varyings[0], f.varyings[1]};
     float lod = 0.0f;
     if (d.settings.filter == TextureFilter::Trilinear) {
-        const UvDerivatives g =
-            uvDerivatives(*setup, kPlaneVarying0 + 0, kPlaneVarying0 + 1, f.invW, uv.x, uv.y);
+        constexpr int kU = kPlaneVarying0, kV = kPlaneVarying0 + 1;
+        const UvDerivatives g = d.settings.perspective == PerspectiveMode::Affine
+                                    ? UvDerivatives{float(setup->ddx[kU]), float(setup->ddx[kV]), float(setup->ddy[kU]),
+                                                    float(setup->ddy[kV])}
+                                    : uvDerivatives(*setup, kU, kV, f.invW, uv.x, uv.y);
         lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, d.texture->width(), d.texture->height());
     }
     return d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
@@ -49,6 +52,8 @@ DrawState drawStateFor(const DrawContext& d) {
     s.cull = d.settings.cull;
     s.clipFar = d.view.finiteFar;
     s.wireframe = d.settings.wireframe;
+    s.stopAfter = d.settings.stopAfter;
+    s.perspective = d.settings.perspective;
     return s;
 }
 

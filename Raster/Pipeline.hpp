@@ -4,6 +4,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
 #include "Raster/Clipper.hpp"
 #include "Raster/Cull.hpp"
@@ -15,12 +16,17 @@
 
 namespace sr {
 
+// Where a draw stops: the bench command times partial pipelines to split a frame's time into
+// stages (geometry = vertex shader + clip + divide + cull; setup; fill = span loop + shading).
+enum class PipelineStop { Geometry, Setup, Fill };
+
 // Per-draw fixed-function state.
 struct DrawState {
     CullMode cull = CullMode::None;
     bool clipFar = true;                    // false for a projection with an infinite far plane
     DepthMode depth = DepthMode::TestWrite; // reversed-Z, GREATER
-    bool fill = true;                       // rasterize the triangles
+    PipelineStop stopAfter = PipelineStop::Fill;
+    PerspectiveMode perspective = PerspectiveMode::Exact; // how varyings are interpolated
     bool wireframe = false;                 // overlay the (clipped) triangle outlines
     Pixel wireColour = packBgra(255, 255, 255);
 };
@@ -55,16 +61,38 @@ bool rasterizeTriangle(RenderContext& ctx, const DrawState& state, std::size_t t
         ++ctx.stats.culled;
         return false;
     }
-    if (!state.fill) return true;
-    const auto setup = setupTriangle(v0, v1, v2, kVaryings);
+    if (state.stopAfter == PipelineStop::Geometry) return true;
+    const bool affine = kVaryings > 0 && state.perspective == PerspectiveMode::Affine;
+    const auto setup = setupTriangle(v0, v1, v2, kVaryings, !affine);
     if (!setup) return true; // covers no pixel-centre row: nothing to do, but not culled
     ++ctx.stats.rasterized;
+    if (state.stopAfter == PipelineStop::Setup) return true;
     hook(t, *setup);
+    // Count the fragments that pass the depth test (one add per pixel: overdraw statistics).
+    auto counted = [&ctx, &shader](const Fragment<kVaryings>& f) {
+        ++ctx.stats.fragmentsShaded;
+        return shader(f);
+    };
     FrameBuffer& fb = ctx.target();
+    // Depth mode x perspective mode, resolved once per triangle; without varyings only Exact
+    // exists (nothing to interpolate), which keeps the number of instantiated loops down.
+    auto fill = [&](auto depthTag) {
+        constexpr DepthMode kDepth = decltype(depthTag)::value;
+        if constexpr (kVaryings == 0) {
+            fillTriangle<kDepth, kVaryings>(*setup, fb, counted);
+        } else {
+            switch (state.perspective) {
+            case PerspectiveMode::Exact: fillTriangle<kDepth, kVaryings, PerspectiveMode::Exact>(*setup, fb, counted); break;
+            case PerspectiveMode::Span16: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span16>(*setup, fb, counted); break;
+            case PerspectiveMode::Span8: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span8>(*setup, fb, counted); break;
+            case PerspectiveMode::Affine: fillTriangle<kDepth, kVaryings, PerspectiveMode::Affine>(*setup, fb, counted); break;
+            }
+        }
+    };
     switch (state.depth) {
-    case DepthMode::Off: fillTriangle<DepthMode::Off, kVaryings>(*setup, fb, shader); break;
-    case DepthMode::Test: fillTriangle<DepthMode::Test, kVaryings>(*setup, fb, shader); break;
-    case DepthMode::TestWrite: fillTriangle<DepthMode::TestWrite, kVaryings>(*setup, fb, shader); break;
+    case DepthMode::Off: fill(std::integral_constant<DepthMode, DepthMode::Off>{}); break;
+    case DepthMode::Test: fill(std::integral_constant<DepthMode, DepthMode::Test>{}); break;
+    case DepthMode::TestWrite: fill(std::integral_constant<DepthMode, DepthMode::TestWrite>{}); break;
     }
     return true;
 }

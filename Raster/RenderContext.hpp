@@ -18,6 +18,7 @@ struct RenderStats {
     std::uint64_t culled = 0;           // back/front-face culled or zero-area on the snapped grid
     std::uint64_t rasterized = 0;       // triangle setups handed to the fill
     std::uint64_t nonFinite = 0;        // dropped for a NaN/Inf position (part of trivialRejected)
+    std::uint64_t fragmentsShaded = 0;  // pixels that passed the depth test and were shaded
 
     RenderStats& operator+=(const RenderStats& o) {
         trianglesIn += o.trianglesIn;
@@ -26,6 +27,7 @@ struct RenderStats {
         culled += o.culled;
         rasterized += o.rasterized;
         nonFinite += o.nonFinite;
+        fragmentsShaded += o.fragmentsShaded;
         return *this;
     }
 };

@@ -3,6 +3,7 @@
 
 #include "Math/Mat4.hpp"
 #include "Raster/Cull.hpp"
+#include "Raster/Pipeline.hpp"
 #include "Raster/Shading.hpp"
 #include "Raster/Texture.hpp"
 
@@ -13,7 +14,9 @@ struct RenderSettings {
     CullMode cull = CullMode::None;
     TextureFilter filter = TextureFilter::Bilinear;
     WrapMode wrap = WrapMode::Repeat;
+    PerspectiveMode perspective = PerspectiveMode::Exact;
     bool wireframe = false; // overlay triangle edges (DDA lines) on the shaded image
+    PipelineStop stopAfter = PipelineStop::Fill; // partial pipelines, for per-stage timing only
 };
 
 // What every draw of one frame shares.

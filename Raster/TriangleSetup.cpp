@@ -27,16 +27,34 @@ FixedEdge makeEdge(FixedPoint2 from, FixedPoint2 to) {
 int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 
 // Attribute value of one plane at each input vertex, in double.
-double attributeAt(const ScreenVertex& v, int plane) {
+double attributeAt(const ScreenVertex& v, int plane, bool perspectiveCorrect) {
     if (plane == kPlaneZ) return double(v.z);
     if (plane == kPlaneInvW) return double(v.invW);
-    return double(v.varyings[std::size_t(plane - kPlaneVarying0)]) * double(v.invW);
+    const double a = double(v.varyings[std::size_t(plane - kPlaneVarying0)]);
+    return perspectiveCorrect ? a * double(v.invW) : a;
 }
 
 } // namespace
 
+const char* perspectiveModeName(PerspectiveMode mode) {
+    switch (mode) {
+    case PerspectiveMode::Exact: return "exact";
+    case PerspectiveMode::Span16: return "span16";
+    case PerspectiveMode::Span8: return "span8";
+    case PerspectiveMode::Affine: return "affine";
+    }
+    return "?";
+}
+
+std::optional<PerspectiveMode> parsePerspectiveMode(std::string_view text) {
+    for (PerspectiveMode m : {PerspectiveMode::Exact, PerspectiveMode::Span16, PerspectiveMode::Span8,
+                              PerspectiveMode::Affine})
+        if (text == perspectiveModeName(m)) return m;
+    return std::nullopt;
+}
+
 std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenVertex& v1,
-                                           const ScreenVertex& v2, int varyingCount) {
+                                           const ScreenVertex& v2, int varyingCount, bool perspectiveCorrect) {
     // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
     const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
     assert(valid && "triangle setup: vertex outside the guard band or not finite");
@@ -100,9 +118,9 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
     t.varyingCount = varyingCount;
     const int planes = kPlaneVarying0 + varyingCount;
     for (int k = 0; k < planes; ++k) {
-        const double a0 = attributeAt(v0, k);
-        const double da1 = attributeAt(v1, k) - a0;
-        const double da2 = attributeAt(v2, k) - a0;
+        const double a0 = attributeAt(v0, k, perspectiveCorrect);
+        const double da1 = attributeAt(v1, k, perspectiveCorrect) - a0;
+        const double da2 = attributeAt(v2, k, perspectiveCorrect) - a0;
         t.value[k] = a0;
         t.ddx[k] = (da1 * ey2 - da2 * ey1) * inv;
         t.ddy[k] = (da2 * ex1 - da1 * ex2) * inv;

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string_view>
 
 #include "Raster/FixedPoint.hpp"
 #include "Raster/Vertex.hpp"
@@ -62,13 +63,25 @@ struct TriangleSetup {
     }
 };
 
+// How varyings are interpolated across the screen (a quality knob, measured by the report):
+//  - Exact: (v/w) / (1/w) at every pixel centre (Hecker 1995): correct everywhere.
+//  - Span16 / Span8: exact every 16 / 8 pixels along a span and linear in between (Quake's
+//    span subdivision, Abrash 1997): one divide per 16 / 8 pixels.
+//  - Affine: v itself is linear in screen space (no divide at all; PlayStation-style warping).
+enum class PerspectiveMode { Exact, Span16, Span8, Affine };
+
+const char* perspectiveModeName(PerspectiveMode mode);
+std::optional<PerspectiveMode> parsePerspectiveMode(std::string_view text); // exact|span16|span8|affine
+
 // Snaps v0, v1, v2 (any winding) to the 1/256 grid and builds the record, or returns nullopt
 // for a triangle that can cover nothing: zero area after snapping (collinear or coincident
 // vertices), or a triangle that misses every pixel-centre row. Preconditions (asserted, and
 // also rejected in release builds): finite coordinates within the guard band
 // (|x|, |y| <= kGuardBand) and 0 <= varyingCount <= kMaxVaryings. Only the first
-// varyingCount varyings are read.
+// varyingCount varyings are read. With perspectiveCorrect = false (PerspectiveMode::Affine) the
+// varying planes hold v instead of v/w.
 std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenVertex& v1,
-                                           const ScreenVertex& v2, int varyingCount);
+                                           const ScreenVertex& v2, int varyingCount,
+                                           bool perspectiveCorrect = true);
 
 } // namespace sr

@@ -1,0 +1,209 @@
+// Scene loading (built-in or OBJ), the auto-fit camera and the per-frame view.
+#include "Platform/Demo/SceneSetup.hpp"
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "Resources/DefaultScene.hpp"
+#include "Resources/Image.hpp"
+#include "Resources/ObjLoader.hpp"
+
+namespace sr::demo {
+namespace {
+
+// Splits a model into one compact mesh per draw range, so each draw transforms only the
+// vertices it uses.
+Scene sceneFromModel(Model&& model, Color kd) {
+    Scene scene;
+    for (const Image& img : model.textures)
+        scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
+    const Mesh& src = model.mesh;
+    std::vector<std::uint32_t> remap(src.vertexCount(), UINT32_MAX);
+    for (const DrawRange& range : model.ranges) {
+        Mesh part;
+        std::fill(remap.begin(), remap.end(), UINT32_MAX);
+        for (std::uint32_t k = 0; k < range.indexCount; ++k) {
+            const std::uint32_t v = src.indices[range.firstIndex + k];
+            if (remap[v] == UINT32_MAX) {
+                remap[v] = std::uint32_t(part.positions.size());
+                part.positions.push_back(src.positions[v]);
+                if (src.hasNormals()) part.normals.push_back(src.normals[v]);
+                if (src.hasUvs()) part.uvs.push_back(src.uvs[v]);
+            }
+            part.indices.push_back(remap[v]);
+        }
+        SceneDraw d;
+        d.mesh = int(scene.meshes.size());
+        d.indexCount = std::uint32_t(part.indices.size());
+        d.texture = range.texture;
+        d.kd = kd;
+        scene.meshes.push_back(std::move(part));
+        scene.draws.push_back(d);
+    }
+    scene.boundsMin = model.boundsMin;
+    scene.boundsMax = model.boundsMax;
+    return scene;
+}
+
+// Double-precision 4x4 (row-major here, local to this file) for the reference's MVP precision.
+struct M4d {
+    double m[4][4] = {};
+};
+
+M4d mul(const M4d& a, const M4d& b) {
+    M4d r;
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j)
+            for (int k = 0; k < 4; ++k) r.m[i][j] += a.m[i][k] * b.m[k][j];
+    return r;
+}
+
+// gluLookAt in double (right-handed, looking down -Z).
+M4d lookAtD(Vec3 eye, Vec3 target, Vec3 up) {
+    auto sub = [](Vec3 a, Vec3 b) { return std::array<double, 3>{double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z}; };
+    auto norm = [](std::array<double, 3> v) {
+        const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        return l > 0 ? std::array<double, 3>{v[0] / l, v[1] / l, v[2] / l} : v;
+    };
+    auto crossD = [](std::array<double, 3> a, std::array<double, 3> b) {
+        return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
+    };
+    const auto f = norm(sub(target, eye));
+    const auto s = norm(crossD(f, {double(up.x), double(up.y), double(up.z)}));
+    const auto u = crossD(s, f);
+    const double e[3] = {eye.x, eye.y, eye.z};
+    M4d v;
+    for (int c = 0; c < 3; ++c) {
+        v.m[0][c] = s[std::size_t(c)];
+        v.m[1][c] = u[std::size_t(c)];
+        v.m[2][c] = -f[std::size_t(c)];
+    }
+    v.m[0][3] = -(s[0] * e[0] + s[1] * e[1] + s[2] * e[2]);
+    v.m[1][3] = -(u[0] * e[0] + u[1] * e[1] + u[2] * e[2]);
+    v.m[2][3] = f[0] * e[0] + f[1] * e[1] + f[2] * e[2];
+    v.m[3][3] = 1.0;
+    return v;
+}
+
+// Reversed-Z perspective (Math/Transform.hpp's formula) in double; far may be +infinity.
+M4d perspectiveD(double fovDeg, double aspect, double n, double f) {
+    const double cot = 1.0 / std::tan(fovDeg * 3.14159265358979323846 / 360.0);
+    M4d p;
+    p.m[0][0] = cot / aspect;
+    p.m[1][1] = cot;
+    p.m[2][2] = std::isinf(f) ? 0.0 : n / (f - n);
+    p.m[2][3] = std::isinf(f) ? n : f * n / (f - n);
+    p.m[3][2] = -1.0;
+    return p;
+}
+
+std::string formatVec(Vec3 v) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g", double(v.x), double(v.y), double(v.z));
+    return buf;
+}
+
+} // namespace
+
+Result<LoadedScene> loadScene(const SceneOptions& options) {
+    LoadedScene out;
+    if (options.obj.empty()) {
+        out.scene = makeDefaultScene();
+        out.builtIn = true;
+        if (!options.texture.empty()) {
+            auto img = loadImage(options.texture);
+            if (!img) return Result<LoadedScene>::failure(img.error());
+            out.textureOverride = Texture::fromRgba8(img.value().width, img.value().height, img.value().rgba.data());
+        }
+        out.description = "built-in scene: " + std::to_string(out.scene.triangleCount()) + " triangles";
+    } else {
+        ObjOptions objOptions;
+        objOptions.textureOverride = options.texture;
+        auto model = loadObj(options.obj, objOptions);
+        if (!model) return Result<LoadedScene>::failure(model.error());
+        Model& m = model.value();
+        out.warnings = m.warnings;
+        // Bounding sphere: centre of the AABB of every 'v', radius = farthest vertex from it.
+        out.centre = (m.boundsMin + m.boundsMax) * 0.5f;
+        double r = 0.0;
+        for (const Vec3& p : m.mesh.positions) {
+            const double dx = double(p.x) - out.centre.x, dy = double(p.y) - out.centre.y, dz = double(p.z) - out.centre.z;
+            r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz));
+        }
+        out.radius = r > 0.0 ? r : 1.0;
+        out.description = options.obj + ": " + std::to_string(m.mesh.triangleCount()) + " triangles, " +
+                          std::to_string(m.textures.size()) + " textures, normals " +
+                          (m.normalsFromFile ? "from OBJ" : "computed (area-weighted)");
+        out.scene = sceneFromModel(std::move(m), options.kd);
+    }
+    return Result<LoadedScene>(std::move(out));
+}
+
+CameraSetup resolveCamera(const SceneOptions& o, const LoadedScene& s) {
+    CameraSetup c;
+    c.up = o.up;
+    c.fovDegrees = o.fovDegrees;
+    if (s.builtIn && !o.eye) {
+        const DefaultView v;
+        c.eye = v.eye;
+        c.target = o.target.value_or(v.target);
+        c.fovDegrees = o.fovDegrees;
+        c.nearZ = o.nearZ.value_or(v.nearZ);
+        c.farZ = o.farZ.value_or(std::numeric_limits<double>::infinity());
+        return c;
+    }
+    c.target = o.target.value_or(s.centre);
+    if (o.eye) {
+        c.eye = *o.eye;
+        c.nearZ = o.nearZ.value_or(0.1);
+        c.farZ = o.farZ.value_or(100.0);
+        return c;
+    }
+    const double aspect = double(o.width) / double(o.height);
+    const double halfV = o.fovDegrees * 3.14159265358979323846 / 360.0;
+    const double half = std::min(halfV, std::atan(std::tan(halfV) * aspect));
+    const double dist = s.radius / std::sin(half);
+    c.eye = c.target + Vec3(0.0f, 0.0f, float(dist));
+    c.nearZ = o.nearZ.value_or(std::max(dist - 1.01 * s.radius, 0.01 * s.radius));
+    c.farZ = o.farZ.value_or(dist + 1.01 * s.radius);
+    return c;
+}
+
+std::string cameraFlags(const CameraSetup& c) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, " --fov %.9g --near %.9g --far %.9g", c.fovDegrees, c.nearZ, c.farZ);
+    return "--eye " + formatVec(c.eye) + " --target " + formatVec(c.target) + " --up " + formatVec(c.up) + buf;
+}
+
+FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light) {
+    const double aspect = (width > 0 && height > 0) ? double(width) / double(height) : 1.0;
+    const M4d mvp = mul(perspectiveD(c.fovDegrees, aspect, c.nearZ, c.farZ), lookAtD(c.eye, c.target, c.up));
+    FrameView v;
+    for (int r = 0; r < 4; ++r)
+        for (int col = 0; col < 4; ++col) v.viewProj(r, col) = float(mvp.m[r][col]);
+    v.eye = c.eye;
+    v.finiteFar = !std::isinf(c.farZ);
+    // The light direction is normalised in double, as the reference does.
+    const double lx = light.x, ly = light.y, lz = light.z, l = std::sqrt(lx * lx + ly * ly + lz * lz);
+    v.lighting.toLight = {l > 0 ? Vec3(float(lx / l), float(ly / l), float(lz / l)) : Vec3(0, 0, 1)};
+    return v;
+}
+
+RenderSettings makeRenderSettings(const SceneOptions& o) {
+    RenderSettings s;
+    s.shading = o.shading;
+    s.cull = o.cull;
+    s.filter = o.filter;
+    s.wrap = o.wrap;
+    s.wireframe = o.wireframe;
+    return s;
+}
+
+void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& view, const RenderSettings& settings) {
+    ctx.target().clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+    renderScene(ctx, scene.scene, view, settings, scene.textureOverride ? &*scene.textureOverride : nullptr);
+}
+
+} // namespace sr::demo

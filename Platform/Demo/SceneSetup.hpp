@@ -1,0 +1,55 @@
+// From scene flags to something to draw: load the scene (built-in or OBJ), resolve the camera
+// (the reference renderer's auto-fit rule), and build the frame view and render settings.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "Platform/Demo/SceneOptions.hpp"
+#include "Raster/RenderSettings.hpp"
+#include "Raster/Scene.hpp"
+#include "Resources/Result.hpp"
+
+namespace sr::demo {
+
+struct LoadedScene {
+    Scene scene;
+    std::optional<Texture> textureOverride; // --texture on the built-in scene
+    bool builtIn = false;
+    Vec3 centre{0, 0, 0}; // bounding sphere of the model's vertices (auto-fit)
+    double radius = 1.0;
+    std::vector<std::string> warnings;
+    std::string description; // one line: what was loaded (triangles, textures, normals)
+};
+
+// Loads options.obj (or builds the default scene when empty). Errors name the file.
+Result<LoadedScene> loadScene(const SceneOptions& options);
+
+struct CameraSetup {
+    Vec3 eye, target, up;
+    double fovDegrees = 60.0;
+    double nearZ = 0.1;
+    double farZ = 100.0; // +infinity: no far plane
+};
+
+// The camera the flags ask for. Without --eye: the built-in scene's own view, or for a model
+// the reference's auto-fit: target = bounding-box centre (or --target), eye = target +
+// (0, 0, r / sin(half)) with half the narrower half field of view, near = max(dist - 1.01 r,
+// 0.01 r), far = dist + 1.01 r. With --eye: target defaults to the centre and near/far to
+// 0.1 / 100. Explicit --near/--far always win.
+CameraSetup resolveCamera(const SceneOptions& options, const LoadedScene& scene);
+
+// "--eye x,y,z --target ... --near N --far F": the camera as flags for another renderer.
+std::string cameraFlags(const CameraSetup& camera);
+
+// World -> clip for the camera (reversed-Z; MVP computed in double, rounded once to float, as
+// the reference renderer does), the eye, and the light.
+FrameView makeFrameView(const CameraSetup& camera, int width, int height, Vec3 light);
+
+RenderSettings makeRenderSettings(const SceneOptions& options);
+
+// Renders one frame of the scene into ctx's target: clear (black, far depth) then draw.
+void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& view, const RenderSettings& settings);
+
+} // namespace sr::demo
