@@ -1,0 +1,126 @@
+// Texture: RGBA8 texel storage with its full mip chain, and GL-style nearest/bilinear/trilinear sampling.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string_view>
+#include <vector>
+
+#include "Math/Color.hpp"
+#include "Math/Vec.hpp"
+
+namespace sr {
+
+// Filters, named after their OpenGL 4.5 core equivalents (section 8.14, texture minification):
+//  Nearest   = GL_NEAREST                 (base level, the texel containing the sample point)
+//  Bilinear  = GL_LINEAR                  (base level, 2x2 texels around the point)
+//  Trilinear = GL_LINEAR_MIPMAP_LINEAR    (GL_LINEAR in the two levels nearest the lod, blended)
+enum class TextureFilter { Nearest, Bilinear, Trilinear };
+// Wrap modes (OpenGL 4.5 core section 8.14.2, coordinate wrapping and texel selection):
+//  Repeat = GL_REPEAT, Clamp = GL_CLAMP_TO_EDGE, Mirror = GL_MIRRORED_REPEAT.
+enum class WrapMode { Repeat, Clamp, Mirror };
+
+// "nearest" | "bilinear" | "trilinear" and back; parse is exact and case-sensitive (nullopt else).
+const char* filterName(TextureFilter filter);
+std::optional<TextureFilter> parseFilter(std::string_view name);
+// "repeat" | "clamp" | "mirror" and back.
+const char* wrapName(WrapMode wrap);
+std::optional<WrapMode> parseWrap(std::string_view name);
+
+// Largest supported width or height (image decoders reject anything larger before we get here).
+inline constexpr int kMaxTextureSize = 16384;
+
+// An immutable RGBA8 texture with all its mip levels.
+//
+// Orientation: texture coordinates follow OBJ/OpenGL: uv (0, 0) is the BOTTOM-left corner of the
+// image, v grows upwards. fromRgba8() takes the decoder's top-row-first bytes and stores the rows
+// bottom row first, so texel row y of level 0 is image row (height - 1 - y) and v maps directly
+// (what stbi_set_flip_vertically_on_load(1) does for the llvmpipe reference).
+//
+// Texels are packed RGBA8 in a uint32 (r | g << 8 | b << 16 | a << 24, i.e. memory bytes R, G, B, A
+// on little-endian). A channel byte b reads as the float b / 255.0f (exactly sr::fromRgba8's
+// value). RGBA8 rather than float storage: 4x less memory traffic per bilinear fetch, and the
+// reference renderer (Mesa llvmpipe, GL_RGBA8) filters the very same 8-bit values.
+//
+// Mip chain (built once, at creation), down to 1x1: level k+1 has size max(1, floor(w_k / 2)) x
+// max(1, floor(h_k / 2)) - the sizes of OpenGL 4.5 section 8.14.3 (mipmapping). Each texel is a
+// box filter of the level above: the 2x2 block (2x, 2y)..(2x+1, 2y+1); along an axis of ODD
+// length > 1 the last destination texel also takes the odd edge texel (3 source texels on that
+// axis, so a 3x3 block at an odd x odd corner), and an axis of length 1 is not filtered. All
+// source texels of a block weigh the same. Each level is computed from the previous STORED
+// (8-bit) level, as glGenerateMipmap does, per channel: exact integer sum / count, rounded to
+// nearest with ties to even. Alpha is filtered like the colour channels (not premultiplied).
+//
+// Coordinate policies (all sampling entry points, both the fast paths and sampleReference):
+//  - Far-away uvs keep their precision: every float uv is handled exactly. For Repeat, |u| >= 1
+//    is first reduced to u - floor(u) (exact: the fraction bits of a float are representable); for
+//    Mirror, |u| >= 2 to u - 2 floor(u / 2); for Clamp, u is clamped into [-1, 2] (everything
+//    beyond samples the same edge texels). The texel coordinate u * size (- 0.5) is then formed in
+//    double. So u = 1e6 + 0.375 samples exactly what u = 0.375 samples (both exact floats).
+//  - NaN coordinates: a NaN u (or v) selects texel column (row) 0 with weight 1 on that axis,
+//    for every filter and wrap mode. +-Inf: Clamp clamps it to the edge texel; Repeat and Mirror
+//    have no position for it and treat it like NaN. Never undefined behaviour.
+//  - lod (trilinear): NaN -> 0; clamped to [0, levelCount() - 1].
+class Texture {
+public:
+    // A 1x1 opaque white texture (sampling it returns (1, 1, 1, 1)).
+    Texture();
+
+    // Builds the texture and its mip chain from width * height RGBA8 pixels, TOP row first (as
+    // image decoders produce them). Preconditions (asserted): 1 <= width, height <= kMaxTextureSize
+    // and a non-null pointer; release builds return a 1x1 opaque magenta texture instead.
+    static Texture fromRgba8(int width, int height, const std::uint8_t* rgbaTopRowFirst);
+
+    int width() const { return levels_[0].width; }
+    int height() const { return levels_[0].height; }
+    int levelCount() const { return int(levels_.size()); }
+    int levelWidth(int level) const { return levels_[std::size_t(level)].width; }
+    int levelHeight(int level) const { return levels_[std::size_t(level)].height; }
+
+    // Texel (x, y) of `level`, y = 0 the BOTTOM row. Preconditions (asserted): valid indices.
+    std::uint32_t texel(int level, int x, int y) const;
+    Color texelColor(int level, int x, int y) const;
+
+    // --- Sampling -------------------------------------------------------------------------------
+    // General entry: Nearest and Bilinear read the base level and ignore lod; Trilinear uses lod
+    // (see mipLevel() in TextureLod.hpp). Dispatches to the specialised paths below.
+    Color sample(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const;
+
+    // Specialised paths (one loop per wrap mode, power-of-two masks, a byte -> float table).
+    // GL_NEAREST on the base level: texel floor(u * W), floor(v * H), wrapped.
+    Color sampleNearest(Vec2 uv, WrapMode wrap) const;
+    // GL_LINEAR on the base level: texel centres at +0.5, i.e. the 2x2 texels around
+    // (u * W - 0.5, v * H - 0.5). The fractions are taken in 8-bit fixed point (X = 256 x rounded to
+    // nearest, i0 = X >> 8, weight w = X & 255: the 8 sub-texel bits of Direct3D 10+ hardware and of
+    // llvmpipe's AoS sampler) and the blend
+    //   ((t00 (256 - wx) + t10 wx) (256 - wy) + (t01 (256 - wx) + t11 wx) wy) / (255 * 65536)
+    // is exact in integers, rounded ONCE to float. Hence: at a texel centre the result is the
+    // texel exactly (byte / 255.0f); halfway between two texels it is the correctly rounded
+    // (a + b) / 510; a region of equal texels returns that texel exactly at every uv.
+    Color sampleBilinear(Vec2 uv, WrapMode wrap) const;
+    // GL_LINEAR_MIPMAP_LINEAR: lod clamped to [0, levelCount() - 1]; GL_LINEAR in levels floor(lod)
+    // and floor(lod) + 1, blended by frac(lod) in 8-bit fixed point (wl = floor(256 frac), the
+    // integer blends mixed as (c0 (256 - wl) + c1 wl + 128) >> 8). wl == 0 and the last level
+    // read one level only.
+    Color sampleTrilinear(Vec2 uv, float lod, WrapMode wrap) const;
+
+    // The straightforward reference of sample(): generic per-texel wrap and fetch, no
+    // specialisation. The fast paths above are tested to be bit-identical to it.
+    Color sampleReference(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const;
+
+private:
+    struct Level {
+        int width = 0, height = 0;
+        std::uint32_t maskX = 0, maskY = 0; // width - 1 / height - 1 when a power of two, else 0
+        std::vector<std::uint32_t> texels;  // packed RGBA8, bottom row first, rows packed
+    };
+
+    static Level makeLevel(int width, int height);
+    static Level downsample(const Level& src);
+    void bilinearReferenceRaw(const Level& level, Vec2 uv, WrapMode wrap, double raw[4]) const;
+    Color nearestReference(const Level& level, Vec2 uv, WrapMode wrap) const;
+
+    std::vector<Level> levels_; // levels_[0] is the base level; never empty
+};
+
+} // namespace sr
