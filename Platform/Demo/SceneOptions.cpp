@@ -56,7 +56,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     }
     static const char* const kFlags[] = {"--obj",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
-                                         "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe"};
+                                         "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
@@ -127,6 +127,10 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         const auto m = parseFilter(value);
         if (!m) return bad("nearest, bilinear or trilinear");
         o.filter = *m;
+    } else if (flag == "--persp") {
+        const auto m = parsePerspectiveMode(value);
+        if (!m) return bad("exact, span16, span8 or affine");
+        o.perspective = *m;
     } else if (flag == "--wrap") {
         const auto m = parseWrap(value);
         if (!m) return bad("repeat, clamp or mirror");
@@ -160,6 +164,7 @@ std::string sceneFlagsHelp() {
            "quality:\n"
            "  --filter F            nearest | bilinear | trilinear (default bilinear)\n"
            "  --wrap W              repeat | clamp | mirror (default repeat)\n"
+           "  --persp P             exact | span16 | span8 | affine: perspective correction (default exact)\n"
            "  --kd r,g,b            colour of untextured surfaces (default 0.8,0.8,0.8)\n"
            "  --wireframe           overlay triangle edges\n";
 }

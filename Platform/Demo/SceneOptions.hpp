@@ -11,6 +11,7 @@
 #include "Raster/Cull.hpp"
 #include "Raster/Shading.hpp"
 #include "Raster/Texture.hpp"
+#include "Raster/TriangleSetup.hpp"
 
 namespace sr::demo {
 
@@ -29,6 +30,7 @@ struct SceneOptions {
     // Quality knobs.
     TextureFilter filter = TextureFilter::Bilinear;
     WrapMode wrap = WrapMode::Repeat;
+    PerspectiveMode perspective = PerspectiveMode::Exact;
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
     bool wireframe = false;
 };

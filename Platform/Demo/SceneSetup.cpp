@@ -197,6 +197,7 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.cull = o.cull;
     s.filter = o.filter;
     s.wrap = o.wrap;
+    s.perspective = o.perspective;
     s.wireframe = o.wireframe;
     return s;
 }

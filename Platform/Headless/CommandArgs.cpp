@@ -1,0 +1,165 @@
+// Subcommand flags (on top of the shared scene flags), help texts and scene preparation.
+#include "Platform/Headless/CommandArgs.hpp"
+
+#include <cerrno>
+#include <cstdlib>
+#include <ostream>
+
+namespace sr::headless {
+namespace {
+
+std::optional<int> parseCount(const std::string& text) {
+    if (text.empty()) return std::nullopt;
+    char* end = nullptr;
+    errno = 0;
+    const long v = std::strtol(text.c_str(), &end, 10);
+    if (end != text.c_str() + text.size() || errno == ERANGE || v < 0 || v > kMaxFrames) return std::nullopt;
+    return int(v);
+}
+
+const char* name(Subcommand c) {
+    switch (c) {
+    case Subcommand::Render: return "render";
+    case Subcommand::Bench: return "bench";
+    case Subcommand::Report: return "report";
+    case Subcommand::None: break;
+    }
+    return "";
+}
+
+} // namespace
+
+std::string usage(Subcommand c) {
+    switch (c) {
+    case Subcommand::None:
+        return "usage: softraster <command> [flags]   (softraster <command> --help for its flags)\n"
+               "commands:\n"
+               "  render   render a scene to an image (.ppm, .png or .bmp) and optionally its depth (.pfm)\n"
+               "  bench    time frames of a scene and print one JSON line (stages, counters)\n"
+               "  report   measure every quality setting's time and error; writes report.csv/.md/.svg\n"
+               "Without --obj the built-in default scene is used.\n";
+    case Subcommand::Render:
+        return "usage: softraster render [scene flags] [--out FILE] [--depth-out FILE.pfm] [--quiet]\n"
+               "  --out FILE            image to write; the extension picks the format: .ppm .png .bmp\n"
+               "                        (default softraster.png); its path is printed on stdout\n"
+               "  --depth-out FILE.pfm  depth as window-space [0,1] (0 = near, 1 = far/background, the\n"
+               "                        OpenGL convention of the llvmpipe reference), rows bottom-up\n"
+               "  --quiet               no diagnostics on stderr\n" +
+               demo::sceneFlagsHelp();
+    case Subcommand::Bench:
+        return "usage: softraster bench [scene flags] [--frames N] [--warmup N] [--out FILE] [--depth-out FILE] [--quiet]\n"
+               "  --frames N            timed frames (default 100)\n"
+               "  --warmup N            untimed frames first (default 5)\n"
+               "  --out, --depth-out    also write the last frame (as render does)\n"
+               "Prints one JSON line: size, triangles, frames, threads, ms_per_frame_median/min/mean,\n"
+               "mpix_per_s, stages_ms (clear, transform_clip_cull, setup, fill_shade: from timing\n"
+               "partial pipelines) and counters (triangles in/rejected/clipped/culled/rasterized, pixels\n"
+               "shaded/covered, overdraw). Vertex data is prepared once, before the timed frames.\n" +
+               demo::sceneFlagsHelp();
+    case Subcommand::Report:
+        return "usage: softraster report --out-dir DIR [scene flags] [--frames N] [--warmup N] [--quiet]\n"
+               "  --out-dir DIR         where report.csv, report.md and report.svg go (created)\n"
+               "  --frames N            timed frames per setting (default 30)\n"
+               "Renders the scene under every quality setting (perspective mode, texture filter, shading\n"
+               "frequency, threads), each varied alone from the most accurate one, and records the median\n"
+               "time per frame and the error against the most accurate image (PSNR, max abs error, share\n"
+               "of differing pixels). The scene flags fix everything else.\n" +
+               demo::sceneFlagsHelp();
+    }
+    return "";
+}
+
+ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& args, std::ostream& err) {
+    ParsedArgs result;
+    CommandArgs a;
+    if (command == Subcommand::Report) a.frames = 30;
+    const std::string prefix = std::string("softraster ") + name(command) + ": ";
+    auto fail = [&](const std::string& message) {
+        err << prefix << message << "\n";
+        result.exitCode = 2;
+        return result;
+    };
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        std::string error;
+        switch (demo::parseSceneFlag(args, i, a.scene, error)) {
+        case demo::FlagResult::Consumed: continue;
+        case demo::FlagResult::Error: return fail(error);
+        case demo::FlagResult::NotMine: break;
+        }
+        std::string flag = args[i];
+        std::optional<std::string> value;
+        if (const auto eq = flag.find('='); flag.rfind("--", 0) == 0 && eq != std::string::npos) {
+            value = flag.substr(eq + 1);
+            flag = flag.substr(0, eq);
+        }
+        auto need = [&]() -> std::optional<std::string> {
+            if (value) return value;
+            if (i + 1 >= args.size()) return std::nullopt;
+            return args[++i];
+        };
+        const bool render = command == Subcommand::Render, bench = command == Subcommand::Bench,
+                   report = command == Subcommand::Report;
+        if (flag == "--help" || flag == "-h") {
+            a.help = true;
+        } else if (flag == "--quiet") {
+            a.quiet = true;
+        } else if ((render || bench) && (flag == "--out" || flag == "--depth-out")) {
+            const auto v = need();
+            if (!v || v->empty()) return fail("missing value for " + flag);
+            (flag == "--out" ? a.out : a.depthOut) = *v;
+        } else if (report && flag == "--out-dir") {
+            const auto v = need();
+            if (!v || v->empty()) return fail("missing value for --out-dir");
+            a.outDir = *v;
+        } else if ((bench || report) && (flag == "--frames" || flag == "--warmup")) {
+            const auto v = need();
+            if (!v) return fail("missing value for " + flag);
+            const auto n = parseCount(*v);
+            if (!n || (flag == "--frames" && *n < 1))
+                return fail("bad value for " + flag + ": '" + *v + "' (expected an integer from " +
+                            (flag == "--frames" ? "1" : "0") + " to " + std::to_string(kMaxFrames) + ")");
+            (flag == "--frames" ? a.frames : a.warmup) = *n;
+        } else if (flag.rfind("-", 0) == 0) {
+            return fail("unknown flag '" + args[i] + "' (see softraster " + name(command) + " --help)");
+        } else {
+            return fail("unexpected argument '" + args[i] + "' (see softraster " + name(command) + " --help)");
+        }
+    }
+    if (!a.help) {
+        if (command == Subcommand::Report && a.outDir.empty()) return fail("--out-dir DIR is required");
+        if (const auto problem = demo::validateSceneOptions(a.scene)) return fail(*problem);
+    }
+    result.args = std::move(a);
+    return result;
+}
+
+std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& err) {
+    auto loaded = demo::loadScene(a.scene);
+    if (!loaded) {
+        err << "softraster: " << loaded.error() << "\n";
+        return nullptr;
+    }
+    auto p = std::make_unique<PreparedScene>();
+    p->scene = std::move(loaded.value());
+    if (!a.quiet) {
+        for (const std::string& w : p->scene.warnings) err << "softraster: warning: " << w << "\n";
+        err << "softraster: " << p->scene.description << "\n";
+    }
+    p->camera = demo::resolveCamera(a.scene, p->scene);
+    if (!a.quiet) err << "softraster: camera: " << demo::cameraFlags(p->camera) << "\n";
+    p->view = demo::makeFrameView(p->camera, a.scene.width, a.scene.height, a.scene.light);
+    p->settings = demo::makeRenderSettings(a.scene);
+    if (!p->framebuffer.resize(a.scene.width, a.scene.height)) {
+        err << "softraster: cannot allocate a " << a.scene.width << "x" << a.scene.height << " framebuffer\n";
+        return nullptr;
+    }
+    p->context.setTarget(p->framebuffer);
+    p->threadsUsed = 1;
+    if (a.scene.threads > 1 && !a.quiet)
+        err << "softraster: warning: --threads " << a.scene.threads << ": this build renders on one thread\n";
+    for (const SceneDraw& d : p->scene.scene.draws) p->textured |= d.texture >= 0;
+    p->textured |= p->scene.textureOverride.has_value();
+    return p;
+}
+
+} // namespace sr::headless

@@ -1,0 +1,60 @@
+// Argument parsing and scene preparation shared by the headless subcommands.
+#pragma once
+
+#include <iosfwd>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "Platform/Demo/SceneSetup.hpp"
+#include "Raster/FrameBuffer.hpp"
+#include "Raster/RenderContext.hpp"
+
+namespace sr::headless {
+
+enum class Subcommand { None, Render, Bench, Report };
+
+struct CommandArgs {
+    demo::SceneOptions scene;
+    std::string out;      // render/bench: colour image (.ppm/.png/.bmp)
+    std::string depthOut; // render/bench: depth PFM
+    std::string outDir;   // report
+    int frames = 100;     // bench default; report uses its own default
+    int warmup = 5;
+    bool quiet = false;
+    bool help = false;
+};
+
+// Largest accepted --frames / --warmup.
+inline constexpr int kMaxFrames = 1000000;
+
+struct ParsedArgs {
+    std::optional<CommandArgs> args;
+    int exitCode = 0; // when args is empty: 2 (usage error, already reported on err)
+    explicit operator bool() const { return args.has_value(); }
+};
+
+// Parses a subcommand's arguments; errors are one line on `err` naming the flag and value.
+ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& args, std::ostream& err);
+
+// The help text of a subcommand (None: the overview).
+std::string usage(Subcommand command);
+
+// A loaded scene with its framebuffer, context, view and settings, ready to render.
+struct PreparedScene {
+    demo::LoadedScene scene;
+    demo::CameraSetup camera;
+    FrameView view;
+    RenderSettings settings;
+    FrameBuffer framebuffer;
+    RenderContext context{framebuffer};
+    int threadsUsed = 1;
+    bool textured = false;
+};
+
+// Loads the scene, resolves the camera (printed on err as flags, like the reference), builds
+// the framebuffer. Errors (unreadable model/texture) are reported on err; returns null then.
+std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& args, std::ostream& err);
+
+} // namespace sr::headless

@@ -1,0 +1,158 @@
+// `softraster render` and `softraster bench`, their shared argument parsing, and the dispatch.
+#include "Platform/Headless/Commands.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+#include <sstream>
+#include <thread>
+
+#include "Platform/Headless/CommandArgs.hpp"
+#include "Platform/Headless/Timing.hpp"
+#include "Resources/Image.hpp"
+
+namespace sr::headless {
+namespace {
+
+// Window-space depth in the reference renderer's convention (GL: 0 = near, 1 = far and
+// background): our reversed-Z z_ndc = n/(f-n) (f/d - 1) and GL's (z_ndc+1)/2 = f/(f-n) (1 - n/d)
+// add up to exactly 1, so the GL value is 1 - z.
+std::vector<float> referenceDepth(const FrameBuffer& fb) {
+    std::vector<float> d(std::size_t(fb.width()) * std::size_t(fb.height()));
+    for (std::size_t i = 0; i < d.size(); ++i) d[i] = 1.0f - fb.depthData()[i];
+    return d;
+}
+
+int writeOutputs(const CommandArgs& a, const FrameBuffer& fb, Streams io) {
+    if (!a.out.empty()) {
+        const Status s = writeImage(a.out, toImage(fb));
+        if (!s) {
+            io.err << "softraster: " << s.error() << "\n";
+            return kExitFailure;
+        }
+        io.out << a.out << "\n";
+    }
+    if (!a.depthOut.empty()) {
+        const std::vector<float> depth = referenceDepth(fb);
+        const Status s = writePfm(a.depthOut, fb.width(), fb.height(), depth.data());
+        if (!s) {
+            io.err << "softraster: " << s.error() << "\n";
+            return kExitFailure;
+        }
+        if (!a.quiet) io.err << "softraster: wrote depth " << a.depthOut << "\n";
+    }
+    return kExitOk;
+}
+
+std::string jsonNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4f", v);
+    return buf;
+}
+
+} // namespace
+
+int runRender(const std::vector<std::string>& args, Streams io) {
+    auto parsed = parseCommandArgs(Subcommand::Render, args, io.err);
+    if (!parsed) return parsed.exitCode;
+    CommandArgs& a = *parsed.args;
+    if (a.help) {
+        io.out << usage(Subcommand::Render);
+        return kExitOk;
+    }
+    if (a.out.empty()) a.out = "softraster.png";
+    auto prepared = prepareScene(a, io.err);
+    if (!prepared) return kExitFailure;
+    PreparedScene& p = *prepared;
+    demo::renderFrame(p.context, p.scene, p.view, p.settings);
+    return writeOutputs(a, p.framebuffer, io);
+}
+
+int runBench(const std::vector<std::string>& args, Streams io) {
+    auto parsed = parseCommandArgs(Subcommand::Bench, args, io.err);
+    if (!parsed) return parsed.exitCode;
+    CommandArgs& a = *parsed.args;
+    if (a.help) {
+        io.out << usage(Subcommand::Bench);
+        return kExitOk;
+    }
+    auto prepared = prepareScene(a, io.err);
+    if (!prepared) return kExitFailure;
+    PreparedScene& p = *prepared;
+    RenderSettings settings = p.settings;
+
+    // Whole frames: clear + every draw, as a real program renders them.
+    auto frame = [&] { demo::renderFrame(p.context, p.scene, p.view, settings); };
+    const TimingSummary full = summarise(timeFrames(a.warmup, a.frames, frame));
+    p.context.stats = {};
+    frame(); // one more frame for the counters and the output image
+    const RenderStats counters = p.context.stats;
+    std::int64_t covered = 0;
+    for (int i = 0, n = p.framebuffer.width() * p.framebuffer.height(); i < n; ++i)
+        covered += p.framebuffer.depthData()[i] != FrameBuffer::kFarDepth;
+
+    // Per-stage breakdown by difference of partial pipelines (no timers inside the hot loops):
+    // clear only; + vertex/clip/cull; + setup; the full frame above.
+    const int stageFrames = std::max(5, a.frames / 4);
+    const TimingSummary clearOnly =
+        summarise(timeFrames(1, stageFrames, [&] { p.framebuffer.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth); }));
+    settings.stopAfter = PipelineStop::Geometry;
+    const TimingSummary geometry = summarise(timeFrames(1, stageFrames, frame));
+    settings.stopAfter = PipelineStop::Setup;
+    const TimingSummary setup = summarise(timeFrames(1, stageFrames, frame));
+    settings.stopAfter = PipelineStop::Fill;
+    frame(); // leave the full image in the framebuffer for --out
+
+    auto positive = [](double v) { return std::max(v, 0.0); };
+    const double pixels = double(a.scene.width) * double(a.scene.height);
+    std::string j = "{\"renderer\":\"softraster\"";
+    j += ",\"width\":" + std::to_string(a.scene.width) + ",\"height\":" + std::to_string(a.scene.height);
+    j += ",\"triangles\":" + std::to_string(p.scene.scene.triangleCount());
+    j += ",\"frames\":" + std::to_string(a.frames) + ",\"warmup\":" + std::to_string(a.warmup);
+    j += ",\"threads\":" + std::to_string(p.threadsUsed);
+    j += ",\"ms_per_frame_median\":" + jsonNumber(full.median);
+    j += ",\"ms_per_frame_min\":" + jsonNumber(full.min);
+    j += ",\"ms_per_frame_mean\":" + jsonNumber(full.mean);
+    j += ",\"mpix_per_s\":" + jsonNumber(full.median > 0 ? pixels / (full.median * 1000.0) : 0.0);
+    j += ",\"stages_ms\":{\"clear\":" + jsonNumber(clearOnly.median);
+    j += ",\"transform_clip_cull\":" + jsonNumber(positive(geometry.median - clearOnly.median));
+    j += ",\"setup\":" + jsonNumber(positive(setup.median - geometry.median));
+    j += ",\"fill_shade\":" + jsonNumber(positive(full.median - setup.median)) + "}";
+    j += ",\"counters\":{\"triangles_in\":" + std::to_string(counters.trianglesIn);
+    j += ",\"trivially_rejected\":" + std::to_string(counters.trivialRejected);
+    j += ",\"clipped\":" + std::to_string(counters.clipped);
+    j += ",\"culled\":" + std::to_string(counters.culled);
+    j += ",\"rasterized\":" + std::to_string(counters.rasterized);
+    j += ",\"pixels_shaded\":" + std::to_string(counters.fragmentsShaded);
+    j += ",\"pixels_covered\":" + std::to_string(covered);
+    j += ",\"overdraw\":" + jsonNumber(covered > 0 ? double(counters.fragmentsShaded) / double(covered) : 0.0) + "}";
+    j += ",\"shading\":\"" + std::string(shadingModeName(settings.shading)) + "\"";
+    j += ",\"cull\":\"" + std::string(cullModeName(settings.cull)) + "\"";
+    j += ",\"filter\":\"" + std::string(filterName(settings.filter)) + "\"";
+    j += ",\"persp\":\"" + std::string(perspectiveModeName(settings.perspective)) + "\"";
+    j += ",\"textured\":" + std::string(p.textured ? "true" : "false");
+    j += ",\"hardware_threads\":" + std::to_string(std::thread::hardware_concurrency()) + "}";
+
+    // The image (if asked) goes first so that stdout's last line is the JSON.
+    CommandArgs imageArgs = a;
+    std::ostringstream discard;
+    Streams quietIo{discard, io.err, false};
+    if (const int rc = writeOutputs(imageArgs, p.framebuffer, quietIo); rc != kExitOk) return rc;
+    io.out << j << "\n";
+    return kExitOk;
+}
+
+int runHeadless(const std::vector<std::string>& args, Streams io) {
+    if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+        (args.empty() ? io.err : io.out) << usage(Subcommand::None);
+        return args.empty() ? kExitUsage : kExitOk;
+    }
+    const std::vector<std::string> rest(args.begin() + 1, args.end());
+    if (args[0] == "render") return runRender(rest, io);
+    if (args[0] == "bench") return runBench(rest, io);
+    if (args[0] == "report") return runReport(rest, io);
+    io.err << "softraster: unknown command '" << args[0] << "' (expected render, bench or report; see --help)\n";
+    return kExitUsage;
+}
+
+} // namespace sr::headless

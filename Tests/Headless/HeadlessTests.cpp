@@ -1,0 +1,195 @@
+// Tests of the headless command: flag parsing and error paths, bench's JSON, report's files.
+#include "TestFramework.hpp"
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "Platform/Headless/Commands.hpp"
+#include "Resources/FileIO.hpp"
+#include "Resources/Image.hpp"
+
+using namespace sr;
+using namespace sr::headless;
+
+namespace {
+
+struct Run {
+    int rc = -1;
+    std::string out, err;
+};
+
+Run run(std::vector<std::string> args) {
+    std::ostringstream out, err;
+    Run r;
+    r.rc = runHeadless(args, Streams{out, err, false});
+    r.out = out.str();
+    r.err = err.str();
+    return r;
+}
+
+std::string tempDir(const std::string& name) {
+    const auto dir = std::filesystem::temp_directory_path() / "softraster-tests" / name;
+    std::filesystem::create_directories(dir);
+    return dir.u8string();
+}
+
+bool hasKey(const std::string& json, const std::string& key) { return json.find("\"" + key + "\":") != std::string::npos; }
+
+// The number after "key": in a flat JSON line (enough for our own output).
+double numberOf(const std::string& json, const std::string& key) {
+    const auto at = json.find("\"" + key + "\":");
+    REQUIRE(at != std::string::npos);
+    return std::stod(json.substr(at + key.size() + 3));
+}
+
+} // namespace
+
+TEST_CASE("usage and help", "[headless]") {
+    const Run none = run({});
+    CHECK(none.rc == kExitUsage);
+    CHECK(none.err.find("usage: softraster <command>") != std::string::npos);
+    for (const char* cmd : {"render", "bench", "report"}) {
+        const Run help = run({cmd, "--help"});
+        CHECK(help.rc == kExitOk);
+        CHECK(help.out.find(std::string("usage: softraster ") + cmd) != std::string::npos);
+        CHECK(help.out.find("--shading MODE") != std::string::npos);
+    }
+    CHECK(run({"--help"}).rc == kExitOk);
+}
+
+TEST_CASE("every bad flag or value gives one clear line and exit code 2", "[headless]") {
+    struct Case {
+        std::vector<std::string> args;
+        std::string message;
+    };
+    const std::vector<Case> cases = {
+        {{"draw"}, "unknown command 'draw'"},
+        {{"render", "--bogus"}, "unknown flag '--bogus'"},
+        {{"render", "stray"}, "unexpected argument 'stray'"},
+        {{"render", "--width"}, "missing value for --width"},
+        {{"render", "--width", "0"}, "bad value for --width: '0'"},
+        {{"render", "--width", "9000"}, "bad value for --width: '9000'"},
+        {{"render", "--height", "12x"}, "bad value for --height: '12x'"},
+        {{"render", "--fov", "180"}, "bad value for --fov: '180'"},
+        {{"render", "--fov", "nan"}, "bad value for --fov: 'nan'"},
+        {{"render", "--near", "-1"}, "bad value for --near: '-1'"},
+        {{"render", "--near", "2", "--far", "1"}, "--far (1.000000) must be greater than --near (2.000000)"},
+        {{"render", "--eye", "1,2"}, "bad value for --eye: '1,2'"},
+        {{"render", "--eye", "1,2,1e39"}, "bad value for --eye: '1,2,1e39'"},
+        {{"render", "--light", "0,0,0"}, "--light must not be the zero vector"},
+        {{"render", "--shading", "toon"}, "bad value for --shading: 'toon' (expected unlit, flat, gouraud or phong)"},
+        {{"render", "--cull", "back"}, "bad value for --cull: 'back' (expected none, cw or ccw)"},
+        {{"render", "--filter", "aniso"}, "bad value for --filter: 'aniso'"},
+        {{"render", "--persp", "span4"}, "bad value for --persp: 'span4'"},
+        {{"render", "--threads", "-1"}, "bad value for --threads: '-1'"},
+        {{"render", "--frames", "10"}, "unknown flag '--frames'"},
+        {{"bench", "--frames", "0"}, "bad value for --frames: '0'"},
+        {{"bench", "--warmup", "x"}, "bad value for --warmup: 'x'"},
+        {{"report"}, "--out-dir DIR is required"},
+        {{"report", "--out", "x.png", "--out-dir", "d"}, "unknown flag '--out'"},
+    };
+    for (const Case& c : cases) {
+        CAPTURE(c.args);
+        const Run r = run(c.args);
+        CHECK(r.rc == kExitUsage);
+        CHECK(r.err.find(c.message) != std::string::npos);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1); // one line
+        CHECK(r.out.empty());
+    }
+}
+
+TEST_CASE("an unreadable model or texture is named, exit code 1", "[headless]") {
+    const Run missing = run({"render", "--obj", "no/such/model.obj", "--out", tempDir("h") + "/x.png"});
+    CHECK(missing.rc == kExitFailure);
+    CHECK(missing.err.find("no/such/model.obj") != std::string::npos);
+    const Run tex = run({"render", "--texture", "no/such/texture.png", "--out", tempDir("h") + "/x.png"});
+    CHECK(tex.rc == kExitFailure);
+    CHECK(tex.err.find("no/such/texture.png") != std::string::npos);
+    const Run badOut = run({"render", "--width", "32", "--height", "24", "--out", tempDir("h") + "/x.gif"});
+    CHECK(badOut.rc == kExitFailure);
+    CHECK(badOut.err.find("unknown image extension '.gif'") != std::string::npos);
+}
+
+TEST_CASE("render writes the image at the requested size and prints its path", "[headless]") {
+    const std::string path = tempDir("render") + "/scene.png";
+    const Run r = run({"render", "--width", "96", "--height", "64", "--out", path, "--quiet"});
+    REQUIRE(r.rc == kExitOk);
+    CHECK(r.out == path + "\n");
+    CHECK(r.err.empty()); // --quiet
+    auto img = loadImage(path);
+    REQUIRE(img.ok());
+    CHECK(img.value().width == 96);
+    CHECK(img.value().height == 64);
+    // The default scene is not blank: count distinct colours.
+    std::vector<std::uint32_t> colours;
+    for (std::size_t i = 0; i < img.value().rgba.size(); i += 4)
+        colours.push_back(std::uint32_t(img.value().rgba[i]) << 16 | std::uint32_t(img.value().rgba[i + 1]) << 8 |
+                          img.value().rgba[i + 2]);
+    std::sort(colours.begin(), colours.end());
+    CHECK(std::unique(colours.begin(), colours.end()) - colours.begin() > 50);
+}
+
+TEST_CASE("bench prints one JSON line with the documented fields", "[headless]") {
+    const Run r = run({"bench", "--width", "64", "--height", "48", "--frames", "3", "--warmup", "1", "--quiet"});
+    REQUIRE(r.rc == kExitOk);
+    REQUIRE(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+    const std::string& j = r.out;
+    for (const char* key : {"width", "height", "triangles", "frames", "threads", "ms_per_frame_median",
+                            "ms_per_frame_min", "mpix_per_s", "stages_ms", "clear", "transform_clip_cull", "setup",
+                            "fill_shade", "counters", "triangles_in", "clipped", "culled", "rasterized",
+                            "pixels_shaded", "overdraw"})
+        CHECK(hasKey(j, key));
+    CHECK(numberOf(j, "width") == 64);
+    CHECK(numberOf(j, "frames") == 3);
+    CHECK(numberOf(j, "ms_per_frame_min") <= numberOf(j, "ms_per_frame_median"));
+    CHECK(numberOf(j, "triangles_in") > 1000);
+    CHECK(numberOf(j, "rasterized") <= numberOf(j, "triangles_in"));
+    CHECK(numberOf(j, "pixels_shaded") >= numberOf(j, "pixels_covered"));
+    CHECK(numberOf(j, "pixels_covered") <= 64 * 48);
+    CHECK(numberOf(j, "overdraw") >= 1.0);
+}
+
+TEST_CASE("bench counters follow the cull mode", "[headless]") {
+    const Run none = run({"bench", "--width", "64", "--height", "48", "--frames", "1", "--warmup", "0", "--quiet"});
+    const Run cw = run({"bench", "--width", "64", "--height", "48", "--frames", "1", "--warmup", "0", "--quiet",
+                        "--cull", "cw"});
+    REQUIRE(none.rc == kExitOk);
+    REQUIRE(cw.rc == kExitOk);
+    CHECK(numberOf(cw.out, "culled") > numberOf(none.out, "culled") + 100);
+    CHECK(numberOf(cw.out, "rasterized") < numberOf(none.out, "rasterized"));
+}
+
+TEST_CASE("report writes report.csv, report.md and report.svg for a tiny scene", "[headless]") {
+    const std::string dir = tempDir("report");
+    for (const char* f : {"report.csv", "report.md", "report.svg"}) std::filesystem::remove(dir + "/" + f);
+    const Run r = run({"report", "--out-dir", dir, "--width", "48", "--height", "32", "--frames", "2", "--warmup",
+                       "0", "--quiet"});
+    REQUIRE(r.rc == kExitOk);
+    auto csv = readFileBytes(dir + "/report.csv");
+    REQUIRE(csv.ok());
+    const std::string text(csv.value().begin(), csv.value().end());
+    CHECK(text.rfind("knob,value,ms_median,ms_min,psnr_db,max_abs,differing_share,pareto\n", 0) == 0);
+    CHECK(std::count(text.begin(), text.end(), '\n') == 1 + 8); // header + 8 settings
+    // Rows: "knob,value,ms,ms,psnr,maxabs,share,pareto". The reference against itself is identical;
+    // the affine image is not.
+    auto row = [&](const std::string& prefix) {
+        const auto at = text.find("\n" + prefix);
+        REQUIRE(at != std::string::npos);
+        return text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+    };
+    const std::string ref = row("reference,exact+trilinear+phong,");
+    CHECK(ref.find(",inf,0,0.00000,") != std::string::npos);
+    const std::string affine = row("persp,affine,");
+    CHECK(affine.find(",inf,") == std::string::npos);
+    auto md = readFileBytes(dir + "/report.md");
+    REQUIRE(md.ok());
+    CHECK(std::string(md.value().begin(), md.value().end()).find("| setting | ms/frame (median)") != std::string::npos);
+    auto svg = readFileBytes(dir + "/report.svg");
+    REQUIRE(svg.ok());
+    const std::string s(svg.value().begin(), svg.value().end());
+    CHECK(s.rfind("<svg", 0) == 0);
+    CHECK(s.find("Pareto") != std::string::npos);
+    CHECK(std::count(s.begin(), s.end(), '\n') > 20);
+}
