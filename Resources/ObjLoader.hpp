@@ -1,0 +1,25 @@
+// ObjLoader: loads a Wavefront OBJ (+ MTL + textures) into a Model exactly as the llvmpipe reference (glref) does.
+#pragma once
+
+#include <string>
+
+#include "Resources/Model.hpp"
+#include "Resources/Result.hpp"
+
+namespace sr {
+
+// Loads the OBJ at a UTF-8 path. Mirrors shared/tools/llvmpipe-ref/glref.cpp's load_mesh:
+//  - tinyobjloader (2.0.0rc10) with triangulate = true; triangles in file order (shape by shape,
+//    face by face, vertices in OBJ order); vertices de-duplicated by their (v, vn, vt) triple;
+//  - a face-vertex's 'vn' is normalised in double; without one (or with a zero 'vn') the normal is
+//    the area-weighted vertex normal (sum of (p1-p0)x(p2-p0) over the triangles using that
+//    position, normalised in double; zero -> (0,0,1));
+//  - uvs only if the file has any 'vt'; a face-vertex without one gets (0,0);
+//  - map_Kd per material (resolved as glref), one range per run of faces sharing a texture.
+// Deliberate differences from glref: a texture that cannot be loaded gets defaultCheckerTexture()
+// (glref draws those faces grey), a UTF-8 BOM is skipped (glref would lose the first line), and
+// what glref would read out of bounds or silently misread (bad indices, "nan" coordinates) is an
+// error. Every failure is one line naming the file (and "path:LINE:" where a line is known).
+Result<Model> loadObj(const std::string& utf8Path, const ObjOptions& options = {});
+
+} // namespace sr
