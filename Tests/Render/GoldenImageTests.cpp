@@ -1,0 +1,100 @@
+// Golden images of the default scene (160x120) in each shading mode, compared within a stated tolerance.
+//
+// The goldens live in Tests/Golden/default_<mode>_160x120.png and are produced by this test itself.
+// To regenerate them after an intended change of the image (then look at them before committing):
+//     SR_UPDATE_GOLDEN=1 build/native/bin/sr_render_tests "[golden]"
+// which writes the PNGs into the source tree (SR_TEST_DATA_DIR/../Golden) and passes.
+#include "TestFramework.hpp"
+
+#include <algorithm>
+#include <cstdlib>
+#include <string>
+
+#include "Platform/Demo/SceneSetup.hpp"
+#include "Resources/Image.hpp"
+
+using namespace sr;
+
+namespace {
+
+constexpr int kWidth = 160, kHeight = 120;
+
+// Tolerance, per image:
+//  - at most 0.5% of the pixels (96 of 19200) may differ at all, and
+//  - no channel of any pixel may differ by more than 2 (of 255).
+// Why not bit-exact: the goldens are produced on one toolchain and checked on three (g++/glibc,
+// g++ with sanitizers, MinGW-w64 + msvcrt under Wine; MSVC on Windows). The shading is float
+// arithmetic: std::sqrt is correctly rounded everywhere, but std::pow (the non-integer shininess
+// path), std::sin/std::cos (the sphere and torus vertices), and the compiler's freedom to contract
+// a * b + c into an FMA (GCC does at -O2 on x86-64 only with -march supporting FMA; MSVC under
+// /fp:fast) change a result by an ulp or so. One ulp of a lit colour (~6e-8) moves a pixel by 1
+// level only when the value sits within that distance of a rounding boundary; a vertex moved by an
+// ulp can change the coverage of a pixel whose centre is within ~1e-5 pixel of an edge. Both
+// events are rare and local: a handful of pixels, off by 1 (colour) or by an edge's contrast
+// (coverage - hence a pixel count budget rather than a value budget for those). A systematic
+// change (a wrong texture orientation, a lighting term, a mode falling back to another) moves
+// thousands of pixels by far more than 2 and fails.
+constexpr double kMaxDifferingShare = 0.005;
+constexpr int kMaxChannelDiff = 2;
+
+std::string goldenPath(ShadingMode mode) {
+    return std::string(SR_TEST_DATA_DIR) + "/../Golden/default_" + shadingModeName(mode) + "_160x120.png";
+}
+
+Image renderDefaultScene(ShadingMode mode) {
+    demo::SceneOptions options;
+    options.width = kWidth;
+    options.height = kHeight;
+    options.shading = mode;
+    auto scene = demo::loadScene(options);
+    REQUIRE(scene.ok());
+    const demo::CameraSetup camera = demo::resolveCamera(options, scene.value());
+    const FrameView view = demo::makeFrameView(camera, kWidth, kHeight, options.light);
+    const RenderSettings settings = demo::makeRenderSettings(options);
+    FrameBuffer fb(kWidth, kHeight);
+    RenderContext ctx(fb);
+    demo::renderFrame(ctx, scene.value(), view, settings);
+    return toImage(fb);
+}
+
+bool updating() {
+    const char* v = std::getenv("SR_UPDATE_GOLDEN");
+    return v && *v && std::string(v) != "0";
+}
+
+} // namespace
+
+TEST_CASE("golden images of the default scene in each shading mode", "[render][golden]") {
+    for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong}) {
+        const std::string path = goldenPath(mode);
+        INFO("mode " << shadingModeName(mode) << ", golden " << path);
+        const Image actual = renderDefaultScene(mode);
+        if (updating()) {
+            const Status written = writeImage(path, actual);
+            INFO((written.ok() ? std::string() : written.error()));
+            REQUIRE(written.ok());
+            WARN("SR_UPDATE_GOLDEN: wrote " << path);
+            continue;
+        }
+        const auto golden = loadImage(path);
+        INFO((golden.ok() ? std::string() : golden.error()) << " (regenerate with SR_UPDATE_GOLDEN=1)");
+        REQUIRE(golden.ok());
+        const Image& expected = golden.value();
+        REQUIRE(expected.width == kWidth);
+        REQUIRE(expected.height == kHeight);
+
+        int differing = 0, maxDiff = 0;
+        for (int y = 0; y < kHeight; ++y)
+            for (int x = 0; x < kWidth; ++x) {
+                const std::uint8_t* a = actual.texel(x, y);
+                const std::uint8_t* e = expected.texel(x, y);
+                int d = 0;
+                for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a[c]) - int(e[c])));
+                if (d > 0) ++differing;
+                maxDiff = std::max(maxDiff, d);
+            }
+        INFO("differing pixels " << differing << ", max channel difference " << maxDiff);
+        CHECK(differing <= int(kMaxDifferingShare * kWidth * kHeight));
+        CHECK(maxDiff <= kMaxChannelDiff);
+    }
+}

@@ -1,0 +1,221 @@
+// Blinn-Phong (Raster/Shading.hpp) against values worked out by hand, and one lit quad end to end.
+#include "TestFramework.hpp"
+
+#include <cmath>
+#include <cstdint>
+
+#include "Math/Transform.hpp"
+#include "Raster/MeshRenderer.hpp"
+#include "Raster/Shading.hpp"
+
+using namespace sr;
+
+// All cases use the reference constants unless stated: ambient 0.1, ks 0.5, shininess 32
+// (shared/tools/llvmpipe-ref/README.md "Shading"):
+//   diffuse  = 0.1 + sum_l max(N.L_l, 0)
+//   specular = 0.5 * sum_l (N.L_l > 0 ? max(N.H_l, 0)^32 : 0),  H = normalize(L + V)
+// N = +Z throughout, so N.X is just X.z.
+namespace {
+
+Lighting oneLight(Vec3 toLight) {
+    Lighting l;
+    l.toLight = {toLight};
+    return l;
+}
+
+constexpr Vec3 kN{0.0f, 0.0f, 1.0f};
+
+} // namespace
+
+TEST_CASE("Blinn-Phong: light straight on, viewer straight on", "[render][shading]") {
+    // L = V = N: N.L = 1, H = N, N.H = 1 -> diffuse 0.1 + 1 = 1.1, specular 0.5 * 1^32 = 0.5.
+    const LightTerms t = blinnPhong(oneLight(kN), kN, kN);
+    CHECK(t.diffuse == Approx(1.1f).margin(1e-7));
+    CHECK(t.specular == 0.5f);
+}
+
+TEST_CASE("Blinn-Phong: grazing light, N.L = 1e-3 and exactly 0", "[render][shading]") {
+    SECTION("N.L = 1e-3") {
+        // L = (sqrt(1 - 1e-6), 0, 1e-3), V = N.
+        // diffuse = 0.1 + 0.001 = 0.101.
+        // L + V = (0.9999995, 0, 1.001); |L + V|^2 = (1 - 1e-6) + 1.002001 = 2.002 (exactly).
+        // N.H^2 = 1.001^2 / 2.002 = 1.002001 / 2.002 = 0.5005, so N.H^32 = 0.5005^16
+        //       = 2^-16 * 1.001^16 = 1.52587890625e-5 * 1.0160120... = 1.5504769e-5.
+        // specular = 0.5 * 1.5504769e-5 = 7.7523847e-6.
+        const Vec3 l{std::sqrt(1.0f - 1e-6f), 0.0f, 1e-3f};
+        const LightTerms t = blinnPhong(oneLight(l), kN, kN);
+        CHECK(t.diffuse == Approx(0.101).epsilon(1e-6));
+        // Relative 1e-4: float rounding of N.H (~1e-7 relative) grows 32x through the power.
+        CHECK(t.specular == Approx(7.7523847e-6).epsilon(1e-4));
+    }
+    SECTION("N.L = 0 exactly: no diffuse and no specular, although N.H = 0.707") {
+        // L = +X, V = N: N.L = 0 -> the one-sided rule drops the light entirely. Without it the
+        // specular would be 0.5 * (1/sqrt 2)^32 = 0.5 * 2^-16 = 7.63e-6 (a non-zero value).
+        const LightTerms t = blinnPhong(oneLight({1.0f, 0.0f, 0.0f}), kN, kN);
+        CHECK(t.diffuse == 0.1f);
+        CHECK(t.specular == 0.0f);
+    }
+}
+
+TEST_CASE("Blinn-Phong: light behind the surface gives ambient only", "[render][shading]") {
+    SECTION("light straight behind (L + V = 0 never normalised)") {
+        // L = -N, V = N: N.L = -1 -> diffuse 0.1, specular 0 (and no NaN from normalize(0)).
+        const LightTerms t = blinnPhong(oneLight({0.0f, 0.0f, -1.0f}), kN, kN);
+        CHECK(t.diffuse == 0.1f);
+        CHECK(t.specular == 0.0f);
+    }
+    SECTION("light just behind, half vector well in front") {
+        // L = normalize(1, 0, -0.01) = (0.99995, 0, -0.0099995): N.L = -0.0099995 < 0.
+        // V = (-0.9, 0, sqrt(0.19)) = (-0.9, 0, 0.4358899).
+        // L + V = (0.09995, 0, 0.4258904) -> N.H = 0.4258904 / 0.4374617 = 0.9735493, and
+        // 0.9735493^32 = 0.424086: without the one-sided rule specular would be 0.212.
+        const Vec3 l = normalize(Vec3{1.0f, 0.0f, -0.01f});
+        const Vec3 v{-0.9f, 0.0f, std::sqrt(0.19f)};
+        const LightTerms t = blinnPhong(oneLight(l), kN, v);
+        CHECK(t.diffuse == 0.1f);
+        CHECK(t.specular == 0.0f);
+    }
+}
+
+TEST_CASE("Blinn-Phong: zero specular", "[render][shading]") {
+    SECTION("N.H^32 underflows to 0 in float") {
+        // e = 0.02, s = sqrt(1 - e^2) = 0.9997999: L = (s, 0, e), V = (0, s, e); N.L = 0.02 > 0.
+        // L + V = (s, s, 2e); |L + V|^2 = 2 s^2 + 4 e^2 = 1.9992 + 0.0016 = 2.0008
+        // N.H = 0.04 / sqrt(2.0008) = 0.04 / 1.4144964 = 0.0282786
+        // N.H^32 = (N.H^2)^16 = (7.99680e-4)^16 = 2.8e-50 < 2^-149 (1.4e-45, the smallest float):
+        // the repeated squaring underflows to exactly 0. diffuse = 0.1 + 0.02 = 0.12.
+        const float e = 0.02f, s = std::sqrt(1.0f - e * e);
+        const LightTerms t = blinnPhong(oneLight({s, 0.0f, e}), kN, {0.0f, s, e});
+        CHECK(t.diffuse == Approx(0.12).epsilon(1e-6));
+        CHECK(t.specular == 0.0f);
+        // The same through std::pow (non-integer shininess): 0.0282786^31.5 = 1.7e-49 -> 0.
+        Lighting lp = oneLight({s, 0.0f, e});
+        lp.shininess = 31.5f;
+        CHECK(blinnPhong(lp, kN, {0.0f, s, e}).specular == 0.0f);
+    }
+    SECTION("ks = 0") {
+        // L = V = N: diffuse 1.1 as before; specular 0 * 1 = 0 (not 0.5).
+        Lighting l = oneLight(kN);
+        l.ks = 0.0f;
+        const LightTerms t = blinnPhong(l, kN, kN);
+        CHECK(t.diffuse == Approx(1.1f).margin(1e-7));
+        CHECK(t.specular == 0.0f);
+    }
+}
+
+TEST_CASE("Blinn-Phong: very high and non-integer shininess", "[render][shading]") {
+    SECTION("shininess 1000 (repeated squaring)") {
+        // L = N and V at angle b from N: H = normalize(N + V) bisects them, N.H = cos(b / 2).
+        // Choose cos(b/2) = 0.999: cos b = 2 * 0.999^2 - 1 = 0.996002,
+        // sin b = 2 sin(b/2) cos(b/2) = 2 * sqrt(1 - 0.998001) * 0.999 = 2 * 0.0447102 * 0.999
+        //       = 0.0893309. V = (0.0893309, 0, 0.996002).
+        // 0.999^1000 = exp(1000 ln 0.999) = exp(1000 * -0.00100050033) = exp(-1.0005003) = 0.3676954.
+        // specular = 0.5 * 0.3676954 = 0.1838477; diffuse = 0.1 + 1 = 1.1.
+        Lighting l = oneLight(kN);
+        l.shininess = 1000.0f;
+        const LightTerms t = blinnPhong(l, kN, {0.0893309f, 0.0f, 0.996002f});
+        CHECK(t.diffuse == Approx(1.1f).margin(1e-7));
+        // Relative 1e-3: an error of 1e-7 in N.H (float rounding of V, H) grows 1000x.
+        CHECK(t.specular == Approx(0.1838477).epsilon(1e-3));
+    }
+    SECTION("shininess 31.5 (std::pow), between the 31st and 32nd powers") {
+        // N.H = 0.9 exactly as in the 1000 case: cos(b/2) = 0.9 -> cos b = 2 * 0.81 - 1 = 0.62,
+        // sin b = 2 * sqrt(0.19) * 0.9 = 2 * 0.4358899 * 0.9 = 0.7846018.
+        // 0.9^31.5 = exp(31.5 * ln 0.9) = exp(31.5 * -0.1053605) = exp(-3.3188556) = 0.0361942
+        // (between 0.9^32 = 0.0343368 and 0.9^31 = 0.0381520: neither truncated nor rounded).
+        // specular = 0.5 * 0.0361942 = 0.0180971.
+        Lighting l = oneLight(kN);
+        l.shininess = 31.5f;
+        const LightTerms t = blinnPhong(l, kN, {0.7846018f, 0.0f, 0.62f});
+        CHECK(t.specular == Approx(0.0180971).epsilon(1e-4));
+        CHECK(shininessPow(0.9f, 31.5f) == Approx(0.0361942).epsilon(1e-5));
+        CHECK(shininessPow(0.9f, 31.5f) > shininessPow(0.9f, 32.0f));
+        CHECK(shininessPow(0.9f, 31.5f) < shininessPow(0.9f, 31.0f));
+    }
+}
+
+TEST_CASE("Blinn-Phong: several lights add up, and the pixel they make", "[render][shading]") {
+    // V = N and three lights:
+    //  L1 = N:            N.L = 1,   H = N, N.H = 1                        -> spec 1
+    //  L2 = (0.6, 0, 0.8): N.L = 0.8, L2 + V = (0.6, 0, 1.8), N.H = 1.8 / sqrt(3.6) = 3 / sqrt 10,
+    //                     N.H^2 = 0.9 -> N.H^32 = 0.9^16 = 0.1853020        -> spec 0.1853020
+    //  L3 = -N:           behind                                           -> nothing
+    // diffuse  = 0.1 + 1 + 0.8 = 1.9
+    // specular = 0.5 * (1 + 0.1853020) = 0.5926510
+    Lighting l;
+    l.toLight = {kN, {0.6f, 0.0f, 0.8f}, {0.0f, 0.0f, -1.0f}};
+    const LightTerms t = blinnPhong(l, kN, kN);
+    CHECK(t.diffuse == Approx(1.9).epsilon(1e-6));
+    CHECK(t.specular == Approx(0.5926510).epsilon(1e-5));
+    // kd = (0.1, 0.2, 0): c = kd * 1.9 + 0.592651
+    //   r = 0.19 + 0.592651 = 0.782651 -> * 255 = 199.576 -> 200
+    //   g = 0.38 + 0.592651 = 0.972651 -> * 255 = 248.026 -> 248
+    //   b = 0.00 + 0.592651 = 0.592651 -> * 255 = 151.126 -> 151
+    const Pixel p = packBgra8(applyTerms({0.1f, 0.2f, 0.0f}, t));
+    CHECK(int(pixelR(p)) == 200);
+    CHECK(int(pixelG(p)) == 248);
+    CHECK(int(pixelB(p)) == 151);
+    // Clamping: kd = 1 gives 1.9 + 0.59 > 1 -> 255.
+    CHECK(packBgra8(applyTerms({1.0f, 1.0f, 1.0f}, t)) == packBgra(255, 255, 255));
+}
+
+TEST_CASE("drawMesh: a flat quad facing the light has the same colour in flat, Gouraud and Phong",
+          "[render][shading]") {
+    // A unit quad at z = 0 facing +Z, seen from (0, 0, 50) with a 1.5 degree field of view (it fills
+    // most of a 64x64 target), one light along +Z. Per pixel, in every lit mode:
+    //  - diffuse: N = (0, 0, 1) everywhere (face normal, vertex normals and their interpolation
+    //    are all +Z) and L is directional, so diffuse = 0.1 + N.L = 1.1 in all three modes.
+    //  - specular: only V differs. V makes at most theta = atan(0.5 sqrt 2 / 50) = 0.01414 rad
+    //    with N over the quad; with L = N, H bisects N and V, so N.H = cos(theta / 2) and
+    //    0.5 * cos(0.00707)^32 = 0.5 * (1 - 2.5e-5)^32 = 0.5 * (1 - 8.0e-4) = 0.4996.
+    //    Phong evaluates it per pixel, flat at each triangle's centroid, Gouraud at the corners
+    //    and interpolates: all three lie in [0.4996, 0.5], i.e. within 0.0004 * 255 = 0.10 LSB.
+    // kd = (0.4, 0.3, 0.06), c = 1.1 kd + spec, spec in [0.4996, 0.5]:
+    //   r = 0.44 + spec  = [0.9396, 0.94]  * 255 = [239.60, 239.70] -> 240
+    //   g = 0.33 + spec  = [0.8296, 0.83]  * 255 = [211.55, 211.65] -> 212
+    //   b = 0.066 + spec = [0.5656, 0.566] * 255 = [144.23, 144.33] -> 144
+    // Every interval lies inside one rounding bin, so the bound is exact: all covered pixels of
+    // all three modes are (240, 212, 144). Unlit is kd alone: (0.4, 0.3, 0.06) * 255 =
+    // (102, 76.5 -> 76 (ties to even), 15.3 -> 15).
+    Mesh quad;
+    quad.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
+    quad.normals.assign(4, {0.0f, 0.0f, 1.0f});
+    quad.indices = {0, 1, 2, 0, 2, 3};
+
+    FrameView view;
+    view.eye = {0.0f, 0.0f, 50.0f};
+    view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
+    view.finiteFar = false;
+    view.lighting.toLight = {{0.0f, 0.0f, 1.0f}};
+    SurfaceMaterial material;
+    material.kd = {0.4f, 0.3f, 0.06f};
+
+    const Pixel background = packBgra(1, 2, 3);
+    struct Case {
+        ShadingMode mode;
+        Pixel expected;
+    };
+    for (const Case& c : {Case{ShadingMode::Flat, packBgra(240, 212, 144)}, Case{ShadingMode::Gouraud, packBgra(240, 212, 144)},
+                          Case{ShadingMode::Phong, packBgra(240, 212, 144)}, Case{ShadingMode::Unlit, packBgra(102, 76, 15)}}) {
+        INFO("mode " << shadingModeName(c.mode));
+        FrameBuffer fb(64, 64);
+        fb.clear(background);
+        RenderContext ctx(fb);
+        RenderSettings settings;
+        settings.shading = c.mode;
+        drawMesh(ctx, view, settings, quad, material);
+        int covered = 0, wrong = 0;
+        for (int y = 0; y < fb.height(); ++y)
+            for (int x = 0; x < fb.width(); ++x) {
+                const Pixel p = fb.pixel(x, y);
+                if (p == background) continue;
+                ++covered;
+                if (p != c.expected) ++wrong;
+            }
+        // The quad spans 1 / (2 * 50 * tan(0.75 deg)) = 0.764 of the view: ~49x49 pixels.
+        CHECK(covered > 45 * 45);
+        CHECK(covered < 53 * 53);
+        CHECK(wrong == 0);
+        CHECK(fb.pixel(32, 32) == c.expected);
+    }
+}
