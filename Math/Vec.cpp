@@ -66,7 +66,7 @@ Vec2 normalize(Vec2 v) {
     robustNormalize(c);
     return {c[0], c[1]};
 }
-Vec3 normalize(Vec3 v) {
+Vec3 normalizeRobust(Vec3 v) {
     float c[3] = {v.x, v.y, v.z};
     robustNormalize(c);
     return {c[0], c[1], c[2]};

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 #include "Conventions.hpp"
 
@@ -154,7 +155,23 @@ inline float lengthSquared(Vec3 v) { return dot(v, v); }
 //    of the infinite components (e.g. (inf, 1, 0) -> (1, 0, 0));
 //  - a vector with a NaN component returns all-NaN (NaN propagates, see Conventions.hpp).
 Vec2 normalize(Vec2 v);
-Vec3 normalize(Vec3 v);
 Vec4 normalize(Vec4 v);
+Vec3 normalizeRobust(Vec3 v); // the general case of normalize(Vec3), out of line
+
+// Inline fast path for the common case (finite, non-zero components whose sum does not
+// overflow): the very same operations as the general case (divide by the largest |component|,
+// sum of squares, one reciprocal square root, three products), so the result is bit-identical;
+// it only skips the NaN/Inf loop and the call. Everything else goes to normalizeRobust.
+inline Vec3 normalize(Vec3 v) {
+    const float ax = std::fabs(v.x), ay = std::fabs(v.y), az = std::fabs(v.z);
+    const float m = std::max(std::max(ax, ay), az);
+    if (!(m > 0.0f) || !(ax + ay + az <= std::numeric_limits<float>::max())) return normalizeRobust(v);
+    const float x = v.x / m, y = v.y / m, z = v.z / m;
+    float sum = x * x;
+    sum += y * y;
+    sum += z * z;
+    const float inv = 1.0f / std::sqrt(sum);
+    return {x * inv, y * inv, z * inv};
+}
 
 } // namespace sr

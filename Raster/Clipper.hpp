@@ -72,6 +72,16 @@ enum class ClipClass {
     Clip,    // straddles a clip plane: run clip()
 };
 
+// Per-vertex clip code (Clipper::vertexCode): bits 0..kClipPlaneCount-1 are the clip planes
+// (ClipPlane) the position is outside of; the next four the view-volume sides x, y = +-w
+// (trivial rejection only); kCodeNonFinite marks a NaN/Inf component. A triangle is then
+// classified from the AND / OR of its three cached codes (Cohen-Sutherland outcodes, as in
+// Foley et al., "Computer Graphics: Principles and Practice", 3.12.3), instead of recomputing
+// three outcodes per triangle: each vertex is shared by ~6 triangles in a closed mesh.
+inline constexpr unsigned kCodeClipMask = (1u << kClipPlaneCount) - 1u;
+inline constexpr unsigned kCodeViewMask = 0xFu << kClipPlaneCount;
+inline constexpr unsigned kCodeNonFinite = 1u << (kClipPlaneCount + 4);
+
 // Clips triangles for one viewport. Construct once per draw (it precomputes the guard-band
 // factors); clip() updates the statistics counters.
 //
@@ -84,8 +94,38 @@ class Clipper {
 public:
     explicit Clipper(const ClipParams& params);
 
-    // Trivial accept / reject test (cheap; no clipping).
+    // Trivial accept / reject test (cheap; no clipping). The reference for classifyCodes.
     ClipClass classify(const ClipVertex& a, const ClipVertex& b, const ClipVertex& c) const;
+
+    // The clip code of one position (see kCodeClipMask): computed once per vertex.
+    unsigned vertexCode(const Vec4& p) const {
+        if (!isFinite(p)) return kCodeNonFinite;
+        // The same double distances as distance() (exact signs for float inputs).
+        const double x = p.x, y = p.y, z = p.z, w = p.w;
+        unsigned code = 0;
+        code |= unsigned(w - z < 0.0) << kPlaneNear;
+        code |= unsigned(w - double(kClipMinW) < 0.0) << kPlaneMinW;
+        code |= unsigned(params_.clipFar && z < 0.0) << kPlaneFar;
+        code |= unsigned(x + gx_ * w < 0.0) << kPlaneLeft;
+        code |= unsigned(gx_ * w - x < 0.0) << kPlaneRight;
+        code |= unsigned(y + gy_ * w < 0.0) << kPlaneBottom;
+        code |= unsigned(gy_ * w - y < 0.0) << kPlaneTop;
+        code |= unsigned(x < -w) << kClipPlaneCount;
+        code |= unsigned(x > w) << (kClipPlaneCount + 1);
+        code |= unsigned(y < -w) << (kClipPlaneCount + 2);
+        code |= unsigned(y > w) << (kClipPlaneCount + 3);
+        return code;
+    }
+    // classify() from the three vertices' cached codes; equal to classify() on the vertices.
+    ClipClass classifyCodes(unsigned c0, unsigned c1, unsigned c2) const {
+        constexpr unsigned kRejectMask =
+            (1u << kPlaneNear) | (1u << kPlaneMinW) | (1u << kPlaneFar) | kCodeViewMask;
+        if ((c0 | c1 | c2) & kCodeNonFinite) return ClipClass::Reject;
+        if (params_.viewportWidth <= 0 || params_.viewportHeight <= 0) return ClipClass::Reject;
+        if (c0 & c1 & c2 & kRejectMask) return ClipClass::Reject;
+        if (((c0 | c1 | c2) & kCodeClipMask) == 0) return ClipClass::Accept;
+        return ClipClass::Clip;
+    }
 
     // Clips triangle (a, b, c) to the clip volume. Returns the number of polygon vertices
     // written to `out` (0 = nothing left to draw, else 3..kMaxClipVertices); out.count is set

@@ -22,9 +22,14 @@ constexpr std::int64_t pixelCentreFixed(std::int64_t i) {
 // so the result is the exactly rounded value. Ties up (not "away from zero") keep the rule
 // translation-invariant: shifting a triangle by whole pixels shifts its coverage exactly.
 // Precondition: |v| <= kGuardBand (callers check), so the result fits 24 bits.
+// The floor is done with a truncating conversion and a one-step correction (exactly floor()
+// for |s| < 2^31) because without SSE4.1 std::floor is a library call, and this runs six
+// times per triangle.
 inline Fixed snapToFixed(float v) {
     assert(std::fabs(v) <= kGuardBand);
-    return Fixed(std::floor(double(v) * double(kSubPixelScale) + 0.5));
+    const double s = double(v) * double(kSubPixelScale) + 0.5;
+    const Fixed t = Fixed(s); // truncates towards zero
+    return t - Fixed(double(t) > s);
 }
 
 constexpr float fixedToFloat(std::int64_t f) { return float(f) / float(kSubPixelScale); }

@@ -67,105 +67,112 @@ void transformVertex(const DrawContext& d, std::size_t i, ClipVertex& out) {
     }
 }
 
+// The four shading programs (drawProgram's Program: vertex, triangle, fragment). Each render
+// thread works on its own copy, so the per-triangle state (setup, terms) lives in the object.
 template <bool kTextured>
-void drawUnlit(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
-    constexpr int kV = kTextured ? 2 : 0;
+struct UnlitProgram {
+    static constexpr int kVaryings = kTextured ? 2 : 0;
+    const DrawContext* d;
+    Pixel flat;
     const TriangleSetup* setup = nullptr;
-    const Pixel flat = packBgra8(d.kd);
-    drawIndexed<kV>(
-        ctx, drawStateFor(d), d.mesh.vertexCount(), d.indices, indexCount,
-        [&](std::size_t i, ClipVertex& out) { transformVertex<kTextured>(d, i, out); },
-        [&](std::size_t, const TriangleSetup& s) { setup = &s; },
-        [&](const Fragment<kV>& f) {
-            if constexpr (kTextured) return packBgra8(sampleKd(d, setup, f));
-            else return flat;
-        });
-}
+    UnlitProgram(const DrawContext* dc, Pixel colour) : d(dc), flat(colour) {}
+    void vertex(std::size_t i, ClipVertex& out) const { transformVertex<kTextured>(*d, i, out); }
+    void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        if constexpr (kTextured) return packBgra8(sampleKd(*d, setup, f));
+        else return flat;
+    }
+};
 
-// Flat: lit ONCE per triangle (face normal, view vector at the centroid) in the triangle hook.
+// Flat: lit ONCE per triangle (face normal, view vector at the centroid) in triangle().
 template <bool kTextured>
-void drawFlat(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
-    constexpr int kV = kTextured ? 2 : 0;
+struct FlatProgram {
+    static constexpr int kVaryings = kTextured ? 2 : 0;
+    const DrawContext* d;
     const TriangleSetup* setup = nullptr;
     LightTerms terms;
     Pixel flat = 0;
-    drawIndexed<kV>(
-        ctx, drawStateFor(d), d.mesh.vertexCount(), d.indices, indexCount,
-        [&](std::size_t i, ClipVertex& out) { transformVertex<kTextured>(d, i, out); },
-        [&](std::size_t t, const TriangleSetup& s) {
-            setup = &s;
-            const Vec3 p0 = d.mesh.positions[d.indices[3 * t]], p1 = d.mesh.positions[d.indices[3 * t + 1]],
-                       p2 = d.mesh.positions[d.indices[3 * t + 2]];
-            const Vec3 centroid = (p0 + p1 + p2) / 3.0f;
-            terms = blinnPhong(d.view.lighting, faceNormal(p0, p1, p2), normalize(d.view.eye - centroid));
-            if constexpr (!kTextured) flat = packBgra8(applyTerms(d.kd, terms));
-        },
-        [&](const Fragment<kV>& f) {
-            if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(d, setup, f), terms));
-            else return flat;
-        });
-}
+    explicit FlatProgram(const DrawContext* dc) : d(dc) {}
+    void vertex(std::size_t i, ClipVertex& out) const { transformVertex<kTextured>(*d, i, out); }
+    void triangle(std::size_t t, const TriangleSetup& s) {
+        setup = &s;
+        const Vec3 p0 = d->mesh.positions[d->indices[3 * t]], p1 = d->mesh.positions[d->indices[3 * t + 1]],
+                   p2 = d->mesh.positions[d->indices[3 * t + 2]];
+        const Vec3 centroid = (p0 + p1 + p2) / 3.0f;
+        terms = blinnPhong(d->view.lighting, faceNormal(p0, p1, p2), normalize(d->view.eye - centroid));
+        if constexpr (!kTextured) flat = packBgra8(applyTerms(d->kd, terms));
+    }
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), terms));
+        else return flat;
+    }
+};
 
 // Gouraud: Blinn-Phong per vertex; the diffuse and specular terms are interpolated
 // (perspective-correct) and combined per pixel, so a texture still modulates per pixel.
 template <bool kTextured>
-void drawGouraud(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
-    constexpr int kT = kTextured ? 2 : 0; // first varying of the lighting terms
-    constexpr int kV = kT + 2;
+struct GouraudProgram {
+    static constexpr int kT = kTextured ? 2 : 0; // first varying of the lighting terms
+    static constexpr int kVaryings = kT + 2;
+    const DrawContext* d;
     const TriangleSetup* setup = nullptr;
-    drawIndexed<kV>(
-        ctx, drawStateFor(d), d.mesh.vertexCount(), d.indices, indexCount,
-        [&](std::size_t i, ClipVertex& out) {
-            transformVertex<kTextured>(d, i, out);
-            const Vec3 p = d.mesh.positions[i];
-            const LightTerms t = blinnPhong(d.view.lighting, normalize(d.mesh.normals[i]), normalize(d.view.eye - p));
-            out.varyings[kT] = t.diffuse;
-            out.varyings[kT + 1] = t.specular;
-        },
-        [&](std::size_t, const TriangleSetup& s) { setup = &s; },
-        [&](const Fragment<kV>& f) {
-            const LightTerms t{f.varyings[kT], f.varyings[kT + 1]};
-            if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(d, setup, f), t));
-            else return packBgra8(applyTerms(d.kd, t));
-        });
-}
+    explicit GouraudProgram(const DrawContext* dc) : d(dc) {}
+    void vertex(std::size_t i, ClipVertex& out) const {
+        transformVertex<kTextured>(*d, i, out);
+        const Vec3 p = d->mesh.positions[i];
+        const LightTerms t = blinnPhong(d->view.lighting, normalize(d->mesh.normals[i]), normalize(d->view.eye - p));
+        out.varyings[kT] = t.diffuse;
+        out.varyings[kT + 1] = t.specular;
+    }
+    void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        const LightTerms t{f.varyings[kT], f.varyings[kT + 1]};
+        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), t));
+        else return packBgra8(applyTerms(d->kd, t));
+    }
+};
 
 // Phong shading: world position and normal interpolated (perspective-correct), the normal
 // renormalised and Blinn-Phong evaluated per pixel.
 template <bool kTextured>
-void drawPhong(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
-    constexpr int kP = kTextured ? 2 : 0; // position varyings kP..kP+2, normal kP+3..kP+5
-    constexpr int kV = kP + 6;
+struct PhongProgram {
+    static constexpr int kP = kTextured ? 2 : 0; // position varyings kP..kP+2, normal kP+3..kP+5
+    static constexpr int kVaryings = kP + 6;
+    const DrawContext* d;
     const TriangleSetup* setup = nullptr;
-    drawIndexed<kV>(
-        ctx, drawStateFor(d), d.mesh.vertexCount(), d.indices, indexCount,
-        [&](std::size_t i, ClipVertex& out) {
-            transformVertex<kTextured>(d, i, out);
-            const Vec3 p = d.mesh.positions[i], n = d.mesh.normals[i];
-            out.varyings[kP] = p.x;
-            out.varyings[kP + 1] = p.y;
-            out.varyings[kP + 2] = p.z;
-            out.varyings[kP + 3] = n.x;
-            out.varyings[kP + 4] = n.y;
-            out.varyings[kP + 5] = n.z;
-        },
-        [&](std::size_t, const TriangleSetup& s) { setup = &s; },
-        [&](const Fragment<kV>& f) {
-            const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
-            const Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
-            const LightTerms t = blinnPhong(d.view.lighting, n, normalize(d.view.eye - p));
-            if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(d, setup, f), t));
-            else return packBgra8(applyTerms(d.kd, t));
-        });
+    explicit PhongProgram(const DrawContext* dc) : d(dc) {}
+    void vertex(std::size_t i, ClipVertex& out) const {
+        transformVertex<kTextured>(*d, i, out);
+        const Vec3 p = d->mesh.positions[i], n = d->mesh.normals[i];
+        out.varyings[kP] = p.x;
+        out.varyings[kP + 1] = p.y;
+        out.varyings[kP + 2] = p.z;
+        out.varyings[kP + 3] = n.x;
+        out.varyings[kP + 4] = n.y;
+        out.varyings[kP + 5] = n.z;
+    }
+    void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
+        const Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
+        const LightTerms t = blinnPhong(d->view.lighting, n, normalize(d->view.eye - p));
+        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), t));
+        else return packBgra8(applyTerms(d->kd, t));
+    }
+};
+
+template <class Program>
+void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, Program program) {
+    drawProgram<Program::kVaryings>(ctx, drawStateFor(d), d.mesh.vertexCount(), d.indices, indexCount, program);
 }
 
 template <bool kTextured>
 void drawShaded(RenderContext& ctx, const DrawContext& d, ShadingMode mode, std::size_t indexCount) {
     switch (mode) {
-    case ShadingMode::Unlit: drawUnlit<kTextured>(ctx, d, indexCount); break;
-    case ShadingMode::Flat: drawFlat<kTextured>(ctx, d, indexCount); break;
-    case ShadingMode::Gouraud: drawGouraud<kTextured>(ctx, d, indexCount); break;
-    case ShadingMode::Phong: drawPhong<kTextured>(ctx, d, indexCount); break;
+    case ShadingMode::Unlit: drawWith(ctx, d, indexCount, UnlitProgram<kTextured>(&d, packBgra8(d.kd))); break;
+    case ShadingMode::Flat: drawWith(ctx, d, indexCount, FlatProgram<kTextured>(&d)); break;
+    case ShadingMode::Gouraud: drawWith(ctx, d, indexCount, GouraudProgram<kTextured>(&d)); break;
+    case ShadingMode::Phong: drawWith(ctx, d, indexCount, PhongProgram<kTextured>(&d)); break;
     }
 }
 

@@ -2,6 +2,8 @@
 // viewport -> cull -> triangle setup -> scanline fill (+ optional wireframe overlay).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -11,6 +13,7 @@
 #include "Raster/Line.hpp"
 #include "Raster/RenderContext.hpp"
 #include "Raster/ScanlineFill.hpp"
+#include "Raster/ThreadPool.hpp"
 #include "Raster/TriangleSetup.hpp"
 #include "Raster/Viewport.hpp"
 
@@ -52,41 +55,113 @@ struct NoTriangleHook {
     void operator()(std::size_t, const TriangleSetup&) const {}
 };
 
-// Culls, sets up and fills one screen-space triangle (index t of the draw). Returns true when
-// it was not culled. The hook runs once per set-up triangle, right before its fill.
-template <int kVaryings, class TriangleHook, class FragmentShader>
-bool rasterizeTriangle(RenderContext& ctx, const DrawState& state, std::size_t t, const ScreenVertex& v0,
-                       const ScreenVertex& v1, const ScreenVertex& v2, TriangleHook& hook, FragmentShader& shader) {
-    if (isCulled(state.cull, v0, v1, v2)) {
-        ++ctx.stats.culled;
+// Per-lane state of a draw: its own counters and setup record (lanes never share writes).
+struct LaneState {
+    RenderStats stats;
+    TriangleSetup setup;
+};
+
+// Which rows a lane fills. One lane: the whole target. Several: the target is cut into bands
+// of kBandRows rows, band b belonging to lane b % lanes (interleaved, so a model in the middle
+// of the screen still spreads over every lane).
+struct LaneBands {
+    static constexpr int kBandRows = 16;
+    int lane = 0, lanes = 1, height = 0;
+
+    int ownerOfRow(int row) const { return (std::clamp(row, 0, std::max(height - 1, 0)) / kBandRows) % lanes; }
+    // True when some band of this lane meets rows [rowBegin, rowEnd) of the target.
+    bool meets(int rowBegin, int rowEnd) const {
+        rowBegin = std::max(rowBegin, 0);
+        rowEnd = std::min(rowEnd, height);
+        if (rowBegin >= rowEnd) return false;
+        const int first = rowBegin / kBandRows, last = (rowEnd - 1) / kBandRows;
+        if (last - first + 1 >= lanes) return true;
+        for (int b = first; b <= last; ++b)
+            if (b % lanes == lane) return true;
         return false;
     }
-    if (state.stopAfter == PipelineStop::Geometry) return true;
+};
+
+// Snapped pixel-row range [begin, end) whose centres a screen triangle can cover (the rows
+// setupTriangle computes), from the y coordinates only: a cheap band test before the setup.
+inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, int& begin,
+                            int& end) {
+    const Fixed y0 = snapToFixed(v0.y), y1 = snapToFixed(v1.y), y2 = snapToFixed(v2.y);
+    begin = int(firstCentreAtOrAfter(std::min({y0, y1, y2}), 1));
+    end = int(firstCentreAtOrAfter(std::max({y0, y1, y2}), 1));
+}
+
+// Culls, sets up and fills one screen-space triangle (index t of the draw) on one lane.
+// Returns true when it was not culled. The program's triangle() runs once per set-up
+// triangle, right before its fill. With several lanes, the lane owning the band of the
+// triangle's first row counts it (so the counters equal a single-lane draw's), and every lane
+// whose bands it meets sets it up and fills it clipped to those bands, in submission order:
+// the image is bit-identical to one lane's.
+template <int kVaryings, class Program>
+bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands& bands, LaneState& lane,
+                       RenderStats& sink, std::size_t t, const ScreenVertex& v0, const ScreenVertex& v1,
+                       const ScreenVertex& v2, Program& program) {
+    RenderStats* stats = &lane.stats;
+    if (bands.lanes > 1) {
+        int rowBegin = 0, rowEnd = 0;
+        if (std::fabs(v0.y) <= kGuardBand && std::fabs(v1.y) <= kGuardBand && std::fabs(v2.y) <= kGuardBand) {
+            snappedRowRange(v0, v1, v2, rowBegin, rowEnd);
+        }
+        const bool owner = bands.ownerOfRow(rowBegin) == bands.lane;
+        if (!owner) {
+            if (state.stopAfter == PipelineStop::Geometry || !bands.meets(rowBegin, rowEnd)) return false;
+            stats = &sink; // fills its bands, counts nothing
+        }
+    }
+    if (state.stopAfter == PipelineStop::Geometry) {
+        if (isCulled(state.cull, v0, v1, v2)) {
+            ++stats->culled;
+            return false;
+        }
+        return true;
+    }
     const bool affine = kVaryings > 0 && state.perspective == PerspectiveMode::Affine;
-    const auto setup = setupTriangle(v0, v1, v2, kVaryings, !affine);
-    if (!setup) return true; // covers no pixel-centre row: nothing to do, but not culled
-    ++ctx.stats.rasterized;
+    TriangleSetup& setup = lane.setup;
+    switch (setupTriangleCulled(setup, v0, v1, v2, state.cull, kVaryings, !affine)) {
+    case SetupOutcome::Culled: ++stats->culled; return false;
+    case SetupOutcome::Empty: return true; // covers no pixel-centre row: nothing to do, but not culled
+    case SetupOutcome::Ready: break;
+    }
+    ++stats->rasterized;
     if (state.stopAfter == PipelineStop::Setup) return true;
-    hook(t, *setup);
+    program.triangle(t, static_cast<const TriangleSetup&>(setup));
     // Count the fragments that pass the depth test (one add per pixel: overdraw statistics).
-    auto counted = [&ctx, &shader](const Fragment<kVaryings>& f) {
-        ++ctx.stats.fragmentsShaded;
-        return shader(f);
+    std::uint64_t& shaded = lane.stats.fragmentsShaded;
+    auto counted = [&shaded, &program](const Fragment<kVaryings>& f) {
+        ++shaded;
+        return program.fragment(f);
     };
-    FrameBuffer& fb = ctx.target();
     // Depth mode x perspective mode, resolved once per triangle; without varyings only Exact
     // exists (nothing to interpolate), which keeps the number of instantiated loops down.
-    auto fill = [&](auto depthTag) {
+    auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
         if constexpr (kVaryings == 0) {
-            fillTriangle<kDepth, kVaryings>(*setup, fb, counted);
+            fillTriangle<kDepth, kVaryings>(setup, fb, scissor, counted);
         } else {
             switch (state.perspective) {
-            case PerspectiveMode::Exact: fillTriangle<kDepth, kVaryings, PerspectiveMode::Exact>(*setup, fb, counted); break;
-            case PerspectiveMode::Span16: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span16>(*setup, fb, counted); break;
-            case PerspectiveMode::Span8: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span8>(*setup, fb, counted); break;
-            case PerspectiveMode::Affine: fillTriangle<kDepth, kVaryings, PerspectiveMode::Affine>(*setup, fb, counted); break;
+            case PerspectiveMode::Exact: fillTriangle<kDepth, kVaryings, PerspectiveMode::Exact>(setup, fb, scissor, counted); break;
+            case PerspectiveMode::Span16: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span16>(setup, fb, scissor, counted); break;
+            case PerspectiveMode::Span8: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span8>(setup, fb, scissor, counted); break;
+            case PerspectiveMode::Affine: fillTriangle<kDepth, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, counted); break;
             }
+        }
+    };
+    auto fill = [&](auto depthTag) {
+        if (bands.lanes == 1) {
+            fillIn(depthTag, fullScissor(fb));
+            return;
+        }
+        // This lane's bands that meet the triangle's rows, top to bottom.
+        const int rowBegin = std::max(setup.firstRow, 0), rowEnd = std::min(setup.endRow, fb.height());
+        for (int b = rowBegin / LaneBands::kBandRows; b * LaneBands::kBandRows < rowEnd; ++b) {
+            if (b % bands.lanes != bands.lane) continue;
+            const int y0 = b * LaneBands::kBandRows;
+            fillIn(depthTag, Scissor{0, y0, fb.width(), std::min(y0 + LaneBands::kBandRows, fb.height())});
         }
     };
     switch (state.depth) {
@@ -97,100 +172,188 @@ bool rasterizeTriangle(RenderContext& ctx, const DrawState& state, std::size_t t
     return true;
 }
 
-} // namespace detail
+// The lambda API as a Program (used on one lane only: the lambdas may share state).
+template <class VertexShader, class TriangleHook, class FragmentShader>
+struct LambdaProgram {
+    VertexShader& vertexShader;
+    TriangleHook& hook;
+    FragmentShader& fragmentShader;
+    void vertex(std::size_t i, ClipVertex& out) { vertexShader(i, out); }
+    void triangle(std::size_t t, const TriangleSetup& s) { hook(t, s); }
+    template <class F>
+    Pixel fragment(const F& f) { return fragmentShader(f); }
+};
 
-// Draws the indexed triangle list `indices` (indexCount / 3 triangles) over `vertexCount`
-// vertices into ctx.target().
-//  - vertexShader(std::size_t i, ClipVertex& out) runs ONCE per vertex (a post-transform cache
-//    of the whole draw) and writes the clip-space position and the first kVaryings varyings.
-//  - fragmentShader(const Fragment<kVaryings>&) -> Pixel runs per covered pixel that passes the
-//    depth test, with perspective-correct varyings. Both are inlined (templates): the span
-//    loop is specialised per shader, and a draw with kVaryings == 0 interpolates nothing but
-//    depth.
-// Triangles with a non-finite vertex are dropped without affecting the rest of the draw.
-// Per triangle: trivial reject / accept first (an on-screen triangle costs no clipping), else
-// homogeneous clipping (near plane always, guard band and far plane when needed), then the
-// divide (cached per vertex for accepted triangles), cull, setup and fill.
-//  - triangleHook(std::size_t t, const TriangleSetup&) runs once per triangle that reaches the
-//    fill (t = index of the triangle in this draw, i.e. indices[3t..3t+2]), before its pixels:
-//    per-triangle work such as flat shading, or keeping the setup's gradients for texture
-//    derivatives, goes there, never in the fragment shader.
-// Precondition (asserted): every index < vertexCount and indexCount % 3 == 0.
-template <int kVaryings, class VertexShader, class TriangleHook, class FragmentShader>
-void drawIndexed(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
-                 std::size_t indexCount, VertexShader&& vertexShader, TriangleHook&& triangleHook,
-                 FragmentShader&& fragmentShader) {
-    static_assert(kVaryings >= 0 && kVaryings <= kMaxVaryings, "too many varyings");
-    assert(indexCount % 3 == 0);
+// The primitive stage of one lane: every triangle in submission order, classified from the
+// cached per-vertex clip codes, then clipped if needed, culled, set up and filled.
+template <int kVaryings, class Program>
+void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, const LaneBands& bands,
+                LaneState& lane, const std::uint32_t* indices, std::size_t indexCount, Program& program) {
     FrameBuffer& fb = ctx.target();
     const int width = fb.width(), height = fb.height();
-
-    // 1. Vertex stage, once per vertex; the divide too wherever it is defined (w > 0).
-    ctx.clipVertices.resize(vertexCount);
-    ctx.screenVertices.resize(vertexCount);
-    ctx.usable.resize(vertexCount);
-    for (std::size_t i = 0; i < vertexCount; ++i) {
-        ClipVertex& cv = ctx.clipVertices[i];
-        vertexShader(i, cv);
-        const bool usable = isFinite(cv.position) && cv.position.w > 0.0f;
-        ctx.usable[i] = usable;
-        if (usable) ctx.screenVertices[i] = toScreen(cv, width, height, kVaryings);
-    }
-
-    // 2. Primitive stage, triangle by triangle in submission order.
-    ClipParams params;
-    params.viewportWidth = width;
-    params.viewportHeight = height;
-    params.clipFar = state.clipFar;
-    params.varyingCount = kVaryings;
-    Clipper clipper(params);
+    Clipper clipper = clipperProto;
     ClippedPolygon polygon;
     ScreenVertex screen[kMaxClipVertices];
+    RenderStats sink;
     const bool wireDepthTest = state.depth != DepthMode::Off;
-
+    const bool countsShared = bands.lane == 0; // per-triangle counters not tied to a band
+    const unsigned* codes = ctx.clipCodes.data();
     for (std::size_t t = 0; t + 2 < indexCount; t += 3) {
         const std::uint32_t i0 = indices[t], i1 = indices[t + 1], i2 = indices[t + 2];
-        assert(i0 < vertexCount && i1 < vertexCount && i2 < vertexCount);
-        const ClipVertex& a = ctx.clipVertices[i0];
-        const ClipVertex& b = ctx.clipVertices[i1];
-        const ClipVertex& c = ctx.clipVertices[i2];
-        ++ctx.stats.trianglesIn;
+        const unsigned c0 = codes[i0], c1 = codes[i1], c2 = codes[i2];
+        if (countsShared) ++lane.stats.trianglesIn;
 
-        switch (clipper.classify(a, b, c)) {
+        switch (clipper.classifyCodes(c0, c1, c2)) {
         case ClipClass::Reject:
-            ++ctx.stats.trivialRejected;
-            if (!isFinite(a.position) || !isFinite(b.position) || !isFinite(c.position)) ++ctx.stats.nonFinite;
+            if (countsShared) {
+                ++lane.stats.trivialRejected;
+                if ((c0 | c1 | c2) & kCodeNonFinite) ++lane.stats.nonFinite;
+            }
             break;
         case ClipClass::Accept: {
             const ScreenVertex& s0 = ctx.screenVertices[i0];
             const ScreenVertex& s1 = ctx.screenVertices[i1];
             const ScreenVertex& s2 = ctx.screenVertices[i2];
             assert(ctx.usable[i0] && ctx.usable[i1] && ctx.usable[i2]);
-            if (detail::rasterizeTriangle<kVaryings>(ctx, state, t / 3, s0, s1, s2, triangleHook, fragmentShader) && state.wireframe) {
-                detail::drawWireEdge(fb, s0, s1, state.wireColour, wireDepthTest);
-                detail::drawWireEdge(fb, s1, s2, state.wireColour, wireDepthTest);
-                detail::drawWireEdge(fb, s2, s0, state.wireColour, wireDepthTest);
+            if (rasterizeTriangle<kVaryings>(fb, state, bands, lane, sink, t / 3, s0, s1, s2, program) &&
+                state.wireframe) {
+                drawWireEdge(fb, s0, s1, state.wireColour, wireDepthTest);
+                drawWireEdge(fb, s1, s2, state.wireColour, wireDepthTest);
+                drawWireEdge(fb, s2, s0, state.wireColour, wireDepthTest);
             }
             break;
         }
         case ClipClass::Clip: {
-            ++ctx.stats.clipped;
+            if (countsShared) ++lane.stats.clipped;
+            const ClipVertex& a = ctx.clipVertices[i0];
+            const ClipVertex& b = ctx.clipVertices[i1];
+            const ClipVertex& c = ctx.clipVertices[i2];
             const int n = clipper.clip(a, b, c, polygon);
             for (int k = 0; k < n; ++k) screen[k] = toScreen(polygon.vertices[std::size_t(k)], width, height, kVaryings);
             // The fan keeps the input winding, so every piece gets the same cull decision.
             bool drawn = false;
             for (int k = 0; k < polygon.triangleCount(); ++k) {
-                drawn |= detail::rasterizeTriangle<kVaryings>(ctx, state, t / 3, screen[0], screen[k + 1],
-                                                              screen[k + 2], triangleHook, fragmentShader);
+                drawn |= rasterizeTriangle<kVaryings>(fb, state, bands, lane, sink, t / 3, screen[0], screen[k + 1],
+                                                      screen[k + 2], program);
             }
             if (drawn && state.wireframe) {
                 for (int k = 0; k < n; ++k)
-                    detail::drawWireEdge(fb, screen[k], screen[(k + 1) % n], state.wireColour, wireDepthTest);
+                    drawWireEdge(fb, screen[k], screen[(k + 1) % n], state.wireColour, wireDepthTest);
             }
             break;
         }
         }
     }
+}
+
+// The vertex stage for vertices [begin, end): program.vertex, the clip code, and the divide
+// wherever it is defined (w > 0).
+template <int kVaryings, class Program>
+void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, std::size_t end, Program& program) {
+    const int width = ctx.target().width(), height = ctx.target().height();
+    for (std::size_t i = begin; i < end; ++i) {
+        ClipVertex& cv = ctx.clipVertices[i];
+        program.vertex(i, cv);
+        const unsigned code = clipper.vertexCode(cv.position);
+        ctx.clipCodes[i] = code;
+        // Finite with w > 0 (the MinW bit is w - 1e-12 < 0 in double; test w itself).
+        const bool usable = !(code & kCodeNonFinite) && cv.position.w > 0.0f;
+        ctx.usable[i] = usable;
+        if (usable) ctx.screenVertices[i] = toScreen(cv, width, height, kVaryings);
+    }
+}
+
+// drawProgram's body: `lanes` lanes (1 = on the calling thread only).
+template <int kVaryings, class Program>
+void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
+               std::size_t indexCount, Program& program, int lanes) {
+    static_assert(kVaryings >= 0 && kVaryings <= kMaxVaryings, "too many varyings");
+    assert(indexCount % 3 == 0);
+    FrameBuffer& fb = ctx.target();
+#ifndef NDEBUG
+    for (std::size_t t = 0; t < indexCount; ++t) assert(indices[t] < vertexCount);
+#endif
+    ctx.clipVertices.resize(vertexCount);
+    ctx.screenVertices.resize(vertexCount);
+    ctx.usable.resize(vertexCount);
+    ctx.clipCodes.resize(vertexCount);
+
+    ClipParams params;
+    params.viewportWidth = fb.width();
+    params.viewportHeight = fb.height();
+    params.clipFar = state.clipFar;
+    params.varyingCount = kVaryings;
+    const Clipper clipper(params);
+
+    if (lanes <= 1) {
+        LaneState lane;
+        vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program);
+        rasterLane<kVaryings>(ctx, state, clipper, LaneBands{0, 1, fb.height()}, lane, indices, indexCount, program);
+        ctx.stats += lane.stats;
+        return;
+    }
+    // 1. Vertex stage split by vertex ranges (each lane with its own copy of the program).
+    ThreadPool& pool = *ctx.pool();
+    auto vertexJob = [&](int l) {
+        Program copy = program;
+        const std::size_t begin = vertexCount * std::size_t(l) / std::size_t(lanes);
+        const std::size_t end = vertexCount * std::size_t(l + 1) / std::size_t(lanes);
+        vertexRange<kVaryings>(ctx, clipper, begin, end, copy);
+    };
+    pool.run(vertexJob);
+    // 2. Primitive stage: every lane walks the triangles in order and fills its own bands.
+    LaneState laneStates[kMaxRenderThreads];
+    auto rasterJob = [&](int l) {
+        Program copy = program;
+        rasterLane<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height()}, laneStates[l], indices,
+                              indexCount, copy);
+    };
+    pool.run(rasterJob);
+    for (int l = 0; l < lanes; ++l) ctx.stats += laneStates[l].stats;
+}
+
+} // namespace detail
+
+// Draws the indexed triangle list `indices` (indexCount / 3 triangles) over `vertexCount`
+// vertices into ctx.target(), with a Program: an object with
+//  - void vertex(std::size_t i, ClipVertex& out): runs ONCE per vertex (a post-transform cache
+//    of the whole draw) and writes the clip-space position and the first kVaryings varyings;
+//  - void triangle(std::size_t t, const TriangleSetup&): runs once per triangle that reaches
+//    the fill (t = index of the triangle in this draw, i.e. indices[3t..3t+2]), before its
+//    pixels: per-triangle work such as flat shading or keeping the setup for texture
+//    derivatives goes there, never in the fragment shader;
+//  - Pixel fragment(const Fragment<kVaryings>&): runs per covered pixel that passes the depth
+//    test, with perspective-correct varyings.
+// All are inlined (templates): the span loop is specialised per program, and a draw with
+// kVaryings == 0 interpolates nothing but depth.
+// Threads: with ctx.threads() > 1 (and no wireframe, whose lines cross bands) each lane works
+// on its own COPY of the program, so vertex() must not write shared state and triangle() /
+// fragment() may keep per-triangle state only in the program object. The image, depth and
+// counters are identical to a single-threaded draw (Pipeline.hpp, LaneBands).
+// Triangles with a non-finite vertex are dropped without affecting the rest of the draw.
+// Per triangle: trivial reject / accept first from the per-vertex clip codes (an on-screen
+// triangle costs no clipping), else homogeneous clipping (near plane always, guard band and far
+// plane when needed), then the divide (cached per vertex for accepted triangles), cull and
+// setup in one pass, and the fill.
+// Precondition (asserted): every index < vertexCount and indexCount % 3 == 0.
+template <int kVaryings, class Program>
+void drawProgram(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
+                 std::size_t indexCount, Program& program) {
+    const int lanes = state.wireframe || !ctx.pool() ? 1 : ctx.pool()->lanes();
+    detail::drawLanes<kVaryings>(ctx, state, vertexCount, indices, indexCount, program, lanes);
+}
+
+// The same with three callables (always on the calling thread: they may share state):
+// vertexShader(i, ClipVertex&), triangleHook(t, const TriangleSetup&) and
+// fragmentShader(const Fragment<kVaryings>&) -> Pixel, as the Program members above.
+template <int kVaryings, class VertexShader, class TriangleHook, class FragmentShader>
+void drawIndexed(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
+                 std::size_t indexCount, VertexShader&& vertexShader, TriangleHook&& triangleHook,
+                 FragmentShader&& fragmentShader) {
+    detail::LambdaProgram<std::remove_reference_t<VertexShader>, std::remove_reference_t<TriangleHook>,
+                          std::remove_reference_t<FragmentShader>>
+        program{vertexShader, triangleHook, fragmentShader};
+    detail::drawLanes<kVaryings>(ctx, state, vertexCount, indices, indexCount, program, 1);
 }
 
 // The same draw without per-triangle work.

@@ -1,11 +1,14 @@
 // RenderContext: the explicit render state (target, per-draw scratch memory, statistics).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "Raster/Clipper.hpp"
 #include "Raster/FrameBuffer.hpp"
+#include "Raster/ThreadPool.hpp"
 #include "Raster/Vertex.hpp"
 
 namespace sr {
@@ -32,6 +35,9 @@ struct RenderStats {
     }
 };
 
+// Most render threads a context runs (lanes of its pool).
+inline constexpr int kMaxRenderThreads = 64;
+
 // Passed explicitly to every draw (no global state). Owns scratch buffers whose capacity is
 // kept from draw to draw, so a steady frame loop allocates nothing.
 class RenderContext {
@@ -48,9 +54,36 @@ public:
     std::vector<ClipVertex> clipVertices;
     std::vector<ScreenVertex> screenVertices;
     std::vector<std::uint8_t> usable;
+    std::vector<unsigned> clipCodes; // Clipper::vertexCode of each vertex
+
+    // Render threads (1..kMaxRenderThreads; 0 or less means 1). More than one starts a
+    // persistent pool that drawProgram() splits its work over; the image is the same.
+    void setThreads(int threads) {
+        threads = std::clamp(threads, 1, kMaxRenderThreads);
+        if (threads == this->threads()) return;
+        pool_.reset();
+        if (threads > 1) pool_ = std::make_unique<ThreadPool>(threads);
+    }
+    int threads() const { return pool_ ? pool_->lanes() : 1; }
+    ThreadPool* pool() { return pool_.get(); }
+
+    // Clears the target's colour and depth, split by rows over the render threads.
+    void clearTarget(Pixel colour, float depth) {
+        FrameBuffer& fb = *target_;
+        const int lanes = threads(), height = fb.height(), width = fb.width();
+        auto job = [&](int lane) {
+            const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
+            if (y0 >= y1) return;
+            std::fill(fb.colorRow(y0), fb.colorRow(y0) + std::size_t(y1 - y0) * std::size_t(width), colour);
+            std::fill(fb.depthRow(y0), fb.depthRow(y0) + std::size_t(y1 - y0) * std::size_t(width), depth);
+        };
+        if (pool_) pool_->run(job);
+        else fb.clear(colour, depth);
+    }
 
 private:
     FrameBuffer* target_;
+    std::unique_ptr<ThreadPool> pool_;
 };
 
 } // namespace sr

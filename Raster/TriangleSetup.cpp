@@ -26,14 +26,6 @@ FixedEdge makeEdge(FixedPoint2 from, FixedPoint2 to) {
 // First pixel row whose centre y is >= Y (fixed point): the smallest j with j*256 + 128 >= Y.
 int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 
-// Attribute value of one plane at each input vertex, in double.
-double attributeAt(const ScreenVertex& v, int plane, bool perspectiveCorrect) {
-    if (plane == kPlaneZ) return double(v.z);
-    if (plane == kPlaneInvW) return double(v.invW);
-    const double a = double(v.varyings[std::size_t(plane - kPlaneVarying0)]);
-    return perspectiveCorrect ? a * double(v.invW) : a;
-}
-
 } // namespace
 
 const char* perspectiveModeName(PerspectiveMode mode) {
@@ -53,13 +45,12 @@ std::optional<PerspectiveMode> parsePerspectiveMode(std::string_view text) {
     return std::nullopt;
 }
 
-std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenVertex& v1,
-                                           const ScreenVertex& v2, int varyingCount, bool perspectiveCorrect) {
+SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const ScreenVertex& v1,
+                                 const ScreenVertex& v2, CullMode cull, int varyingCount, bool perspectiveCorrect) {
     // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
     const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
-    assert(valid && "triangle setup: vertex outside the guard band or not finite");
+    if (!valid) return isCulled(cull, v0, v1, v2) ? SetupOutcome::Culled : SetupOutcome::Empty;
     assert(varyingCount >= 0 && varyingCount <= kMaxVaryings);
-    if (!valid) return std::nullopt;
     varyingCount = std::clamp(varyingCount, 0, kMaxVaryings);
 
     // --- Snap to 1/256 pixel and compute twice the signed area exactly --------------------
@@ -70,11 +61,11 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
     const std::int64_t e1x = p[1].x - p[0].x, e1y = p[1].y - p[0].y;
     const std::int64_t e2x = p[2].x - p[0].x, e2y = p[2].y - p[0].y;
     const std::int64_t doubleArea = e1x * e2y - e2x * e1y;
-    if (doubleArea == 0) return std::nullopt; // collinear or coincident after snapping
+    // --- Cull on the snapped grid (Cull.hpp: y down, > 0 is clockwise) --------------------
+    if (doubleArea == 0) return SetupOutcome::Culled; // collinear or coincident after snapping
+    if ((cull == CullMode::CW && doubleArea > 0) || (cull == CullMode::CCW && doubleArea < 0))
+        return SetupOutcome::Culled;
 
-    // Built in place in the returned optional (one named return value: no copy of the record).
-    std::optional<TriangleSetup> result(std::in_place);
-    TriangleSetup& t = *result;
     t.doubleArea = doubleArea;
 
     // --- Sort by y (top = smallest y, the screen is y-down) and build the three edges ------
@@ -83,6 +74,12 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
     if (p[bot].y < p[mid].y) std::swap(bot, mid);
     if (p[mid].y < p[top].y) std::swap(mid, top);
     const FixedPoint2 pt = p[top], pm = p[mid], pb = p[bot];
+
+    // --- Rows: centre y in [yTop, yBottom), the lower part from the first centre >= yMid ----
+    t.firstRow = firstRowAtOrBelow(pt.y);
+    t.endRow = firstRowAtOrBelow(pb.y);
+    if (t.firstRow >= t.endRow) return SetupOutcome::Empty; // thinner than one row of centres
+    t.midRow = firstRowAtOrBelow(pm.y);
 
     t.longEdge = makeEdge(pt, pb);
     t.upperEdge = makeEdge(pt, pm);
@@ -93,15 +90,6 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
                               std::int64_t(pm.y - pt.y) * t.longEdge.dx;
     assert(side != 0); // non-zero area
     t.longEdgeOnLeft = side > 0;
-
-    // --- Rows: centre y in [yTop, yBottom), the lower part from the first centre >= yMid ----
-    t.firstRow = firstRowAtOrBelow(pt.y);
-    t.midRow = firstRowAtOrBelow(pm.y);
-    t.endRow = firstRowAtOrBelow(pb.y);
-    if (t.firstRow >= t.endRow) { // thinner than one row of centres
-        result.reset();
-        return result;
-    }
     const Fixed minX = std::min({pt.x, pm.x, pb.x}), maxX = std::max({pt.x, pm.x, pb.x});
     t.minX = int(floorDiv(minX, kSubPixelScale));
     t.maxX = int(floorDiv(maxX, kSubPixelScale));
@@ -116,16 +104,36 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
     t.originX = double(p[0].x) / kSubPixelScale;
     t.originY = double(p[0].y) / kSubPixelScale;
     t.varyingCount = varyingCount;
-    const int planes = kPlaneVarying0 + varyingCount;
-    for (int k = 0; k < planes; ++k) {
-        const double a0 = attributeAt(v0, k, perspectiveCorrect);
-        const double da1 = attributeAt(v1, k, perspectiveCorrect) - a0;
-        const double da2 = attributeAt(v2, k, perspectiveCorrect) - a0;
+    auto plane = [&](int k, double a0, double a1, double a2) {
+        const double da1 = a1 - a0, da2 = a2 - a0;
         t.value[k] = a0;
         t.ddx[k] = (da1 * ey2 - da2 * ey1) * inv;
         t.ddy[k] = (da2 * ex1 - da1 * ex2) * inv;
         t.ddxStep[k] = float(t.ddx[k]);
+    };
+    plane(kPlaneZ, double(v0.z), double(v1.z), double(v2.z));
+    plane(kPlaneInvW, double(v0.invW), double(v1.invW), double(v2.invW));
+    // Varying planes hold v/w (v * invW) or, for affine, v itself (v * 1.0 is exact).
+    const double w0 = perspectiveCorrect ? double(v0.invW) : 1.0;
+    const double w1 = perspectiveCorrect ? double(v1.invW) : 1.0;
+    const double w2 = perspectiveCorrect ? double(v2.invW) : 1.0;
+    for (int k = 0; k < varyingCount; ++k) {
+        const std::size_t i = std::size_t(k);
+        plane(kPlaneVarying0 + k, double(v0.varyings[i]) * w0, double(v1.varyings[i]) * w1,
+              double(v2.varyings[i]) * w2);
     }
+    return SetupOutcome::Ready;
+}
+
+std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenVertex& v1,
+                                           const ScreenVertex& v2, int varyingCount, bool perspectiveCorrect) {
+    [[maybe_unused]] const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
+    assert(valid && "triangle setup: vertex outside the guard band or not finite");
+    // Built in place in the returned optional (one named return value: no copy of the record).
+    std::optional<TriangleSetup> result(std::in_place);
+    if (setupTriangleCulled(*result, v0, v1, v2, CullMode::None, varyingCount, perspectiveCorrect) !=
+        SetupOutcome::Ready)
+        result.reset();
     return result;
 }
 

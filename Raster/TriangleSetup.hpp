@@ -5,6 +5,7 @@
 #include <optional>
 #include <string_view>
 
+#include "Raster/Cull.hpp"
 #include "Raster/FixedPoint.hpp"
 #include "Raster/Vertex.hpp"
 
@@ -83,5 +84,21 @@ std::optional<PerspectiveMode> parsePerspectiveMode(std::string_view text); // e
 std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenVertex& v1,
                                            const ScreenVertex& v2, int varyingCount,
                                            bool perspectiveCorrect = true);
+
+// What setupTriangleCulled decided.
+enum class SetupOutcome {
+    Ready,  // `out` holds the record: fill it
+    Culled, // isCulled(cull, v0, v1, v2): the culled winding, or zero area on the snapped grid
+    Empty,  // not culled, but covers no pixel-centre row (setupTriangle would give nullopt)
+};
+
+// Cull and setup in one pass: snaps once, decides the cull from the exact snapped doubleArea
+// (the same grid and sign as isCulled, which stays the reference), and only then builds the
+// edges and planes into `out` (a record the caller reuses: no copy, no optional). Returns
+// Culled exactly when isCulled(cull, ...) is true, else what setupTriangle would give. Vertices
+// outside the guard band (the clipper never outputs them) are Culled or Empty as isCulled says.
+SetupOutcome setupTriangleCulled(TriangleSetup& out, const ScreenVertex& v0, const ScreenVertex& v1,
+                                 const ScreenVertex& v2, CullMode cull, int varyingCount,
+                                 bool perspectiveCorrect = true);
 
 } // namespace sr

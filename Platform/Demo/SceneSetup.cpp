@@ -203,7 +203,7 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
 }
 
 void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& view, const RenderSettings& settings) {
-    ctx.target().clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+    ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
     renderScene(ctx, scene.scene, view, settings, scene.textureOverride ? &*scene.textureOverride : nullptr);
 }
 

@@ -154,9 +154,10 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
         return nullptr;
     }
     p->context.setTarget(p->framebuffer);
-    p->threadsUsed = 1;
-    if (a.scene.threads > 1 && !a.quiet)
-        err << "softraster: warning: --threads " << a.scene.threads << ": this build renders on one thread\n";
+    p->context.setThreads(a.scene.threads); // 0 (llvmpipe's "no extra thread") renders on the caller too
+    p->threadsUsed = p->context.threads();
+    if (a.scene.wireframe && p->threadsUsed > 1 && !a.quiet)
+        err << "softraster: warning: --wireframe draws on one thread (its lines cross the thread bands)\n";
     for (const SceneDraw& d : p->scene.scene.draws) p->textured |= d.texture >= 0;
     p->textured |= p->scene.textureOverride.has_value();
     return p;

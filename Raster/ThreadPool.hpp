@@ -1,0 +1,90 @@
+// ThreadPool: a persistent fork-join pool (std::thread + condition variables) owned by a RenderContext.
+#pragma once
+
+#include <algorithm>
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace sr {
+
+// Runs one job on N "lanes" at a time: lane 0 on the calling thread, lanes 1..N-1 on
+// persistent workers that sleep on a condition variable between jobs. run() returns when every
+// lane has finished (fork-join), so the caller's stack objects the job refers to stay valid.
+// No allocation per job: the job is a function pointer plus a context pointer. Not reentrant
+// (a job must not call run() on the same pool). A pool of 1 lane has no worker thread.
+class ThreadPool {
+public:
+    explicit ThreadPool(int lanes) : lanes_(std::max(lanes, 1)) {
+        workers_.reserve(std::size_t(lanes_ - 1));
+        for (int lane = 1; lane < lanes_; ++lane) workers_.emplace_back([this, lane] { workerLoop(lane); });
+    }
+    ~ThreadPool() {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            stopping_ = true;
+        }
+        wake_.notify_all();
+        for (std::thread& t : workers_) t.join();
+    }
+    ThreadPool(const ThreadPool&) = delete;
+    ThreadPool& operator=(const ThreadPool&) = delete;
+
+    int lanes() const { return lanes_; }
+
+    // Calls job(lane) for lane = 0 .. lanes()-1 concurrently and waits for all of them.
+    template <class Job>
+    void run(Job& job) {
+        if (lanes_ == 1) {
+            job(0);
+            return;
+        }
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            call_ = [](void* j, int lane) { (*static_cast<Job*>(j))(lane); };
+            context_ = &job;
+            pending_ = lanes_ - 1;
+            ++generation_;
+        }
+        wake_.notify_all();
+        job(0);
+        std::unique_lock<std::mutex> lock(mutex_);
+        done_.wait(lock, [this] { return pending_ == 0; });
+    }
+
+private:
+    void workerLoop(int lane) {
+        std::uint64_t seen = 0;
+        for (;;) {
+            void (*call)(void*, int) = nullptr;
+            void* context = nullptr;
+            {
+                std::unique_lock<std::mutex> lock(mutex_);
+                wake_.wait(lock, [&] { return stopping_ || generation_ != seen; });
+                if (stopping_) return;
+                seen = generation_;
+                call = call_;
+                context = context_;
+            }
+            call(context, lane);
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                if (--pending_ == 0) done_.notify_one();
+            }
+        }
+    }
+
+    int lanes_;
+    std::vector<std::thread> workers_;
+    std::mutex mutex_;
+    std::condition_variable wake_, done_;
+    void (*call_)(void*, int) = nullptr;
+    void* context_ = nullptr;
+    int pending_ = 0;
+    std::uint64_t generation_ = 0;
+    bool stopping_ = false;
+};
+
+} // namespace sr

@@ -1,0 +1,147 @@
+// The geometry fast paths against their references: per-vertex clip codes vs Clipper::classify, cull-in-setup vs isCulled.
+#include "TestFramework.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+
+#include "Math/Vec.hpp"
+#include "Raster/Clipper.hpp"
+#include "Raster/Cull.hpp"
+#include "Raster/TriangleSetup.hpp"
+
+using namespace sr;
+
+namespace {
+
+// Random clip-space positions: mostly in and around the view volume, some behind the eye,
+// some far outside the guard band, some exactly on planes, a few non-finite.
+Vec4 randomPosition(std::mt19937& rng) {
+    std::uniform_int_distribution<int> kind(0, 19);
+    std::uniform_real_distribution<float> u(-1.5f, 1.5f), w(0.01f, 5.0f), big(-1e6f, 1e6f);
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    const float ww = w(rng);
+    switch (kind(rng)) {
+    case 0: return {big(rng), big(rng), u(rng), w(rng)};              // past the guard band
+    case 1: return {u(rng), u(rng), u(rng), -ww};                     // behind the eye
+    case 2: return {ww, -ww, ww, ww};                                 // on x = w, y = -w, z = w
+    case 3: return {u(rng), u(rng), 0.0f, 0.0f};                      // w = 0
+    case 4: return {u(rng), nan, u(rng), ww};                         // NaN
+    case 5: return {inf, u(rng), u(rng), ww};                         // Inf
+    case 6: return {u(rng) * ww, u(rng) * ww, -0.1f * ww, ww};        // past the far plane
+    case 7: return {u(rng) * ww, u(rng) * ww, 1.0f * ww, ww};         // on the near plane
+    case 8: return {u(rng) * 1e-13f, u(rng) * 1e-13f, 0.0f, 1e-13f};  // below kClipMinW
+    default: return {u(rng) * ww, u(rng) * ww, std::fabs(u(rng)) * 0.7f * ww, ww};
+    }
+}
+
+} // namespace
+
+TEST_CASE("per-vertex clip codes classify exactly like the per-triangle classify", "[threads][clip]") {
+    std::mt19937 rng(42);
+    const int sizes[][2] = {{800, 600}, {1920, 1080}, {1, 1}, {0, 600}, {800, 0}, {8192, 17}};
+    for (const auto& size : sizes) {
+        for (bool clipFar : {false, true}) {
+            ClipParams params;
+            params.viewportWidth = size[0];
+            params.viewportHeight = size[1];
+            params.clipFar = clipFar;
+            const Clipper clipper(params);
+            int counts[3] = {};
+            for (int i = 0; i < 20000; ++i) {
+                ClipVertex a, b, c;
+                a.position = randomPosition(rng);
+                b.position = randomPosition(rng);
+                c.position = randomPosition(rng);
+                const ClipClass expected = clipper.classify(a, b, c);
+                const ClipClass actual = clipper.classifyCodes(clipper.vertexCode(a.position), clipper.vertexCode(b.position),
+                                                               clipper.vertexCode(c.position));
+                if (expected != actual) {
+                    INFO(size[0] << "x" << size[1] << " far " << clipFar << " triangle " << i);
+                    REQUIRE(int(expected) == int(actual));
+                }
+                ++counts[int(expected)];
+                // The non-finite bit is exactly "some component is NaN or Inf".
+                CHECK(((clipper.vertexCode(a.position) & kCodeNonFinite) != 0) == !isFinite(a.position));
+            }
+            if (size[0] > 0 && size[1] > 0) {
+                CHECK(counts[int(ClipClass::Accept)] > 100);
+                CHECK(counts[int(ClipClass::Clip)] > 100);
+            }
+            CHECK(counts[int(ClipClass::Reject)] > 100);
+        }
+    }
+}
+
+TEST_CASE("cull in setup decides exactly like isCulled and builds the same record", "[threads][cull]") {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> coord(-40.0f, 840.0f), small(-2.0f, 2.0f), attr(0.0f, 1.0f);
+    std::uniform_int_distribution<int> kind(0, 9);
+    auto vertex = [&](float x, float y) {
+        ScreenVertex v;
+        v.x = x;
+        v.y = y;
+        v.z = attr(rng);
+        v.invW = 0.5f + attr(rng);
+        for (int k = 0; k < 4; ++k) v.varyings[std::size_t(k)] = attr(rng);
+        return v;
+    };
+    int outcomes[3] = {};
+    for (int i = 0; i < 60000; ++i) {
+        ScreenVertex v[3];
+        const int k = kind(rng);
+        const float bx = coord(rng), by = coord(rng);
+        for (auto& p : v) {
+            if (k < 4) p = vertex(bx + small(rng), by + small(rng));               // tiny: often empty or degenerate
+            else if (k == 4) p = vertex(std::round(bx), std::round(by) + small(rng)); // near-collinear
+            else p = vertex(coord(rng), coord(rng));
+        }
+        if (k == 5) v[2] = v[1];                                                 // coincident
+        if (k == 6) v[2].x = v[0].x + (v[1].x - v[0].x) * 2.0f, v[2].y = v[0].y + (v[1].y - v[0].y) * 2.0f;
+        for (CullMode mode : {CullMode::None, CullMode::CW, CullMode::CCW}) {
+            for (bool persp : {true, false}) {
+                TriangleSetup record;
+                const SetupOutcome outcome = setupTriangleCulled(record, v[0], v[1], v[2], mode, 4, persp);
+                ++outcomes[int(outcome)];
+                const bool culled = isCulled(mode, v[0], v[1], v[2]);
+                REQUIRE((outcome == SetupOutcome::Culled) == culled);
+                if (culled) continue;
+                const auto reference = setupTriangle(v[0], v[1], v[2], 4, persp);
+                REQUIRE(reference.has_value() == (outcome == SetupOutcome::Ready));
+                if (!reference) continue;
+                CHECK(record.doubleArea == reference->doubleArea);
+                CHECK(record.firstRow == reference->firstRow);
+                CHECK(record.midRow == reference->midRow);
+                CHECK(record.endRow == reference->endRow);
+                CHECK(record.minX == reference->minX);
+                CHECK(record.maxX == reference->maxX);
+                CHECK(record.longEdgeOnLeft == reference->longEdgeOnLeft);
+                CHECK(std::memcmp(&record.longEdge, &reference->longEdge, sizeof(FixedEdge)) == 0);
+                CHECK(std::memcmp(record.ddx, reference->ddx, sizeof record.ddx) == 0);
+                CHECK(std::memcmp(record.ddy, reference->ddy, sizeof record.ddy) == 0);
+                CHECK(std::memcmp(record.value, reference->value, sizeof record.value) == 0);
+            }
+        }
+    }
+    CHECK(outcomes[int(SetupOutcome::Ready)] > 1000);
+    CHECK(outcomes[int(SetupOutcome::Culled)] > 1000);
+    CHECK(outcomes[int(SetupOutcome::Empty)] > 100);
+}
+
+TEST_CASE("normalize's inline fast path is bit-identical to the robust path", "[threads][math]") {
+    std::mt19937 rng(99);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::uniform_int_distribution<int> e(-60, 60);
+    for (int i = 0; i < 200000; ++i) {
+        const float s = std::ldexp(1.0f, e(rng));
+        const Vec3 v{u(rng) * s, u(rng) * s, (i % 5 == 0) ? 0.0f : u(rng) * s};
+        const Vec3 a = normalize(v), b = normalizeRobust(v);
+        REQUIRE(std::memcmp(&a, &b, sizeof a) == 0);
+    }
+    const float inf = std::numeric_limits<float>::infinity();
+    for (const Vec3 v : {Vec3{0, 0, 0}, Vec3{inf, 1, 0}, Vec3{3e38f, 3e38f, 3e38f}, Vec3{1e-45f, 0, 0}}) {
+        const Vec3 a = normalize(v), b = normalizeRobust(v);
+        CHECK(std::memcmp(&a, &b, sizeof a) == 0);
+    }
+}
