@@ -49,11 +49,26 @@ constexpr Color toColor(Vec3 v, float alpha = 1.0f) { return {v.x, v.y, v.z, alp
 // NaN -> 0; +Inf -> 255, -Inf -> 0 (by the clamp). Implemented with the 2^23 trick (adding 2^23
 // to a float in [0, 255] leaves no fraction bits, so the FPU's round-to-nearest-even does the
 // rounding) instead of calling nearbyint, which saves and restores the FP environment per call.
-std::uint8_t toUnorm8(float c);
+// Inline: it runs per shaded pixel (three times).
+inline std::uint8_t toUnorm8(float c) {
+    if (!(c > 0.0f)) return 0; // NaN, zero, negatives and -Inf
+    if (c >= 1.0f) return 255; // includes +Inf
+    const float x = c * 255.0f; // in (0, 255): float product, as llvmpipe computes it
+    // Round to nearest, ties to even: for 0 <= x < 2^23, x + 2^23 lies in [2^23, 2^24) where float's
+    // spacing is exactly 1, so the addition itself rounds x to an integer in the current (default:
+    // nearest-even) rounding mode, and subtracting 2^23 back is exact. Requires IEEE float
+    // arithmetic without value-changing optimisations (no -ffast-math; SSE, not x87).
+    constexpr float kTwo23 = 8388608.0f;
+    const float rounded = (x + kTwo23) - kTwo23;
+    return static_cast<std::uint8_t>(rounded);
+}
 
 // The 32-bpp DIB pixel: memory bytes B, G, R, X (little-endian value 0xXXRRGGBB), X always 0xFF;
 // alpha is ignored. Each channel goes through toUnorm8.
-std::uint32_t packBgra8(Color c);
+inline std::uint32_t packBgra8(Color c) {
+    return 0xFF000000u | (static_cast<std::uint32_t>(toUnorm8(c.r)) << 16) |
+           (static_cast<std::uint32_t>(toUnorm8(c.g)) << 8) | static_cast<std::uint32_t>(toUnorm8(c.b));
+}
 // Inverse of packBgra8 for the colour channels: channel = byte / 255.0f; alpha = 1 (X ignored).
 // packBgra8(unpackBgra8(v)) == (v | 0xFF000000) for every v.
 Color unpackBgra8(std::uint32_t v);

@@ -25,19 +25,4 @@ std::optional<ShadingMode> parseShadingMode(std::string_view text) {
     return std::nullopt;
 }
 
-float shininessPow(float x, float s) {
-    if (s >= 0.0f && s <= 1024.0f && s == std::floor(s)) {
-        // Binary exponentiation: exact for the common powers of two (x^32 = five squarings).
-        unsigned e = unsigned(s);
-        float result = 1.0f, base = x;
-        while (e) {
-            if (e & 1u) result *= base;
-            base *= base;
-            e >>= 1u;
-        }
-        return result;
-    }
-    return std::pow(x, s);
-}
-
 } // namespace sr

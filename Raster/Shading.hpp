@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -36,7 +37,22 @@ struct LightTerms {
 
 // x^s for x in [0, 1]: exact repeated squaring/multiplication when s is a whole number in
 // [0, 1024] (32 -> five squarings), std::pow otherwise.
-float shininessPow(float x, float s);
+// Inline (per pixel in Phong); the whole-number test is a truncating conversion rather than a
+// std::floor library call (the same for s in [0, 1024]).
+inline float shininessPow(float x, float s) {
+    if (s >= 0.0f && s <= 1024.0f && s == float(int(s))) {
+        // Binary exponentiation: exact for the common powers of two (x^32 = five squarings).
+        unsigned e = unsigned(s);
+        float result = 1.0f, base = x;
+        while (e) {
+            if (e & 1u) result *= base;
+            base *= base;
+            e >>= 1u;
+        }
+        return result;
+    }
+    return std::pow(x, s);
+}
 
 // Blinn-Phong (Blinn, "Models of light reflection for computer synthesized pictures",
 // SIGGRAPH 1977) with the half vector H = normalize(L + V). N and V must be unit vectors.
