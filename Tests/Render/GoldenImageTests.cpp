@@ -21,7 +21,8 @@ constexpr int kWidth = 160, kHeight = 120;
 
 // Tolerance, per image:
 //  - at most 0.5% of the pixels (96 of 19200) may differ at all, and
-//  - no channel of any pixel may differ by more than 2 (of 255).
+//  - at most 10 pixels (0.05%: edge pixels whose coverage flipped) may differ by more than 2 (of
+//    255) in any channel; every other pixel is within 2.
 // Why not bit-exact: the goldens are produced on one toolchain and checked on several (g++ with
 // glibc, g++ with sanitizers, MinGW-w64 under Wine, MSVC on Windows, possibly ARM64). The shading
 // is float arithmetic: std::sqrt is correctly rounded everywhere, but std::pow (non-integer
@@ -38,6 +39,7 @@ constexpr int kWidth = 160, kHeight = 120;
 // winding error) moves thousands of pixels by far more than 2 and fails.
 constexpr double kMaxDifferingShare = 0.005;
 constexpr int kMaxChannelDiff = 2;
+constexpr int kMaxCoverageFlips = 10;
 
 std::string goldenPath(ShadingMode mode) {
     return std::string(SR_TEST_DATA_DIR) + "/../Golden/default_" + shadingModeName(mode) + "_160x120.png";
@@ -85,7 +87,7 @@ TEST_CASE("golden images of the default scene in each shading mode", "[render][g
         REQUIRE(expected.width == kWidth);
         REQUIRE(expected.height == kHeight);
 
-        int differing = 0, maxDiff = 0;
+        int differing = 0, beyond = 0, maxDiff = 0;
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x < kWidth; ++x) {
                 const std::uint8_t* a = actual.texel(x, y);
@@ -93,10 +95,12 @@ TEST_CASE("golden images of the default scene in each shading mode", "[render][g
                 int d = 0;
                 for (int c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a[c]) - int(e[c])));
                 if (d > 0) ++differing;
+                if (d > kMaxChannelDiff) ++beyond;
                 maxDiff = std::max(maxDiff, d);
             }
-        INFO("differing pixels " << differing << ", max channel difference " << maxDiff);
+        INFO("differing pixels " << differing << ", beyond " << kMaxChannelDiff << ": " << beyond
+                                 << ", max channel difference " << maxDiff);
         CHECK(differing <= int(kMaxDifferingShare * kWidth * kHeight));
-        CHECK(maxDiff <= kMaxChannelDiff);
+        CHECK(beyond <= kMaxCoverageFlips);
     }
 }
