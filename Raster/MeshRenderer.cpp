@@ -2,8 +2,10 @@
 #include "Raster/MeshRenderer.hpp"
 
 #include <cmath>
+#include <type_traits>
 
 #include "Raster/Pipeline.hpp"
+#include "Raster/ShadingSimd.hpp"
 #include "Raster/TextureLod.hpp"
 
 namespace sr {
@@ -159,6 +161,31 @@ struct PhongProgram {
         if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), t));
         else return packBgra8(applyTerms(d->kd, t));
     }
+#if SR_HAVE_SSE2
+    // Four untextured pixels at once (ShadingSimd.hpp): the same operations lane by lane, so the
+    // same bits; lanes off the fast normalize path are redone by fragment().
+    template <bool kT = kTextured, std::enable_if_t<!kT, int> = 0>
+    void fragment4(const FragmentBatch<kVaryings>& b, Pixel out[4]) const {
+        __m128 ok = _mm_castsi128_ps(_mm_set1_epi32(-1));
+        const simd::Vec3x4 n = simd::normalizeFast(simd::load3(b.v[kP + 3], b.v[kP + 4], b.v[kP + 5]), ok);
+        const Vec3 eye = d->view.eye;
+        const simd::Vec3x4 toEye{_mm_sub_ps(_mm_set1_ps(eye.x), _mm_loadu_ps(b.v[kP])),
+                                 _mm_sub_ps(_mm_set1_ps(eye.y), _mm_loadu_ps(b.v[kP + 1])),
+                                 _mm_sub_ps(_mm_set1_ps(eye.z), _mm_loadu_ps(b.v[kP + 2]))};
+        const simd::Vec3x4 v = simd::normalizeFast(toEye, ok);
+        const bool simdDone = simd::shadeBlinnPhong(d->view.lighting, d->kd, n, v, ok, out);
+        const int good = simdDone ? _mm_movemask_ps(ok) : 0;
+        for (int i = 0; i < 4; ++i) {
+            if (good & (1 << i)) continue;
+            Fragment<kVaryings> f;
+            f.x = b.x[i];
+            f.y = b.y[i];
+            f.invW = b.invW[i];
+            for (int k = 0; k < kVaryings; ++k) f.varyings[std::size_t(k)] = b.v[k][i];
+            out[i] = fragment(f);
+        }
+    }
+#endif
 };
 
 template <class Program>

@@ -1,4 +1,4 @@
-// The geometry fast paths against their references: per-vertex clip codes vs Clipper::classify, cull-in-setup vs isCulled.
+// The fast paths against their references: per-vertex clip codes vs classify, cull-in-setup vs isCulled, inline and SSE2 shading vs scalar.
 #include "TestFramework.hpp"
 
 #include <cmath>
@@ -9,6 +9,7 @@
 #include "Math/Vec.hpp"
 #include "Raster/Clipper.hpp"
 #include "Raster/Cull.hpp"
+#include "Raster/ShadingSimd.hpp"
 #include "Raster/TriangleSetup.hpp"
 
 using namespace sr;
@@ -145,3 +146,39 @@ TEST_CASE("normalize's inline fast path is bit-identical to the robust path", "[
         CHECK(std::memcmp(&a, &b, sizeof a) == 0);
     }
 }
+
+#if SR_HAVE_SSE2
+TEST_CASE("SSE2 Blinn-Phong of four pixels is bit-identical to the scalar shading", "[threads][simd]") {
+    std::mt19937 rng(2024);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+    std::uniform_int_distribution<int> e(-40, 40), special(0, 15);
+    Lighting lighting;
+    lighting.toLight = {normalize(Vec3(1, 1, 1)), normalize(Vec3(-0.3f, 0.2f, 1.0f))};
+    const Color kd{0.8f, 0.55f, 0.3f, 1.0f};
+    int simdLanes = 0;
+    for (int i = 0; i < 50000; ++i) {
+        float nx[4], ny[4], nz[4], vx[4], vy[4], vz[4];
+        for (int l = 0; l < 4; ++l) {
+            const float s = std::ldexp(1.0f, e(rng));
+            nx[l] = u(rng) * s, ny[l] = u(rng) * s, nz[l] = u(rng) * s;
+            vx[l] = u(rng), vy[l] = u(rng), vz[l] = u(rng);
+            if (special(rng) == 0) nx[l] = ny[l] = nz[l] = 0.0f; // zero normal: robust path
+            if (special(rng) == 0) vx[l] = -lighting.toLight[0].x, vy[l] = -lighting.toLight[0].y,
+                                   vz[l] = -lighting.toLight[0].z; // L + V = 0 before normalising v
+        }
+        __m128 ok = _mm_castsi128_ps(_mm_set1_epi32(-1));
+        const simd::Vec3x4 n = simd::normalizeFast(simd::load3(nx, ny, nz), ok);
+        const simd::Vec3x4 v = simd::normalizeFast(simd::load3(vx, vy, vz), ok);
+        std::uint32_t out[4];
+        REQUIRE(simd::shadeBlinnPhong(lighting, kd, n, v, ok, out));
+        const int good = _mm_movemask_ps(ok);
+        for (int l = 0; l < 4; ++l) {
+            if (!(good & (1 << l))) continue;
+            ++simdLanes;
+            const LightTerms t = blinnPhong(lighting, normalize(Vec3{nx[l], ny[l], nz[l]}), normalize(Vec3{vx[l], vy[l], vz[l]}));
+            REQUIRE(out[l] == packBgra8(applyTerms(kd, t)));
+        }
+    }
+    CHECK(simdLanes > 150000);
+}
+#endif
