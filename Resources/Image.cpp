@@ -1,6 +1,7 @@
 // Image decoding through stb_image (from memory, after our own size checks) and image writers.
 #include "Resources/Image.hpp"
 
+#include <algorithm>
 #include <cstring>
 
 #include "Raster/FrameBuffer.hpp"
@@ -10,23 +11,123 @@
 
 namespace sr {
 
-Result<Image> decodeImage(const unsigned char* data, std::size_t size, const std::string& name) {
+namespace {
+
+// stb_image 2.27 (Debian 12's libstb-dev) trusts the 16 code counts of a JPEG DHT segment: more
+// than 256 codes in one table write past stbi__huffman's 257-byte size[] and 256-byte values[]
+// (fixed upstream in 2.28 with "if (n > 256) bad DHT header"). stb finds markers wherever an
+// 0xFF byte leads to one (it resynchronises byte by byte), so every FF C4 in the file is parsed
+// here as stb would parse a DHT segment, with stb's rule that bytes past the end read as 0.
+// Returns the offending code count, or 0 when every table is within 256.
+int oversizedJpegHuffmanTable(const unsigned char* data, std::size_t size) {
+    std::size_t soi = 0; // stb's SOI test: 0xFF, any number of 0xFF fill bytes, 0xD8
+    while (soi < size && data[soi] == 0xFF) ++soi;
+    if (soi < 1 || soi >= size || data[soi] != 0xD8) return 0; // not a JPEG
+    const auto at = [&](std::size_t i) -> int { return i < size ? data[i] : 0; };
+    for (std::size_t m = 2; m + 1 < size; ++m) {
+        if (data[m] != 0xFF || data[m + 1] != 0xC4) continue;
+        std::size_t p = m + 2;
+        long length = (at(p) << 8 | at(p + 1)) - 2;
+        p += 2;
+        while (length > 0 && p < size) {
+            const int q = at(p++);
+            if ((q >> 4) > 1 || (q & 15) > 3) break; // stb stops at a bad table header
+            int n = 0;
+            for (int i = 0; i < 16; ++i) n += at(p++);
+            if (n > 256) return n;
+            p += std::size_t(n);
+            length -= 17 + n;
+        }
+    }
+    return 0;
+}
+
+// Two stb 2.27 PNM bugs (both fixed upstream in 2.28) are refused before stb reads the header:
+//  - the numbers (width, height, max value) are read into an int with no overflow check;
+//  - a 16-bit file (max value > 255) is converted to RGBA with the 8-bit converter, and the
+//    16 -> 8 bit step then reads twice the buffer's size (a heap overflow, for every such file).
+// Tokenises a binary P5/P6 header as stb does (whitespace, '#' comments to the end of the line).
+// Returns the problem, or "" when stb may read the file.
+std::string pnmHeaderProblem(const unsigned char* data, std::size_t size) {
+    if (size < 2 || data[0] != 'P' || (data[1] != '5' && data[1] != '6')) return "";
+    const auto space = [](unsigned char c) { return c == ' ' || (c >= '\t' && c <= '\r'); };
+    std::size_t p = 2;
+    std::int64_t value = 0;
+    for (int number = 0; number < 3; ++number) {
+        for (;;) { // whitespace, then a comment to the end of its line, repeatedly
+            while (p < size && space(data[p])) ++p;
+            if (p >= size || data[p] != '#') break;
+            while (p < size && data[p] != '\n' && data[p] != '\r') ++p;
+        }
+        value = 0;
+        for (; p < size && data[p] >= '0' && data[p] <= '9'; ++p) {
+            value = value * 10 + (data[p] - '0');
+            if (value > INT32_MAX) return "corrupt PNM header (a number above " + std::to_string(INT32_MAX) + ")";
+        }
+    }
+    if (value > 255) return "16-bit PNM (max value " + std::to_string(value) + ") is not supported, use 8 bits";
+    return "";
+}
+
+// stb 2.27 grows its IDAT buffer to a chunk's claimed length before reading the chunk, so a
+// 100-byte PNG claiming a 2 GiB chunk allocates 2 GiB. Walks the chunks as stb does (length,
+// type, data, CRC; up to IEND) and returns the problem when a chunk claims more bytes than the
+// file has left, or "" when the layout is consistent.
+std::string pngChunkProblem(const unsigned char* data, std::size_t size) {
+    static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
+    if (size < 8 || std::memcmp(data, kSignature, 8) != 0) return "";
+    std::size_t p = 8;
+    while (p + 8 <= size) {
+        const std::uint32_t length = std::uint32_t(data[p]) << 24 | std::uint32_t(data[p + 1]) << 16 |
+                                     std::uint32_t(data[p + 2]) << 8 | data[p + 3];
+        std::string type(reinterpret_cast<const char*>(data + p + 4), 4);
+        const std::size_t left = size - (p + 8);
+        if (length > left) {
+            for (char& c : type)
+                if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) c = '?';
+            return "corrupt PNG (chunk '" + type + "' claims " + std::to_string(length) + " bytes, the file has " +
+                   std::to_string(left) + " left)";
+        }
+        if (type == "IEND") break;
+        p += 8 + std::size_t(length) + 4; // header, data, CRC
+    }
+    return "";
+}
+
+// stb's failure reason, safe for a one-line message: stb 2.27 copies a PNG chunk's four type
+// bytes from the file into "XXXX PNG chunk not known", so they may be newlines or any byte.
+std::string stbReason() {
+    std::string reason = stbi_failure_reason() ? stbi_failure_reason() : "unknown error";
+    for (char& c : reason)
+        if (static_cast<unsigned char>(c) < 0x20 || static_cast<unsigned char>(c) >= 0x7F) c = '?';
+    return reason;
+}
+
+} // namespace
+
+Result<Image> decodeImage(const unsigned char* data, std::size_t size, const std::string& name, std::int64_t maxPixels) {
     using R = Result<Image>;
     if (size == 0) return R::failure(name + ": empty file, not an image");
     if (size > std::size_t(INT32_MAX)) return R::failure(name + ": file too large to decode");
+    if (const int codes = oversizedJpegHuffmanTable(data, size)) {
+        return R::failure(name + ": corrupt JPEG (a Huffman table defines " + std::to_string(codes) +
+                          " codes, at most 256 are possible)");
+    }
+    for (const std::string& problem : {pnmHeaderProblem(data, size), pngChunkProblem(data, size)})
+        if (!problem.empty()) return R::failure(name + ": " + problem);
     int w = 0, h = 0, channels = 0;
     // Read the header first: a PNG claiming 100000 x 100000 must not allocate 40 GB.
     if (!stbi_info_from_memory(data, int(size), &w, &h, &channels)) {
-        return R::failure(name + ": not a decodable image (" + stbi_failure_reason() + ")");
+        return R::failure(name + ": not a decodable image (" + stbReason() + ")");
     }
     if (w <= 0 || h <= 0 || w > kMaxImageDimension || h > kMaxImageDimension ||
-        std::int64_t(w) * h > kMaxImagePixels) {
+        std::int64_t(w) * h > std::min(maxPixels, kMaxImagePixels)) {
         return R::failure(name + ": image is " + std::to_string(w) + "x" + std::to_string(h) +
                           ", above the limit of " + std::to_string(kMaxImageDimension) + " per side and " +
-                          std::to_string(kMaxImagePixels) + " pixels");
+                          std::to_string(std::min(maxPixels, kMaxImagePixels)) + " pixels");
     }
     unsigned char* pixels = stbi_load_from_memory(data, int(size), &w, &h, &channels, 4);
-    if (!pixels) return R::failure(name + ": decode failed (" + stbi_failure_reason() + ")");
+    if (!pixels) return R::failure(name + ": decode failed (" + stbReason() + ")");
     Image img;
     img.width = w;
     img.height = h;

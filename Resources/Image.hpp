@@ -24,9 +24,13 @@ struct Image {
     std::uint8_t* texel(int x, int y) { return &rgba[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4]; }
 };
 
-// Decodes PNG, JPEG, BMP, TGA, PNM (anything stb_image reads) into RGBA8, top row first.
-// `name` is used in error messages (usually the file path).
-Result<Image> decodeImage(const unsigned char* data, std::size_t size, const std::string& name);
+// Decodes PNG, JPEG, BMP, TGA, PNM (the stb_image decoders we compile in) into RGBA8, top row
+// first. `name` is used in error messages (usually the file path). Header sizes are checked
+// against the limits above, and JPEG Huffman tables with more than 256 codes (which make stb
+// 2.27 write out of bounds) are refused, before stb_image allocates or decodes anything.
+// `maxPixels` lowers the pixel limit (the fuzz target uses it to stay fast).
+Result<Image> decodeImage(const unsigned char* data, std::size_t size, const std::string& name,
+                          std::int64_t maxPixels = kMaxImagePixels);
 
 // Reads and decodes the file at a UTF-8 path; errors name the file and the reason.
 Result<Image> loadImage(const std::string& utf8Path);

@@ -78,14 +78,23 @@ Status checkFinite(const std::vector<tinyobj::real_t>& values, int perEntry, Obj
 } // namespace
 
 Result<Model> loadObj(const std::string& path, const ObjOptions& options) {
+    // 1. Read the file (refusing directories and files above the limit).
+    auto bytes = readFileBytes(path, options.limits.maxFileBytes);
+    if (!bytes) return Result<Model>::failure(bytes.error());
+    return loadObjFromMemory(bytes.value().data(), bytes.value().size(), path, options);
+}
+
+Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, const std::string& path,
+                                const ObjOptions& options) {
     using R = Result<Model>;
     const ObjLimits& limits = options.limits;
 
-    // 1. Read and validate the text before any parser sees it.
-    auto bytes = readFileBytes(path, limits.maxFileBytes);
-    if (!bytes) return R::failure(bytes.error());
-    if (bytes.value().empty()) return R::failure(path + ": empty file (no triangles)");
-    auto text = checkText(bytes.value().data(), bytes.value().size(), path);
+    // 1b. Validate the text before any parser sees it.
+    if (size > limits.maxFileBytes)
+        return R::failure(path + ": file is " + std::to_string(size) + " bytes, above the limit of " +
+                          std::to_string(limits.maxFileBytes) + " bytes");
+    if (size == 0) return R::failure(path + ": empty file (no triangles)");
+    auto text = checkText(data, size, path);
     if (!text) return R::failure(text.error());
     auto stats = scanObj(text.value(), path, limits);
     if (!stats) return R::failure(stats.error());

@@ -1,6 +1,7 @@
 // ObjLoader: loads a Wavefront OBJ (+ MTL + textures) into a Model exactly as the llvmpipe reference (glref) does.
 #pragma once
 
+#include <cstddef>
 #include <string>
 
 #include "Resources/Model.hpp"
@@ -21,5 +22,12 @@ namespace sr {
 // what glref would read out of bounds or silently misread (bad indices, "nan" coordinates) is an
 // error. Every failure is one line naming the file (and "path:LINE:" where a line is known).
 Result<Model> loadObj(const std::string& utf8Path, const ObjOptions& options = {});
+
+// The same from OBJ text already in memory (`size` bytes at `data`; the size limit of `options`
+// applies). `utf8Path` names the text in messages and locates "mtllib" files and textures, which
+// are still read from disk relative to its directory. For fuzzing and for callers that hold the
+// file already.
+Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, const std::string& utf8Path,
+                                const ObjOptions& options = {});
 
 } // namespace sr

@@ -1,6 +1,12 @@
 // The one translation unit that compiles stb_image and stb_image_write (Debian libstb-dev / vcpkg stb).
 #define STB_IMAGE_IMPLEMENTATION
 #define STB_IMAGE_WRITE_IMPLEMENTATION
-#define STBI_NO_HDR // we never load HDR; keeps float decoding paths out
+// Only the formats textures come in: GIF, PSD, PIC and HDR decoders stay out (less code that
+// reads untrusted bytes; stb 2.27's GIF and PSD decoders have known out-of-bounds bugs).
+#define STBI_ONLY_PNG
+#define STBI_ONLY_JPEG
+#define STBI_ONLY_BMP
+#define STBI_ONLY_TGA
+#define STBI_ONLY_PNM
 #include "stb_image.h"
 #include "stb_image_write.h"

@@ -1,0 +1,71 @@
+// Regression tests for the inputs the fuzzers (Tests/Fuzz) found: each builds the bytes in code and expects a clean one-line error.
+#include "TestFramework.hpp"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "Resources/Image.hpp"
+
+using namespace sr;
+
+namespace {
+
+std::string be32(std::uint32_t v) {
+    return {char(v >> 24), char((v >> 16) & 255), char((v >> 8) & 255), char(v & 255)};
+}
+
+// Decodes `bytes` as "fuzz.bin" and returns the error, which must be one line naming the file.
+std::string decodeError(const std::string& bytes) {
+    const auto r = decodeImage(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size(), "fuzz.bin");
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().rfind("fuzz.bin: ", 0) == 0);
+    CHECK(r.error().find('\n') == std::string::npos);
+    CHECK(r.error().find('\r') == std::string::npos);
+    return r.error();
+}
+
+bool has(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// PNG signature + an IHDR for a 3x2 RGB8 image (stb does not check CRCs: they are zero here).
+std::string pngStart() {
+    return std::string("\x89PNG\r\n\x1a\n", 8) + be32(13) + "IHDR" + be32(3) + be32(2) + std::string("\x08\x02\x00\x00\x00", 5) +
+           be32(0);
+}
+
+} // namespace
+
+TEST_CASE("fuzz: a JPEG Huffman table with more than 256 codes is refused (stb 2.27 writes out of bounds)",
+          "[resources][image][fuzz]") {
+    // DHT segment: class 0 table 0, sixteen code counts of 17 = 272 codes.
+    const std::string dht = std::string("\xFF\xC4", 2) + std::string("\x01\x13", 2) + std::string(1, '\0') +
+                            std::string(16, '\x11') + std::string(272, '\x01');
+    CHECK(has(decodeError(std::string("\xFF\xD8", 2) + dht + "\xFF\xD9"), "Huffman table defines 272 codes"));
+    // stb accepts 0xFF fill bytes before the SOI marker: so must the check.
+    CHECK(has(decodeError(std::string("\xFF\xFF\xFF\xD8", 4) + dht), "Huffman table"));
+}
+
+TEST_CASE("fuzz: PNM header numbers above INT_MAX and 16-bit PNM are refused before stb reads them",
+          "[resources][image][fuzz]") {
+    CHECK(has(decodeError("P6\n0111111111111111111111111111111111111115\n5\n255\n"), "corrupt PNM header"));
+    CHECK(has(decodeError("P5 # comment\n2 1 4294967296\n"), "corrupt PNM header"));
+    // A 16-bit PNM overflowed stb's buffer in its 16 -> 8 bit conversion.
+    CHECK(has(decodeError("P6\n5210\n5\n0520BM520BM"), "16-bit PNM"));
+    CHECK(has(decodeError("P5\n2 1\n65535\n" + std::string(4, '\x7f')), "16-bit PNM"));
+    // 8-bit still decodes.
+    const std::string ok = "P6\n1 1\n255\n\x01\x02\x03";
+    CHECK(decodeImage(reinterpret_cast<const unsigned char*>(ok.data()), ok.size(), "ok.ppm").ok());
+}
+
+TEST_CASE("fuzz: a PNG chunk claiming more bytes than the file has is refused without allocating",
+          "[resources][image][fuzz]") {
+    // 2 GiB IDAT in a 50-byte file: stb 2.27 would allocate the 2 GiB before reading.
+    CHECK(has(decodeError(pngStart() + be32(0x80000000u) + "IDATxyz"), "chunk 'IDAT' claims 2147483648 bytes"));
+    CHECK(has(decodeError(pngStart() + be32(1000) + "tEXt" + "abc"), "claims 1000 bytes"));
+}
+
+TEST_CASE("fuzz: stb's error text quoting file bytes stays on one line", "[resources][image][fuzz]") {
+    // An unknown critical chunk: stb copies its type bytes (here a newline and form feeds) into the message.
+    const std::string e = decodeError(pngStart() + be32(0) + "\x0c\n\x0c\x0c" + be32(0));
+    CHECK(has(e, "PNG chunk not known"));
+}
