@@ -1,0 +1,92 @@
+// Writes the fuzz seed corpora: tiny OBJ/MTL texts and PNG/BMP/TGA/JPEG/PPM/PGM images made here (no third-party files).
+// Usage: sr_fuzz_seeds DIR   -> DIR/obj/* and DIR/image/* (the directories are created).
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+// A private, uninstrumented copy of the writer (static functions): its JPEG encoder shifts
+// negative values, which the sanitizers of the fuzz build would stop at. Not part of sr_resources.
+#define STB_IMAGE_WRITE_STATIC
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#include "stb_image_write.h"
+
+namespace {
+
+bool gOk = true;
+
+void put(const std::string& path, const std::string& bytes) {
+    std::ofstream out(std::filesystem::u8path(path), std::ios::binary);
+    out.write(bytes.data(), std::streamsize(bytes.size()));
+    if (!out.flush()) {
+        std::fprintf(stderr, "sr_fuzz_seeds: cannot write %s\n", path.c_str());
+        gOk = false;
+    }
+}
+
+void appendTo(void* context, void* data, int size) {
+    static_cast<std::string*>(context)->append(static_cast<const char*>(data), std::size_t(size));
+}
+
+// A w x h image with `comp` channels, values varying in x, y and channel.
+std::vector<unsigned char> pixels(int w, int h, int comp) {
+    std::vector<unsigned char> p(std::size_t(w) * std::size_t(h) * std::size_t(comp));
+    for (std::size_t i = 0; i < p.size(); ++i) p[i] = static_cast<unsigned char>(i * 37 + 11);
+    return p;
+}
+
+// Big-endian 32-bit, for the PNG header seed.
+std::string be32(unsigned v) {
+    return {char(v >> 24), char((v >> 16) & 255), char((v >> 8) & 255), char(v & 255)};
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: sr_fuzz_seeds DIR\n");
+        return 2;
+    }
+    const std::string dir = argv[1];
+    std::error_code ec;
+    std::filesystem::create_directories(std::filesystem::u8path(dir + "/obj"), ec);
+    std::filesystem::create_directories(std::filesystem::u8path(dir + "/image"), ec);
+    const std::string o = dir + "/obj/", im = dir + "/image/";
+
+    // --- OBJ (+ MTL after the "%%MTL%%" line; see FuzzObj.cpp) ---
+    const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    put(o + "triangle.obj", tri + "f 1 2 3\n");
+    put(o + "quad-normals.obj", "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n");
+    put(o + "relative.obj", "o a\n" + tri + "f -3 -2 -1\ng b\nv 0 0 1\nf 1 2 -1\ns 1\n");
+    put(o + "textured.obj", "mtllib f.mtl\n" + tri + "vt 0 0\nvt 1 0\nvt 0 1\nusemtl A\nf 1/1 2/2 3/3\n"
+                            "usemtl B\nf 3/3/1 2/2/1 1/1/1\nvn 0 0 -1\n%%MTL%%\n"
+                            "newmtl A\nKd 1 0 0\nmap_Kd t.ppm\n\nnewmtl B\nmap_Kd -s 2 2 1 t.bin\nNs 10\nd 0.5\n");
+    put(o + "polygon.obj", "v 0 0 0\nv 2 0 0\nv 3 1 0\nv 2 2 0\nv 0 2 0\nv -1 1 0\nf 1 2 3 4 5 6\nl 1 2\np 3\n");
+    put(o + "numbers.obj", "v 1e3 -2.5E-2 +.5\nv 0x10 1e38 -0\nv 3.4e38 1 2\n# comment\r\nf 1 2 3\r\n");
+    put(o + "bom-crlf.obj", "\xEF\xBB\xBFv 0 0 0\r\nv 1 0 0\r\nv 0 1 0 1\r\nvt 0.5 0.5 0\r\nf 1/1 2/1 3/1\r\n");
+    put(o + "missing-mtl.obj", "mtllib none.mtl\nusemtl X\n" + tri + "vt 0 0\nf 1/1 2/1 3/1\n");
+    put(o + "mtl-only.obj", "mtllib f.mtl\n" + tri + "vt 0 0\nusemtl M\nf 1/1 2/1 3/1\n%%MTL%%\n"
+                            "newmtl M\nKa 0 0 0\nKs 1 1 1\nmap_Kd sub\\t.ppm\nmap_Ka t.ppm\nnewmtl N\n");
+
+    // --- images ---
+    for (int comp : {1, 3, 4}) {
+        const auto p = pixels(3, 2, comp);
+        std::string png, bmp, tga, jpg;
+        stbi_write_png_to_func(appendTo, &png, 3, 2, comp, p.data(), 3 * comp);
+        stbi_write_bmp_to_func(appendTo, &bmp, 3, 2, comp, p.data());
+        stbi_write_tga_to_func(appendTo, &tga, 3, 2, comp, p.data());
+        stbi_write_jpg_to_func(appendTo, &jpg, 3, 2, comp, p.data(), 90);
+        const std::string c = std::to_string(comp);
+        put(im + "c" + c + ".png", png);
+        put(im + "c" + c + ".bmp", bmp);
+        put(im + "c" + c + ".tga", tga);
+        put(im + "c" + c + ".jpg", jpg);
+    }
+    put(im + "rgb.ppm", "P6\n2 2\n255\n" + std::string("\xff\x00\x00\x00\xff\x00\x00\x00\xff\xff\xff\xff", 12));
+    put(im + "grey.pgm", "P5 3 1 255 " + std::string("\x01\x80\xff", 3));
+    put(im + "huge.ppm", "P6\n100000 100000\n255\n");
+    put(im + "huge.png", "\x89PNG\r\n\x1a\n" + be32(13) + "IHDR" + be32(100000) + be32(100000) +
+                             std::string("\x08\x06\x00\x00\x00", 5) + be32(0));
+    return gOk ? 0 : 1;
+}
