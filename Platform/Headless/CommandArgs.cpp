@@ -47,9 +47,15 @@ std::string usage(Subcommand c) {
                "  --quiet               no diagnostics on stderr\n" +
                demo::sceneFlagsHelp();
     case Subcommand::Bench:
-        return "usage: softraster bench [scene flags] [--frames N] [--warmup N] [--out FILE] [--depth-out FILE] [--quiet]\n"
+        return "usage: softraster bench [scene flags] [--frames N] [--warmup N] [--flight SEED] [--out FILE] [--depth-out FILE] [--quiet]\n"
                "  --frames N            timed frames (default 100)\n"
                "  --warmup N            untimed frames first (default 5)\n"
+               "  --flight SEED         soak test: each frame from a new seeded random camera pose\n"
+               "                        (including eye on a vertex, in a triangle's plane, inside the\n"
+               "                        model, looking straight up/down, extreme near/far/fov); prints\n"
+               "                        one JSON line with nan_pixels (non-finite depth values over all\n"
+               "                        frames), rss_kb_frame_100, rss_kb_end, peak_kb_frame_100,\n"
+               "                        peak_kb_end (Linux; -1 elsewhere) and the count of each pose\n"
                "  --out, --depth-out    also write the last frame (as render does)\n"
                "Prints one JSON line: size, triangles, frames, threads, ms_per_frame_median/min/mean,\n"
                "mpix_per_s, stages_ms (clear, transform_clip_cull, setup, fill_shade: from timing\n"
@@ -119,6 +125,15 @@ ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& 
                 return fail("bad value for " + flag + ": '" + *v + "' (expected an integer from " +
                             (flag == "--frames" ? "1" : "0") + " to " + std::to_string(kMaxFrames) + ")");
             (flag == "--frames" ? a.frames : a.warmup) = *n;
+        } else if (bench && flag == "--flight") {
+            const auto v = need();
+            if (!v) return fail("missing value for --flight");
+            char* end = nullptr;
+            errno = 0;
+            const unsigned long long seed = std::strtoull(v->c_str(), &end, 10);
+            if (v->empty() || (*v)[0] == '-' || end != v->c_str() + v->size() || errno == ERANGE || seed > 0xFFFFFFFFull)
+                return fail("bad value for --flight: '" + *v + "' (expected a seed from 0 to 4294967295)");
+            a.flightSeed = std::uint32_t(seed);
         } else if (flag.rfind("-", 0) == 0) {
             return fail("unknown flag '" + args[i] + "' (see softraster " + name(command) + " --help)");
         } else {

@@ -1,6 +1,7 @@
 // Argument parsing and scene preparation shared by the headless subcommands.
 #pragma once
 
+#include <cstdint>
 #include <iosfwd>
 #include <memory>
 #include <optional>
@@ -22,6 +23,7 @@ struct CommandArgs {
     std::string outDir;   // report
     int frames = 100;     // bench default; report uses its own default
     int warmup = 5;
+    std::optional<std::uint32_t> flightSeed; // bench --flight SEED: the soak flight (Flight.hpp)
     bool quiet = false;
     bool help = false;
 };

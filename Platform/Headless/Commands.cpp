@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "Platform/Headless/CommandArgs.hpp"
+#include "Platform/Headless/Flight.hpp"
 #include "Platform/Headless/Timing.hpp"
 #include "Resources/Image.hpp"
 
@@ -79,6 +80,14 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     auto prepared = prepareScene(a, io.err);
     if (!prepared) return kExitFailure;
     PreparedScene& p = *prepared;
+    if (a.flightSeed) {
+        std::ostringstream discard;
+        const int rc = runFlight(a, p, *a.flightSeed, Streams{discard, io.err, false});
+        if (rc != kExitOk) return rc;
+        if (const int wrc = writeOutputs(a, p.framebuffer, Streams{discard, io.err, false}); wrc != kExitOk) return wrc;
+        io.out << discard.str().substr(0, discard.str().find('\n') + 1); // the JSON line, last on stdout
+        return kExitOk;
+    }
     RenderSettings settings = p.settings;
 
     // Whole frames: clear + every draw, as a real program renders them.
