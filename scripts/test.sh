@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # SoftRaster's test command: installs what it needs, builds every preset that can be built on
-# Linux (native, native-asan, mingw) and runs every test (the mingw binaries under Wine).
+# Linux (native, native-asan, mingw) and runs every test (the mingw binaries under Wine), then
+# builds the fuzz preset and runs each libFuzzer target for 60 s (SR_FUZZ_SECONDS).
 # Usage: scripts/test.sh [preset...]     (default: native native-asan mingw)
 # Exit code 0 only if every build and every test passed.
 set -uo pipefail
@@ -8,7 +9,7 @@ cd "$(dirname "$0")/.."
 root=$(pwd)
 
 if [[ "${1:-}" == "-h" || "${1:-}" == "--help" ]]; then
-  sed -n '2,5p' "$0" | sed 's/^# \{0,1\}//'; exit 0
+  sed -n '2,6p' "$0" | sed 's/^# \{0,1\}//'; exit 0
 fi
 presets=("$@")
 [[ ${#presets[@]} -gt 0 ]] || presets=(native native-asan mingw)
@@ -58,6 +59,47 @@ for preset in "${presets[@]}"; do
   result[$preset]="${passed:-0} passed, ${failed:-?} failed ($((SECONDS - t0)) s)"
   [[ $rc -eq 0 ]] || result[$preset]+=" FAILED"
 done
+
+# Fuzzing (after the presets): the fuzz preset's libFuzzer targets (clang, ASan + UBSan), each
+# run for SR_FUZZ_SECONDS (default 60) with a fixed seed on a fresh copy of the generated seed
+# corpus. A crash, leak, timeout or out-of-memory fails the test command; its input is kept in
+# build/fuzz/crashes/ and its path printed (reproduce: build/fuzz/bin/<target> <input>).
+fuzz_seconds=${SR_FUZZ_SECONDS:-60}
+echo "=== [fuzz] configure + build"
+t0=$SECONDS
+fuzz_pass=0; fuzz_fail=0
+if ! cmake --preset fuzz >build/fuzz-configure.log 2>&1; then
+  cat build/fuzz-configure.log; result[fuzz]="configure FAILED"
+elif ! cmake --build --preset fuzz -j "$jobs" >build/fuzz/build.log 2>&1; then
+  grep -E 'error|Error|FAILED' build/fuzz/build.log | head -40; result[fuzz]="build FAILED"
+else
+  rm -rf build/fuzz/corpus build/fuzz/run && mkdir -p build/fuzz/run build/fuzz/crashes
+  build/fuzz/bin/sr_fuzz_seeds build/fuzz/corpus || fuzz_fail=$((fuzz_fail + 1))
+  for spec in obj:4096 image:65536; do
+    target=${spec%%:*}; max_len=${spec#*:}
+    cp -r "build/fuzz/corpus/$target" "build/fuzz/run/$target"
+    echo "=== [fuzz] sr_fuzz_$target: ${fuzz_seconds} s, seed 1, max_len $max_len"
+    t1=$SECONDS
+    log="build/fuzz/run/$target.log"
+    build/fuzz/bin/sr_fuzz_$target -seed=1 -max_total_time="$fuzz_seconds" -rss_limit_mb=2048 -timeout=25 \
+      -max_len="$max_len" -print_final_stats=1 -artifact_prefix="build/fuzz/crashes/$target-" \
+      "build/fuzz/run/$target" >"$log" 2>&1
+    rc=$?
+    grep -E '^#[0-9]+ +DONE' "$log" | tail -1 | sed 's/^/    /'
+    grep -E '^stat::(number_of_executed_units|peak_rss_mb)' "$log" | sed 's/^/    /'
+    if [[ $rc -eq 0 ]]; then
+      fuzz_pass=$((fuzz_pass + 1)); echo "    ok ($((SECONDS - t1)) s)"
+    else
+      fuzz_fail=$((fuzz_fail + 1))
+      grep -E 'ERROR:|runtime error|SUMMARY' "$log" | head -5 | sed 's/^/    /'
+      crash=$(grep -oE 'Test unit written to .*' "$log" | tail -1 | sed 's/Test unit written to //')
+      echo "    FAILED: sr_fuzz_$target exit $rc; crash input: ${crash:-none} (log $log)"
+    fi
+  done
+  result[fuzz]="$fuzz_pass passed, $fuzz_fail failed ($((SECONDS - t0)) s)"
+  [[ $fuzz_fail -eq 0 ]] || result[fuzz]+=" FAILED"
+fi
+presets+=(fuzz)
 
 echo
 echo "=== summary ($((SECONDS - start_all)) s)"
