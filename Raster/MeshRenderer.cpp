@@ -162,28 +162,37 @@ struct PhongProgram {
         else return packBgra8(applyTerms(d->kd, t));
     }
 #if SR_HAVE_SSE2
-    // Four untextured pixels at once (ShadingSimd.hpp): the same operations lane by lane, so the
-    // same bits; lanes off the fast normalize path are redone by fragment().
-    template <bool kT = kTextured, std::enable_if_t<!kT, int> = 0>
+    // Four pixels at once (ShadingSimd.hpp): the same operations lane by lane, so the same bits;
+    // lanes off the fast normalize path are redone by fragment(). Textures are sampled per lane.
     void fragment4(const FragmentBatch<kVaryings>& b, Pixel out[4]) const {
         __m128 ok = _mm_castsi128_ps(_mm_set1_epi32(-1));
+        Fragment<kVaryings> f;
+        auto laneFragment = [&](int i) -> const Fragment<kVaryings>& {
+            f.x = b.x[i];
+            f.y = b.y[i];
+            f.invW = b.invW[i];
+            for (int k = 0; k < kVaryings; ++k) f.varyings[std::size_t(k)] = b.v[k][i];
+            return f;
+        };
+        alignas(16) float kdR[4], kdG[4], kdB[4];
+        for (int i = 0; i < 4; ++i) {
+            Color kd = d->kd;
+            if constexpr (kTextured) kd = sampleKd(*d, setup, laneFragment(i));
+            kdR[i] = kd.r;
+            kdG[i] = kd.g;
+            kdB[i] = kd.b;
+        }
         const simd::Vec3x4 n = simd::normalizeFast(simd::load3(b.v[kP + 3], b.v[kP + 4], b.v[kP + 5]), ok);
         const Vec3 eye = d->view.eye;
         const simd::Vec3x4 toEye{_mm_sub_ps(_mm_set1_ps(eye.x), _mm_loadu_ps(b.v[kP])),
                                  _mm_sub_ps(_mm_set1_ps(eye.y), _mm_loadu_ps(b.v[kP + 1])),
                                  _mm_sub_ps(_mm_set1_ps(eye.z), _mm_loadu_ps(b.v[kP + 2]))};
         const simd::Vec3x4 v = simd::normalizeFast(toEye, ok);
-        const bool simdDone = simd::shadeBlinnPhong(d->view.lighting, d->kd, n, v, ok, out);
+        const bool simdDone = simd::shadeBlinnPhong(d->view.lighting, _mm_load_ps(kdR), _mm_load_ps(kdG),
+                                                    _mm_load_ps(kdB), n, v, ok, out);
         const int good = simdDone ? _mm_movemask_ps(ok) : 0;
-        for (int i = 0; i < 4; ++i) {
-            if (good & (1 << i)) continue;
-            Fragment<kVaryings> f;
-            f.x = b.x[i];
-            f.y = b.y[i];
-            f.invW = b.invW[i];
-            for (int k = 0; k < kVaryings; ++k) f.varyings[std::size_t(k)] = b.v[k][i];
-            out[i] = fragment(f);
-        }
+        for (int i = 0; i < 4; ++i)
+            if (!(good & (1 << i))) out[i] = fragment(laneFragment(i));
     }
 #endif
 };

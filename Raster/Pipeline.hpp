@@ -56,8 +56,9 @@ struct NoTriangleHook {
     void operator()(std::size_t, const TriangleSetup&) const {}
 };
 
-// Per-lane state of a draw: its own counters and setup record (lanes never share writes).
-struct LaneState {
+// Per-lane state of a draw: its own counters and setup record (lanes never share writes; the
+// cache-line alignment keeps one lane's per-pixel counter off its neighbour's setup record).
+struct alignas(64) LaneState {
     RenderStats stats;
     TriangleSetup setup;
 };

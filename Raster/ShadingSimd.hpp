@@ -69,8 +69,9 @@ inline __m128i toUnorm8(__m128 c) {
 // (Shading.hpp's blinnPhong and applyTerms, operation for operation). Lanes where a half
 // vector is not on the fast normalize path are cleared in `ok`. Returns false (nothing
 // written) when the shininess is not a whole number in [0, 1024] (std::pow per pixel then).
-inline bool shadeBlinnPhong(const Lighting& lighting, Color kd, const Vec3x4& n, const Vec3x4& v, __m128& ok,
-                            std::uint32_t out[4]) {
+// kd per lane (kdR/kdG/kdB: e.g. four texture samples).
+inline bool shadeBlinnPhong(const Lighting& lighting, __m128 kdR, __m128 kdG, __m128 kdB, const Vec3x4& n,
+                            const Vec3x4& v, __m128& ok, std::uint32_t out[4]) {
     const float s = lighting.shininess;
     if (!(s >= 0.0f && s <= 1024.0f && s == float(int(s)))) return false;
     __m128 diffuse = _mm_set1_ps(lighting.ambient);
@@ -98,13 +99,19 @@ inline bool shadeBlinnPhong(const Lighting& lighting, Color kd, const Vec3x4& n,
     }
     specular = _mm_mul_ps(specular, _mm_set1_ps(lighting.ks));
     // applyTerms: kd * diffuse + specular per channel, then packBgra8.
-    const __m128i r = toUnorm8(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(kd.r), diffuse), specular));
-    const __m128i g = toUnorm8(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(kd.g), diffuse), specular));
-    const __m128i b = toUnorm8(_mm_add_ps(_mm_mul_ps(_mm_set1_ps(kd.b), diffuse), specular));
+    const __m128i r = toUnorm8(_mm_add_ps(_mm_mul_ps(kdR, diffuse), specular));
+    const __m128i g = toUnorm8(_mm_add_ps(_mm_mul_ps(kdG, diffuse), specular));
+    const __m128i b = toUnorm8(_mm_add_ps(_mm_mul_ps(kdB, diffuse), specular));
     const __m128i packed = _mm_or_si128(_mm_or_si128(_mm_set1_epi32(int(0xFF000000u)), _mm_slli_epi32(r, 16)),
                                         _mm_or_si128(_mm_slli_epi32(g, 8), b));
     _mm_storeu_si128(reinterpret_cast<__m128i*>(out), packed);
     return true;
+}
+
+// The same with one kd for all four pixels.
+inline bool shadeBlinnPhong(const Lighting& lighting, Color kd, const Vec3x4& n, const Vec3x4& v, __m128& ok,
+                            std::uint32_t out[4]) {
+    return shadeBlinnPhong(lighting, _mm_set1_ps(kd.r), _mm_set1_ps(kd.g), _mm_set1_ps(kd.b), n, v, ok, out);
 }
 
 } // namespace simd
