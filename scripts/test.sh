@@ -85,7 +85,7 @@ else
       -max_len="$max_len" -print_final_stats=1 -artifact_prefix="build/fuzz/crashes/$target-" \
       "build/fuzz/run/$target" >"$log" 2>&1
     rc=$?
-    grep -E '^#[0-9]+ +DONE' "$log" | tail -1 | sed 's/^/    /'
+    grep -E '^#[0-9]+[[:space:]]+DONE' "$log" | tail -1 | sed 's/^/    /'
     grep -E '^stat::(number_of_executed_units|peak_rss_mb)' "$log" | sed 's/^/    /'
     if [[ $rc -eq 0 ]]; then
       fuzz_pass=$((fuzz_pass + 1)); echo "    ok ($((SECONDS - t1)) s)"
