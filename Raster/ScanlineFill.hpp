@@ -125,10 +125,13 @@ void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Sha
     forEachSpan(t, s, [&](int y, int x0, int x1) {
         // Plane values at the centre of the span's first pixel (double, once per span).
         const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
-        float start[kPlanes];
+        // Sized for z and 1/w at least, so code that names kPlaneInvW compiles in range for every
+        // instantiation (only the first kPlanes entries are used).
+        constexpr int kArray = kPlanes > kPlaneVarying0 ? kPlanes : kPlaneVarying0;
+        float start[kArray] = {};
         for (int k = 0; k < kPlanes; ++k) start[k] = float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy);
 
-        float gradient[kPlanes]; // per-pixel gradients in locals: stores to the buffers can't alias them
+        float gradient[kArray] = {}; // per-pixel gradients in locals: stores to the buffers can't alias them
         for (int k = 0; k < kPlanes; ++k) gradient[k] = t.ddxStep[k];
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);

@@ -202,9 +202,6 @@ struct Raw {
 };
 constexpr float kRawScale = 255.0f * 65536.0f;
 
-inline Raw rawTexel(std::uint32_t t) {
-    return {{(t & 0xFFu) << 16, ((t >> 8) & 0xFFu) << 16, ((t >> 16) & 0xFFu) << 16, (t >> 24) << 16}};
-}
 // The 2x2 blend: ((t00 (256 - wx) + t10 wx) (256 - wy) + (t01 (256 - wx) + t11 wx) wy).
 inline Raw blend2x2(std::uint32_t t00, std::uint32_t t10, std::uint32_t t01, std::uint32_t t11, int wx, int wy) {
     const std::uint32_t ax = std::uint32_t(256 - wx), bx = std::uint32_t(wx);
