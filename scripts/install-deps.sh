@@ -6,7 +6,7 @@ set -euo pipefail
 build_pkgs=(cmake ninja-build g++ catch2 libstb-dev libtinyobjloader-dev
             g++-mingw-w64-x86-64-posix)
 wine_pkgs=(wine wine64)
-x11_pkgs=(xvfb xdotool imagemagick x11-utils)
+x11_pkgs=(xvfb xdotool imagemagick x11-utils openbox)
 test_pkgs=(clang libclang-rt-14-dev)   # libFuzzer for the fuzz targets
 
 want=()

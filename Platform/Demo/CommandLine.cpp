@@ -3,6 +3,8 @@
 
 #include <cctype>
 
+#include "Platform/Demo/Input.hpp"
+
 namespace sr::demo {
 
 namespace {
@@ -28,50 +30,104 @@ ParseResult failure(std::string message) {
     return r;
 }
 
+bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+// "--name VALUE" or "--name=VALUE": the value (advancing i past it), or nullopt when arg is
+// another flag. A missing value is reported through `missing`.
+std::optional<std::string> valueOf(const std::vector<std::string>& args, std::size_t& i, const std::string& name,
+                                   bool& missing) {
+    const std::string& arg = args[i];
+    if (arg == name) {
+        if (i + 1 >= args.size()) {
+            missing = true;
+            return std::nullopt;
+        }
+        return args[++i];
+    }
+    if (startsWith(arg, (name + "=").c_str()))
+        return arg.substr(name.size() + 1);
+    return std::nullopt;
+}
+
 } // namespace
 
 ParseResult parseCommandLine(const std::vector<std::string>& args) {
     ParseResult result;
+    DemoOptions& o = result.options;
+    bool modelGiven = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         if (arg == "--help" || arg == "-h" || arg == "/?") {
-            result.options.help = true;
+            o.help = true;
             continue;
         }
+        if (arg.empty())
+            return failure("empty argument");
 
-        // --frames N or --frames=N
-        std::optional<std::string> value;
-        if (arg == "--frames") {
-            if (i + 1 >= args.size())
+        bool missing = false;
+        if (const auto value = valueOf(args, i, "--frames", missing); value || missing) {
+            if (missing)
                 return failure("--frames needs a value: --frames N (N >= 1)");
-            value = args[++i];
-        } else if (arg.rfind("--frames=", 0) == 0) {
-            value = arg.substr(9);
-        }
-        if (value) {
-            if (result.options.frames)
+            if (o.frames)
                 return failure("--frames given twice");
             const std::optional<long long> n = parseFrameCount(*value);
             if (!n)
                 return failure("bad value for --frames: '" + *value + "' (expected an integer from 1 to " +
                                std::to_string(kMaxFrames) + ")");
-            result.options.frames = n;
+            o.frames = n;
+            continue;
+        }
+        if (const auto value = valueOf(args, i, "--screenshot", missing); value || missing) {
+            if (missing || value->empty())
+                return failure("--screenshot needs a file path: --screenshot PATH (.png, .bmp or .ppm)");
+            o.screenshot = *value;
             continue;
         }
 
-        if (arg.empty())
-            return failure("empty argument");
+        // A positional argument is the model (the same as --obj PATH).
+        if (arg[0] != '-' && arg != "/?") {
+            if (modelGiven || !o.scene.obj.empty())
+                return failure("more than one model given: '" + arg + "'");
+            o.scene.obj = arg;
+            modelGiven = true;
+            continue;
+        }
+
+        std::string error;
+        const bool sizeFlag = startsWith(arg, "--width") || startsWith(arg, "--height");
+        switch (parseSceneFlag(args, i, o.scene, error)) {
+        case FlagResult::Consumed:
+            o.sizeGiven |= sizeFlag;
+            continue;
+        case FlagResult::Error: return failure(error);
+        case FlagResult::NotMine: break;
+        }
         return failure("unknown argument: '" + arg + "'");
     }
+    if (const auto problem = validateSceneOptions(o.scene))
+        return failure(*problem);
     result.ok = true;
     return result;
 }
 
 std::string usageText(const std::string& programName) {
-    return "Usage: " + programName + " [--frames N] [--help]\n"
-           "  --frames N   exit with code 0 after N rendered frames (for scripts and tests)\n"
-           "  --help       show this text\n"
-           "Keys: Esc quits.\n";
+    std::string text = "Usage: " + programName +
+                       " [model.obj] [--width W --height H] [scene and quality flags] [--frames N]\n"
+                       "       [--screenshot PATH] [--help]\n"
+                       "  model.obj            the model to fly around (default: the built-in scene)\n"
+                       "  --width W --height H initial client size in pixels (default 960 x 540 at 96 DPI)\n"
+                       "  --frames N           exit with code 0 after N rendered frames (for scripts and tests)\n"
+                       "  --screenshot PATH    save the last frame before exiting (or the first frame\n"
+                       "                       without --frames) as PNG / BMP / PPM (by extension)\n"
+                       "  --help               show this text\n";
+    text += sceneFlagsHelp();
+    text += "keys:\n";
+    for (const KeyHelp& k : kKeyHelp) {
+        std::string keys = "  " + std::string(k.keys);
+        keys.resize(22, ' ');
+        text += keys + k.what + "\n";
+    }
+    return text;
 }
 
 } // namespace sr::demo

@@ -1,19 +1,29 @@
-// Command-line parsing of the demo program (--frames N, --help): platform-free and unit-tested.
+// Command-line parsing of the demo program: [model.obj] [scene / quality flags] [--frames N]
+// [--screenshot PATH] [--help]. Platform-free and unit-tested.
 #pragma once
 
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "Platform/Demo/SceneOptions.hpp"
+
 namespace sr::demo {
 
 // Process exit codes shared by every front end.
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitUsage = 2; // bad command line
+inline constexpr int kExitFailure = 1; // a model / file that cannot be loaded or written
+inline constexpr int kExitUsage = 2;   // bad command line
 
 struct DemoOptions {
+    // The scene and quality flags shared with the headless command (SceneOptions.hpp);
+    // scene.width / scene.height are the initial CLIENT size in pixels when sizeGiven.
+    SceneOptions scene;
+    bool sizeGiven = false; // --width or --height given (else the window picks a DPI-scaled size)
     // Exit with kExitOk after this many rendered frames; empty = run until closed.
     std::optional<long long> frames;
+    // Save the last frame before exiting (with --frames), or the first frame (without).
+    std::optional<std::string> screenshot;
     bool help = false;
 };
 
@@ -27,11 +37,13 @@ struct ParseResult {
 // Largest accepted --frames value (about 1 year at 60 Hz: plenty, and far from overflow).
 inline constexpr long long kMaxFrames = 2'000'000'000LL;
 
-// Parses the arguments that follow the program name (UTF-8). Accepts "--frames N",
-// "--frames=N" (1 <= N <= kMaxFrames), "--help", "-h" and "/?". Anything else is an error.
+// Parses the arguments that follow the program name (UTF-8). Accepts one positional model path
+// (like --obj), every flag of parseSceneFlag, "--frames N" / "--frames=N" (1 <= N <=
+// kMaxFrames), "--screenshot PATH" / "--screenshot=PATH", "--help", "-h" and "/?". Anything else
+// is an error, and so is a combination validateSceneOptions refuses.
 ParseResult parseCommandLine(const std::vector<std::string>& args);
 
-// The usage text shown by --help and after an error (lines end in '\n').
+// The usage text shown by --help and after an error (lines end in '\n'): flags and keys.
 std::string usageText(const std::string& programName);
 
 } // namespace sr::demo

@@ -1,20 +1,79 @@
 // The demo's own key and action types: the platform layer translates its key codes into these.
 #pragma once
 
+#include <array>
+
 namespace sr::demo {
 
 // Keys the demo reacts to; the platform maps its virtual-key codes here (Unknown otherwise).
-enum class Key { Unknown, Escape };
+// Count is not a key: it sizes per-key tables.
+enum class Key {
+    Unknown,
+    Escape,
+    W, A, S, D, Q, E,          // fly: forward / strafe left / back / strafe right / down / up
+    Up, Down, Left, Right,     // turn
+    Shift,                     // held: move faster
+    C, M, T, P, L, Z, R,       // toggles and reset (see actionForKey)
+    F1, F12,
+    Count
+};
 
-enum class Action { None, Quit };
+inline constexpr int kKeyCount = int(Key::Count);
 
-// What a key press does in the demo.
+// What a key PRESS does (a held key's effect - flying, turning - is DemoController::update's).
+enum class Action {
+    None,
+    Quit,
+    CycleCull,        // none -> cull CW -> cull CCW -> none
+    CycleShading,     // unlit -> flat -> gouraud -> phong
+    CycleFilter,      // nearest -> bilinear -> trilinear
+    CyclePerspective, // exact -> span16 -> span8 -> affine
+    ToggleWireframe,
+    ToggleDepthView,  // show the depth buffer as grey
+    ResetView,        // back to the starting camera
+    ToggleHelp,
+    Screenshot
+};
+
 constexpr Action actionForKey(Key key) {
     switch (key) {
     case Key::Escape: return Action::Quit;
-    case Key::Unknown: break;
+    case Key::C: return Action::CycleCull;
+    case Key::M: return Action::CycleShading;
+    case Key::T: return Action::CycleFilter;
+    case Key::P: return Action::CyclePerspective;
+    case Key::L: return Action::ToggleWireframe;
+    case Key::Z: return Action::ToggleDepthView;
+    case Key::R: return Action::ResetView;
+    case Key::F1: return Action::ToggleHelp;
+    case Key::F12: return Action::Screenshot;
+    default: break;
     }
     return Action::None;
 }
+
+// The key list of the help overlay and of --help: {keys, what they do}.
+struct KeyHelp {
+    const char* keys;
+    const char* what;
+};
+
+inline constexpr std::array<KeyHelp, 15> kKeyHelp{{
+    {"W / S", "fly forward / back"},
+    {"A / D", "strafe left / right"},
+    {"Q / E", "fly down / up"},
+    {"Arrows, left-drag", "turn (look around)"},
+    {"Shift", "hold to move 4x faster"},
+    {"R", "reset the view"},
+    {"C", "cull mode: none -> CW -> CCW"},
+    {"M", "shading: unlit -> flat -> gouraud -> phong"},
+    {"T", "texture filter: nearest -> bilinear -> trilinear"},
+    {"P", "perspective: exact -> span16 -> span8 -> affine"},
+    {"L", "wireframe overlay on / off"},
+    {"Z", "depth view (near = white) on / off"},
+    {"F1", "this help on / off"},
+    {"F12", "save a screenshot (PNG, current folder)"},
+    {"Esc", "quit"},
+}};
 
 } // namespace sr::demo

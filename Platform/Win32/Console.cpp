@@ -78,6 +78,8 @@ std::vector<std::string> commandLineArguments() {
 bool writeStdout(const std::string& utf8) { return writeStd(STD_OUTPUT_HANDLE, utf8); }
 bool writeStderr(const std::string& utf8) { return writeStd(STD_ERROR_HANDLE, utf8); }
 
+std::wstring widen(const std::string& utf8) { return toUtf16(utf8); }
+
 void showMessageBox(const std::string& utf8, bool isError) {
     const std::wstring text = toUtf16(utf8);
     MessageBoxW(nullptr, text.c_str(), L"SoftRaster",

@@ -15,6 +15,9 @@ std::vector<std::string> commandLineArguments();
 bool writeStdout(const std::string& utf8);
 bool writeStderr(const std::string& utf8);
 
+// UTF-8 -> UTF-16 for the W functions (invalid sequences become U+FFFD).
+std::wstring widen(const std::string& utf8);
+
 // Shows a modal message box owned by no window (an error icon when isError).
 void showMessageBox(const std::string& utf8, bool isError);
 

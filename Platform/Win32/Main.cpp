@@ -1,11 +1,25 @@
-// SoftRaster.exe entry point: command line, DPI awareness, and the never-blocking message loop.
+// SoftRaster.exe entry point: command line, scene loading, DPI awareness, and the never-blocking
+// message loop (with --frames / --screenshot for scripts).
 #include "Platform/Demo/CommandLine.hpp"
+#include "Platform/Demo/DemoController.hpp"
+#include "Platform/Demo/SceneSetup.hpp"
 #include "Platform/Win32/Console.hpp"
 #include "Platform/Win32/Dpi.hpp"
 #include "Platform/Win32/MainWindow.hpp"
 #include "Platform/Win32/Win32Include.hpp"
 
+#include <algorithm>
+
 namespace {
+
+constexpr int kDefaultClientWidth = 960; // at 96 DPI; scaled by the monitor's DPI
+constexpr int kDefaultClientHeight = 540;
+
+// An error for the user: stderr (scripts, consoles) and a message box (Explorer users).
+void reportError(const std::string& message) {
+    sr::win32::writeStderr(message);
+    sr::win32::showMessageBox(message, /*isError=*/true);
+}
 
 // Pumps every pending message. Returns false once WM_QUIT arrives (exitCode is then its value).
 bool pumpMessages(int& exitCode) {
@@ -22,10 +36,13 @@ bool pumpMessages(int& exitCode) {
 }
 
 // Renders as fast as messages allow; sleeps in WaitMessage while there is nothing to draw
-// (minimised / 0 x 0), so a hidden demo costs no CPU. Stops after maxFrames rendered frames
-// when given (then exits with 0 like a user close).
-int runMessageLoop(sr::win32::MainWindow& window, long long maxFrames) {
-    int exitCode = sr::demo::kExitOk;
+// (minimised / 0 x 0), so a hidden demo costs no CPU. With --frames N it stops after N rendered
+// frames (exit code 0 like a user close); --screenshot saves the last frame before that, or the
+// first frame when the demo runs until closed.
+int runMessageLoop(sr::win32::MainWindow& window, const sr::demo::DemoOptions& options) {
+    using namespace sr;
+    int exitCode = demo::kExitOk;
+    const long long maxFrames = options.frames.value_or(0);
     long long frames = 0;
     for (;;) {
         if (window.exists() && window.idle())
@@ -35,7 +52,22 @@ int runMessageLoop(sr::win32::MainWindow& window, long long maxFrames) {
         if (!window.exists() || window.idle())
             continue;
         window.renderFrame();
-        if (maxFrames > 0 && ++frames >= maxFrames)
+        ++frames;
+        const bool last = maxFrames > 0 && frames >= maxFrames;
+        if (options.screenshot && (last || (maxFrames == 0 && frames == 1))) {
+            const Status saved = window.saveFrame(*options.screenshot);
+            if (!saved) {
+                win32::writeStderr("SoftRaster: could not save the screenshot: " + saved.error() + "\n");
+                if (last) {
+                    window.close();
+                    pumpMessages(exitCode);
+                    return demo::kExitFailure;
+                }
+            } else {
+                win32::writeStdout("SoftRaster: saved " + *options.screenshot + "\n");
+            }
+        }
+        if (last)
             window.close(); // WM_DESTROY posts WM_QUIT(0)
     }
 }
@@ -46,27 +78,44 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
     using namespace sr;
     const demo::ParseResult parsed = demo::parseCommandLine(win32::commandLineArguments());
     if (!parsed.ok) {
-        // A bad flag: say so on stderr (for scripts) and in a message box (for Explorer users).
-        const std::string message = "SoftRaster: " + parsed.error + "\n" + demo::usageText("SoftRaster.exe");
-        win32::writeStderr(message);
-        win32::showMessageBox(message, /*isError=*/true);
+        reportError("SoftRaster: " + parsed.error + "\n" + demo::usageText("SoftRaster.exe"));
         return demo::kExitUsage;
     }
-    if (parsed.options.help) {
+    const demo::DemoOptions& options = parsed.options;
+    if (options.help) {
         const std::string text = demo::usageText("SoftRaster.exe");
         if (!win32::writeStdout(text))
             win32::showMessageBox(text, /*isError=*/false);
         return demo::kExitOk;
     }
 
-    win32::enableDpiAwareness(); // before any window exists
-    win32::MainWindow window;
-    if (!window.create(instance, showCommand)) {
-        const std::string message = "SoftRaster: could not create the window (error " +
-                                    std::to_string(GetLastError()) + ")\n";
-        win32::writeStderr(message);
-        win32::showMessageBox(message, /*isError=*/true);
-        return 1;
+    // The scene (built-in or the OBJ) and the camera it asks for: a failure names the file.
+    Result<demo::LoadedScene> loaded = demo::loadScene(options.scene);
+    if (!loaded) {
+        reportError("SoftRaster: cannot load the scene: " + loaded.error() + "\n");
+        return demo::kExitFailure;
     }
-    return runMessageLoop(window, parsed.options.frames.value_or(0));
+    const demo::LoadedScene& scene = loaded.value();
+    for (const std::string& warning : scene.warnings)
+        win32::writeStderr("SoftRaster: warning: " + warning + "\n");
+
+    // The fly camera starts at the resolved eye / target; a model's speed follows its size
+    // (half its bounding radius per second), the built-in scene's is the tuned default.
+    const demo::CameraSetup setup = demo::resolveCamera(options.scene, scene);
+    demo::MotionTuning tuning;
+    if (!scene.builtIn)
+        tuning.moveSpeed = float(std::max(scene.radius * 0.5, 1e-3));
+    demo::DemoController controller(demo::cameraFromSetup(setup), demo::makeRenderSettings(options.scene),
+                                    options.scene.light, tuning);
+
+    win32::enableDpiAwareness(); // before any window exists
+    win32::MainWindow window(scene, controller);
+    const bool created = options.sizeGiven
+                             ? window.create(instance, showCommand, options.scene.width, options.scene.height, false)
+                             : window.create(instance, showCommand, kDefaultClientWidth, kDefaultClientHeight, true);
+    if (!created) {
+        reportError("SoftRaster: could not create the window (error " + std::to_string(GetLastError()) + ")\n");
+        return demo::kExitFailure;
+    }
+    return runMessageLoop(window, options);
 }

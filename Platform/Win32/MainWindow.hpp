@@ -1,30 +1,42 @@
-// The demo's top-level window: owns the FrameBuffer that follows the client size and presents it.
+// The demo's top-level window: owns the FrameBuffer that follows the client size, renders the
+// scene with the DemoController's camera and modes, presents it, and shows the help overlay.
 #pragma once
 
+#include "Platform/Demo/DemoController.hpp"
+#include "Platform/Demo/FrameStats.hpp"
 #include "Platform/Demo/Input.hpp"
+#include "Platform/Demo/SceneSetup.hpp"
 #include "Platform/Win32/GdiPresenter.hpp"
 #include "Platform/Win32/Win32Include.hpp"
 #include "Raster/FrameBuffer.hpp"
+#include "Raster/RenderContext.hpp"
 
 #include <chrono>
+#include <string>
 
 namespace sr::win32 {
 
 class MainWindow {
 public:
-    MainWindow() = default;
+    // The scene and the controller outlive the window.
+    MainWindow(const demo::LoadedScene& scene, demo::DemoController& controller);
     ~MainWindow();
     MainWindow(const MainWindow&) = delete;
     MainWindow& operator=(const MainWindow&) = delete;
 
-    // Registers the window class and creates the (visible) window. Returns false on failure.
-    bool create(HINSTANCE instance, int showCommand);
+    // Registers the window class and creates the (visible) window with a client area of
+    // clientWidth x clientHeight pixels (scaled from 96 DPI to the monitor's when scaleForDpi).
+    // Returns false on failure.
+    bool create(HINSTANCE instance, int showCommand, int clientWidth, int clientHeight, bool scaleForDpi);
 
     // True while there is nothing to draw into (minimised, or a 0 x 0 client area).
     bool idle() const;
 
-    // Draws one frame for the current time and presents it.
+    // Advances the camera by the time since the last frame, draws one frame and presents it.
     void renderFrame();
+
+    // Writes the last rendered frame to a UTF-8 path.
+    Status saveFrame(const std::string& utf8Path) const;
 
     // Closes the window; the loop then receives WM_QUIT with exit code 0.
     void close();
@@ -32,22 +44,46 @@ public:
     bool exists() const { return hwnd_ != nullptr; }
 
 private:
+    using Clock = std::chrono::steady_clock;
+
     static LRESULT CALLBACK windowProc(HWND hwnd, UINT msg, WPARAM wParam, LPARAM lParam);
     LRESULT handle(UINT msg, WPARAM wParam, LPARAM lParam);
 
     void onResize(int clientWidth, int clientHeight);
-    void draw();    // renders into the framebuffer only
-    void present(); // shows the framebuffer in the client area
+    void onKeyDown(WPARAM virtualKey, LPARAM flags);
+    void draw();          // renders into the framebuffer only
+    void present();       // shows the framebuffer (and the help overlay) in the client area
+    void drawHelp();      // GDI text over the presented frame
+    void screenshot();    // F12
+    void updateTitle();
+    void setStatus(std::string text);
     static demo::Key translateKey(WPARAM virtualKey);
+
+    const demo::LoadedScene& scene_;
+    demo::DemoController& controller_;
 
     HWND hwnd_ = nullptr;
     HDC dc_ = nullptr; // the class is CS_OWNDC: one DC for the window's lifetime
+    HFONT helpFont_ = nullptr;
     int clientWidth_ = 0;
     int clientHeight_ = 0;
     bool minimised_ = false;
     FrameBuffer frame_;
+    RenderContext context_{frame_};
     GdiPresenter presenter_;
-    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
+
+    // Mouse drag (left button held): the last cursor position in client pixels.
+    bool dragging_ = false;
+    int lastMouseX_ = 0, lastMouseY_ = 0;
+
+    // Title bar: statistics, a short-lived status message (e.g. where a screenshot went).
+    demo::FrameStats stats_;
+    Clock::time_point lastFrame_{};
+    bool haveLastFrame_ = false;
+    std::string status_;
+    Clock::time_point statusUntil_{};
+    int screenshotCounter_ = 0;
+    std::wstring helpText_;
 };
 
 } // namespace sr::win32

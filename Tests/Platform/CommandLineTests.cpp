@@ -1,4 +1,5 @@
-// Tests of the demo's command-line parser (--frames N, --help, errors) and key -> action map.
+// Tests of the demo's command-line parser (model, scene flags, --frames, --screenshot, --help,
+// errors) and key -> action map.
 #include "TestFramework.hpp"
 
 #include "Platform/Demo/CommandLine.hpp"
@@ -63,7 +64,7 @@ TEST_CASE("--frames without a value, or twice, is an error", "[platform]") {
 }
 
 TEST_CASE("unknown arguments are named in the error", "[platform]") {
-    for (const char* bad : {"--frame", "frames", "--FRAMES", "-x", "--help=1", "--frames5"}) {
+    for (const char* bad : {"--frame", "--FRAMES", "-x", "--help=1", "--frames5", "--screenshots"}) {
         INFO("argument: " << bad);
         const auto r = parseCommandLine({bad});
         CHECK_FALSE(r.ok);
@@ -81,13 +82,68 @@ TEST_CASE("usage text names the program and every flag", "[platform]") {
     CHECK(text.find("SoftRaster.exe") != std::string::npos);
     CHECK(text.find("--frames N") != std::string::npos);
     CHECK(text.find("--help") != std::string::npos);
+    CHECK(text.find("--screenshot PATH") != std::string::npos);
+    CHECK(text.find("--cull MODE") != std::string::npos); // the shared scene flags
+    CHECK(text.find("F12") != std::string::npos);         // and the keys
     CHECK(text.back() == '\n');
 }
 
-TEST_CASE("Escape quits, other keys do nothing", "[platform]") {
+TEST_CASE("a positional argument is the model; scene flags are shared with the headless command", "[platform]") {
+    auto r = parseCommandLine({"models/t\xC3\xA9" "apot.obj", "--width", "640", "--height=480", "--cull", "cw",
+                               "--shading", "flat", "--filter", "trilinear", "--wireframe"});
+    REQUIRE(r.ok);
+    CHECK(r.options.scene.obj == "models/t\xC3\xA9" "apot.obj");
+    CHECK(r.options.sizeGiven);
+    CHECK(r.options.scene.width == 640);
+    CHECK(r.options.scene.height == 480);
+    CHECK(r.options.scene.cull == sr::CullMode::CW);
+    CHECK(r.options.scene.shading == sr::ShadingMode::Flat);
+    CHECK(r.options.scene.filter == sr::TextureFilter::Trilinear);
+    CHECK(r.options.scene.wireframe);
+
+    r = parseCommandLine({});
+    REQUIRE(r.ok);
+    CHECK_FALSE(r.options.sizeGiven);
+    CHECK(r.options.scene.obj.empty());
+
+    r = parseCommandLine({"a.obj", "b.obj"});
+    CHECK_FALSE(r.ok);
+    CHECK(r.error.find("'b.obj'") != std::string::npos);
+}
+
+TEST_CASE("--screenshot PATH and --screenshot=PATH", "[platform]") {
+    auto r = parseCommandLine({"--frames", "3", "--screenshot", "out dir/shot.png"});
+    REQUIRE(r.ok);
+    CHECK(r.options.screenshot == "out dir/shot.png");
+    r = parseCommandLine({"--screenshot=a.bmp"});
+    REQUIRE(r.ok);
+    CHECK(r.options.screenshot == "a.bmp");
+    CHECK_FALSE(parseCommandLine({"--screenshot"}).ok);
+    CHECK_FALSE(parseCommandLine({"--screenshot="}).ok);
+}
+
+TEST_CASE("bad scene flags and combinations are errors naming the value", "[platform]") {
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"--width", "0"}, {"--height", "99999"}, {"--cull", "back"}, {"--shading", "x"},
+          {"--width"}, {"--eye", "1,2"}}) {
+        INFO(args[0]);
+        const auto r = parseCommandLine(args);
+        CHECK_FALSE(r.ok);
+        CHECK(r.error.find(args[0]) != std::string::npos);
+    }
+    const auto r = parseCommandLine({"--near", "5", "--far", "1"});
+    CHECK_FALSE(r.ok);
+    CHECK(r.error.find("--far") != std::string::npos);
+}
+
+TEST_CASE("Escape quits, toggle keys map to their actions, movement keys have no press action", "[platform]") {
     using sr::demo::Action;
     using sr::demo::Key;
     CHECK(sr::demo::actionForKey(Key::Escape) == Action::Quit);
     CHECK(sr::demo::actionForKey(Key::Unknown) == Action::None);
     STATIC_REQUIRE(sr::demo::actionForKey(Key::Escape) == Action::Quit);
+    CHECK(sr::demo::actionForKey(Key::C) == Action::CycleCull);
+    CHECK(sr::demo::actionForKey(Key::F12) == Action::Screenshot);
+    CHECK(sr::demo::actionForKey(Key::W) == Action::None);
+    CHECK(sr::demo::actionForKey(Key::Shift) == Action::None);
 }

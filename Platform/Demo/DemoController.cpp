@@ -1,0 +1,140 @@
+// Actions -> camera and toggles: the fly camera's frame-time-scaled motion and the mode cycles.
+#include "Platform/Demo/DemoController.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace sr::demo {
+
+namespace {
+
+// Cycles an enum whose values are 0 .. count-1.
+template <typename E>
+E next(E value, int count) {
+    return E((int(value) + 1) % count);
+}
+
+} // namespace
+
+Camera cameraFromSetup(const CameraSetup& setup) {
+    // forward() = (-sin(yaw) cos(pitch), sin(pitch), -cos(yaw) cos(pitch)) (Raster/Camera.hpp),
+    // so yaw = atan2(-f.x, -f.z) and pitch = asin(f.y) for the unit direction f.
+    const Vec3 f = normalize(setup.target - setup.eye);
+    float yaw = 0.0f, pitch = 0.0f;
+    if (isFinite(f) && length(f) > 0.5f) {
+        yaw = std::atan2(-f.x, -f.z);
+        pitch = std::asin(std::clamp(f.y, -1.0f, 1.0f));
+    }
+    Camera camera(setup.eye, yaw, pitch);
+    camera.setFovY(radians(float(setup.fovDegrees)));
+    camera.setNearFar(float(setup.nearZ), std::isinf(setup.farZ) ? Camera::kInfinity : float(setup.farZ));
+    return camera;
+}
+
+FrameView frameViewFor(const Camera& camera, int width, int height, Vec3 toLight) {
+    const float aspect = (width > 0 && height > 0) ? float(width) / float(height) : 1.0f;
+    FrameView v;
+    v.viewProj = camera.projection(aspect) * camera.view();
+    v.eye = camera.position();
+    v.finiteFar = !camera.infiniteFar();
+    const Vec3 l = normalize(toLight);
+    v.lighting.toLight = {isFinite(l) && length(l) > 0.5f ? l : Vec3(0.0f, 0.0f, 1.0f)};
+    return v;
+}
+
+const char* cullLabel(CullMode mode) {
+    switch (mode) {
+    case CullMode::None: return "cull none";
+    case CullMode::CW: return "cull CW";
+    case CullMode::CCW: return "cull CCW";
+    }
+    return "cull ?";
+}
+
+const char* perspectiveLabel(PerspectiveMode mode) {
+    switch (mode) {
+    case PerspectiveMode::Exact: return "exact";
+    case PerspectiveMode::Span16: return "span16";
+    case PerspectiveMode::Span8: return "span8";
+    case PerspectiveMode::Affine: return "affine";
+    }
+    return "?";
+}
+
+DemoController::DemoController(const Camera& home, const RenderSettings& settings, Vec3 toLight, MotionTuning tuning)
+    : home_(home), camera_(home), settings_(settings), toLight_(toLight), tuning_(tuning) {}
+
+Action DemoController::keyDown(Key key, bool repeat) {
+    if (key == Key::Unknown || key == Key::Count)
+        return Action::None;
+    held_[std::size_t(key)] = true;
+    if (repeat)
+        return Action::None; // toggles flip once per press, not at the auto-repeat rate
+    const Action action = actionForKey(key);
+    switch (action) {
+    case Action::CycleCull: settings_.cull = next(settings_.cull, 3); break;
+    case Action::CycleShading: settings_.shading = next(settings_.shading, 4); break;
+    case Action::CycleFilter: settings_.filter = next(settings_.filter, 3); break;
+    case Action::CyclePerspective: settings_.perspective = next(settings_.perspective, 4); break;
+    case Action::ToggleWireframe: settings_.wireframe = !settings_.wireframe; break;
+    case Action::ToggleDepthView: depthView_ = !depthView_; break;
+    case Action::ResetView: resetView(); break;
+    case Action::ToggleHelp: help_ = !help_; break;
+    case Action::None:
+    case Action::Quit:
+    case Action::Screenshot: break; // the platform's
+    }
+    return action;
+}
+
+void DemoController::keyUp(Key key) {
+    if (key != Key::Unknown && key != Key::Count)
+        held_[std::size_t(key)] = false;
+}
+
+void DemoController::releaseAllKeys() { held_.fill(false); }
+
+void DemoController::mouseDrag(int dx, int dy) {
+    // Dragging right turns right (negative yaw); dragging down looks down.
+    camera_.turn(-float(dx) * tuning_.mouseRadiansPerPixel, -float(dy) * tuning_.mouseRadiansPerPixel);
+}
+
+void DemoController::update(double dtSeconds) {
+    // Clamp the step: a NaN, negative or huge frame time (a breakpoint, a dragged window)
+    // integrates at most maxStep.
+    const double dt = std::isfinite(dtSeconds) ? std::clamp(dtSeconds, 0.0, tuning_.maxStep) : 0.0;
+    if (dt <= 0.0)
+        return;
+    const float speed = tuning_.moveSpeed * (held(Key::Shift) ? tuning_.fastFactor : 1.0f);
+    const float step = float(double(speed) * dt);
+    const float turnStep = float(double(tuning_.turnSpeed) * dt);
+
+    // Turn first, then move along the new basis (the order only matters within one step).
+    const float yaw = axis(Key::Left, Key::Right); // positive yaw turns left
+    const float pitch = axis(Key::Up, Key::Down);
+    if (yaw != 0.0f || pitch != 0.0f)
+        camera_.turn(yaw * turnStep, pitch * turnStep);
+    if (const float f = axis(Key::W, Key::S); f != 0.0f)
+        camera_.moveForward(f * step);
+    if (const float r = axis(Key::D, Key::A); r != 0.0f)
+        camera_.moveRight(r * step);
+    if (const float u = axis(Key::E, Key::Q); u != 0.0f)
+        camera_.moveUp(u * step);
+}
+
+std::string DemoController::modeSummary() const {
+    std::string s = cullLabel(settings_.cull);
+    s += " | ";
+    s += shadingModeName(settings_.shading);
+    s += " | ";
+    s += filterName(settings_.filter);
+    s += " | ";
+    s += perspectiveLabel(settings_.perspective);
+    if (settings_.wireframe)
+        s += " | wireframe";
+    if (depthView_)
+        s += " | depth view";
+    return s;
+}
+
+} // namespace sr::demo

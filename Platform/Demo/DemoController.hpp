@@ -1,0 +1,86 @@
+// The demo's platform-free logic: held keys and mouse drags -> the fly camera, key presses ->
+// mode toggles, and the frame view / mode summary the window shows. Unit-tested natively.
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "Platform/Demo/Input.hpp"
+#include "Platform/Demo/SceneSetup.hpp"
+#include "Raster/Camera.hpp"
+#include "Raster/RenderSettings.hpp"
+
+namespace sr::demo {
+
+// How fast the camera flies and turns. Every rate is per SECOND and scaled by the frame time,
+// so the demo feels the same at 30 and at 300 fps.
+struct MotionTuning {
+    float moveSpeed = 2.5f;                  // world units per second
+    float fastFactor = 4.0f;                 // with Shift held
+    float turnSpeed = radians(90.0f);        // arrow keys, radians per second
+    float mouseRadiansPerPixel = radians(0.25f);
+    // Longest frame time one update integrates: after a breakpoint or a stall of seconds the
+    // camera moves one short step instead of jumping out of the scene.
+    double maxStep = 0.1;
+};
+
+// The fly camera looking from setup.eye at setup.target (yaw/pitch from the direction; no roll:
+// the fly camera's up is world +Y), with its field of view and near/far planes.
+Camera cameraFromSetup(const CameraSetup& setup);
+
+// The frame view of a camera for a width x height target: viewProj = projection(aspect) * view,
+// the eye, whether there is a far plane, and one directional light (direction TO the light,
+// normalised; the zero vector gives the default +Z light).
+FrameView frameViewFor(const Camera& camera, int width, int height, Vec3 toLight);
+
+// Short names of the modes, as the title bar shows them.
+const char* cullLabel(CullMode mode);                // "cull none", "cull CW", "cull CCW"
+const char* perspectiveLabel(PerspectiveMode mode);  // "exact", "span16", "span8", "affine"
+
+class DemoController {
+public:
+    DemoController(const Camera& home, const RenderSettings& settings, Vec3 toLight, MotionTuning tuning = {});
+
+    // --- Input (already translated by the platform layer) -----------------------------------
+    // A key went down (repeat = auto-repeat of a held key) or up. Returns the press's action;
+    // the controller has already applied every action except Quit and Screenshot, which need
+    // the platform (and are only reported, once per press: auto-repeat reports None).
+    Action keyDown(Key key, bool repeat = false);
+    void keyUp(Key key);
+    // Forget every held key (the window lost the focus: no key-up will come).
+    void releaseAllKeys();
+    bool held(Key key) const { return held_[std::size_t(key)]; }
+    // A drag by (dx, dy) pixels (x right, y down): turns by the distance, not by time.
+    void mouseDrag(int dx, int dy);
+
+    // Integrates the held keys over dtSeconds (clamped to [0, tuning.maxStep]; NaN = 0).
+    void update(double dtSeconds);
+
+    // --- State ------------------------------------------------------------------------------
+    const Camera& camera() const { return camera_; }
+    Camera& camera() { return camera_; }
+    const RenderSettings& settings() const { return settings_; }
+    bool depthView() const { return depthView_; }
+    bool helpVisible() const { return help_; }
+    const MotionTuning& tuning() const { return tuning_; }
+    void resetView() { camera_ = home_; }
+
+    FrameView frameView(int width, int height) const { return frameViewFor(camera_, width, height, toLight_); }
+
+    // "cull none | phong | bilinear | exact" (+ " | wireframe", " | depth view").
+    std::string modeSummary() const;
+
+private:
+    Camera home_;
+    Camera camera_;
+    RenderSettings settings_;
+    Vec3 toLight_;
+    MotionTuning tuning_;
+    bool depthView_ = false;
+    bool help_ = false;
+    std::array<bool, std::size_t(kKeyCount)> held_{};
+
+    float axis(Key positive, Key negative) const { return float(held(positive)) - float(held(negative)); }
+};
+
+} // namespace sr::demo

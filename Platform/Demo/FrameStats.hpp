@@ -1,0 +1,41 @@
+// Frame statistics for the title bar: FPS and ms per frame averaged over a short period, and the
+// title text itself ("SoftRaster — 143 fps 7.0 ms — 3,212 tris — cull none | phong | ...").
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+namespace sr::demo {
+
+// Averages frame times over `period` seconds, so the title changes a few times per second
+// instead of flickering every frame.
+class FrameStats {
+public:
+    explicit FrameStats(double periodSeconds = 0.25) : period_(periodSeconds) {}
+
+    // Adds one frame that took `seconds` (non-finite or negative counts as 0). Returns true when
+    // a period is complete and fps() / msPerFrame() hold a new average.
+    bool addFrame(double seconds);
+
+    bool hasAverage() const { return hasAverage_; }
+    double fps() const { return fps_; }
+    double msPerFrame() const { return ms_; }
+
+private:
+    double period_;
+    double accumulated_ = 0.0;
+    long long frames_ = 0;
+    bool hasAverage_ = false;
+    double fps_ = 0.0;
+    double ms_ = 0.0;
+};
+
+// 3212 -> "3,212".
+std::string withThousands(std::uint64_t value);
+
+// The window title (UTF-8): "SoftRaster — F fps M ms — T tris — modes" and, when not empty,
+// " — status". Without an average yet the FPS part reads "-- fps".
+std::string windowTitle(const FrameStats& stats, std::uint64_t triangles, const std::string& modes,
+                        const std::string& status = {});
+
+} // namespace sr::demo

@@ -1,0 +1,162 @@
+// Tests of the demo's mode toggles (cull, shading, filter, perspective, wireframe, depth view,
+// help), the title text and frame statistics, the depth view's grey mapping and screenshot names.
+#include "TestFramework.hpp"
+
+#include <cmath>
+#include <limits>
+
+#include "Platform/Demo/DemoController.hpp"
+#include "Platform/Demo/DepthView.hpp"
+#include "Platform/Demo/FrameStats.hpp"
+
+using namespace sr;
+using namespace sr::demo;
+
+namespace {
+
+DemoController makeController() { return DemoController(Camera{}, RenderSettings{}, Vec3{0.0f, 1.0f, 0.0f}); }
+
+} // namespace
+
+TEST_CASE("C cycles the cull mode none -> CW -> CCW -> none and the summary shows it", "[platform]") {
+    DemoController c = makeController();
+    CHECK(c.settings().cull == CullMode::None);
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact");
+    CHECK(c.keyDown(Key::C) == Action::CycleCull);
+    CHECK(c.settings().cull == CullMode::CW);
+    CHECK(c.modeSummary().rfind("cull CW |", 0) == 0);
+    c.keyUp(Key::C);
+    c.keyDown(Key::C);
+    CHECK(c.settings().cull == CullMode::CCW);
+    CHECK(c.modeSummary().rfind("cull CCW |", 0) == 0);
+    c.keyDown(Key::C);
+    CHECK(c.settings().cull == CullMode::None);
+}
+
+TEST_CASE("auto-repeat does not flip a toggle again", "[platform]") {
+    DemoController c = makeController();
+    c.keyDown(Key::C);
+    CHECK(c.keyDown(Key::C, /*repeat=*/true) == Action::None);
+    CHECK(c.keyDown(Key::C, /*repeat=*/true) == Action::None);
+    CHECK(c.settings().cull == CullMode::CW);
+}
+
+TEST_CASE("shading, filter and perspective cycle through every mode", "[platform]") {
+    DemoController c = makeController();
+    const ShadingMode shading[] = {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong};
+    for (const ShadingMode m : shading) {
+        c.keyDown(Key::M);
+        CHECK(c.settings().shading == m);
+    }
+    const TextureFilter filters[] = {TextureFilter::Trilinear, TextureFilter::Nearest, TextureFilter::Bilinear};
+    for (const TextureFilter f : filters) {
+        c.keyDown(Key::T);
+        CHECK(c.settings().filter == f);
+    }
+    const PerspectiveMode modes[] = {PerspectiveMode::Span16, PerspectiveMode::Span8, PerspectiveMode::Affine,
+                                     PerspectiveMode::Exact};
+    for (const PerspectiveMode p : modes) {
+        c.keyDown(Key::P);
+        CHECK(c.settings().perspective == p);
+    }
+    c.keyDown(Key::M);
+    c.keyDown(Key::P);
+    c.keyDown(Key::P);
+    c.keyDown(Key::P);
+    CHECK(c.modeSummary() == "cull none | unlit | bilinear | affine");
+}
+
+TEST_CASE("wireframe, depth view and help toggle; Quit and Screenshot are left to the platform", "[platform]") {
+    DemoController c = makeController();
+    c.keyDown(Key::L);
+    CHECK(c.settings().wireframe);
+    c.keyDown(Key::Z);
+    CHECK(c.depthView());
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | wireframe | depth view");
+    c.keyDown(Key::L);
+    c.keyDown(Key::Z);
+    CHECK_FALSE(c.settings().wireframe);
+    CHECK_FALSE(c.depthView());
+    CHECK_FALSE(c.helpVisible());
+    CHECK(c.keyDown(Key::F1) == Action::ToggleHelp);
+    CHECK(c.helpVisible());
+    CHECK(c.keyDown(Key::Escape) == Action::Quit);
+    CHECK(c.keyDown(Key::F12) == Action::Screenshot);
+    CHECK(c.keyDown(Key::Unknown) == Action::None);
+    CHECK(c.keyDown(Key::W) == Action::None);
+}
+
+TEST_CASE("frame statistics average over the period", "[platform]") {
+    FrameStats s(0.25);
+    CHECK_FALSE(s.hasAverage());
+    int ready = 0;
+    for (int i = 0; i < 100; ++i) ready += s.addFrame(0.01) ? 1 : 0; // 1 s at 100 fps
+    CHECK(ready == 4);
+    CHECK(std::fabs(s.fps() - 100.0) < 1.0);
+    CHECK(std::fabs(s.msPerFrame() - 10.0) < 0.1);
+    CHECK_FALSE(s.addFrame(std::nan(""))); // ignored time, still a frame
+}
+
+TEST_CASE("the title shows fps, ms, triangles with separators and the modes", "[platform]") {
+    FrameStats s(0.1);
+    CHECK(windowTitle(s, 12, "cull none").rfind("SoftRaster", 0) == 0);
+    CHECK(windowTitle(s, 12, "x").find("-- fps") != std::string::npos);
+    s.addFrame(0.007);
+    s.addFrame(0.007);
+    for (int i = 0; i < 14; ++i) s.addFrame(0.007);
+    const std::string t = windowTitle(s, 3212, "cull none | phong | bilinear | exact", "saved a.png");
+    CHECK(t == "SoftRaster \xE2\x80\x94 143 fps 7.0 ms \xE2\x80\x94 3,212 tris \xE2\x80\x94 cull none | phong | "
+               "bilinear | exact \xE2\x80\x94 saved a.png");
+    CHECK(withThousands(0) == "0");
+    CHECK(withThousands(999) == "999");
+    CHECK(withThousands(1000) == "1,000");
+    CHECK(withThousands(1234567) == "1,234,567");
+}
+
+TEST_CASE("depth view: background black, nearest white, grey falls with distance", "[platform]") {
+    FrameBuffer fb(4, 1);
+    fb.clear(packBgra(10, 20, 30), 0.0f);
+    // Reversed-Z with an infinite far plane: d = near / distance (near = 0.1).
+    float* d = fb.depthData();
+    d[1] = 0.1f / 1.0f;  // 1 unit away
+    d[2] = 0.1f / 10.0f; // 10 units
+    d[3] = std::numeric_limits<float>::quiet_NaN();
+    depthToGrey(fb);
+    CHECK(fb.pixel(0, 0) == packBgra(0, 0, 0));
+    CHECK(fb.pixel(1, 0) == packBgra(255, 255, 255));
+    CHECK(fb.pixel(2, 0) == packBgra(40, 40, 40));
+    CHECK(fb.pixel(3, 0) == packBgra(0, 0, 0));
+
+    // Log scale: the geometric middle distance is the middle grey.
+    FrameBuffer g(3, 1);
+    g.clear(0, 0.0f);
+    g.depthData()[0] = 1.0f;
+    g.depthData()[1] = 0.1f;
+    g.depthData()[2] = 0.01f;
+    depthToGrey(g);
+    CHECK(std::abs(int(pixelR(g.pixel(1, 0))) - (40 + 215 / 2)) <= 1);
+
+    // One depth only, and an empty framebuffer.
+    FrameBuffer one(2, 2);
+    one.clear(0, 0.5f);
+    depthToGrey(one);
+    CHECK(one.pixel(1, 1) == packBgra(255, 255, 255));
+    FrameBuffer empty;
+    depthToGrey(empty);
+    CHECK(empty.empty());
+}
+
+TEST_CASE("screenshot names carry the date, time and counter", "[platform]") {
+    std::tm t{};
+    t.tm_year = 2025 - 1900;
+    t.tm_mon = 2;
+    t.tm_mday = 7;
+    t.tm_hour = 9;
+    t.tm_min = 5;
+    t.tm_sec = 3;
+    CHECK(screenshotName(t, 12) == "SoftRaster-20250307-090503-12.png");
+    FrameBuffer empty;
+    const Status s = saveScreenshot(empty, "never-written.png");
+    CHECK_FALSE(s.ok());
+    CHECK(s.error().find("never-written.png") != std::string::npos);
+}
