@@ -1,6 +1,8 @@
 // Tests of the headless command: flag parsing and error paths, bench's JSON, report's files.
 #include "TestFramework.hpp"
 
+#include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -192,4 +194,31 @@ TEST_CASE("report writes report.csv, report.md and report.svg for a tiny scene",
     CHECK(s.rfind("<svg", 0) == 0);
     CHECK(s.find("Pareto") != std::string::npos);
     CHECK(std::count(s.begin(), s.end(), '\n') > 20);
+}
+
+TEST_CASE("render of the default scene matches its golden image", "[headless][golden]") {
+    // Same tolerance as the render suite's golden test (Tests/Render/GoldenImageTests.cpp):
+    // at most 0.5% of the pixels differ, at most 10 of them by more than 2 levels.
+    for (const char* mode : {"unlit", "phong"}) {
+        CAPTURE(mode);
+        const std::string path = tempDir("golden") + "/default_" + mode + ".png";
+        const Run r = run({"render", "--width", "160", "--height", "120", "--shading", mode, "--out", path, "--quiet"});
+        REQUIRE(r.rc == kExitOk);
+        auto actual = loadImage(path);
+        auto golden = loadImage(std::string(SR_TEST_DATA_DIR) + "/../Golden/default_" + mode + "_160x120.png");
+        REQUIRE(actual.ok());
+        REQUIRE(golden.ok());
+        REQUIRE(actual.value().width == golden.value().width);
+        REQUIRE(actual.value().height == golden.value().height);
+        int differing = 0, large = 0;
+        for (std::size_t i = 0; i < actual.value().rgba.size(); i += 4) {
+            int m = 0;
+            for (std::size_t c = 0; c < 3; ++c)
+                m = std::max(m, std::abs(int(actual.value().rgba[i + c]) - int(golden.value().rgba[i + c])));
+            differing += m > 0;
+            large += m > 2;
+        }
+        CHECK(differing <= 160 * 120 / 200);
+        CHECK(large <= 10);
+    }
 }
