@@ -2,6 +2,8 @@
 #include "Resources/ObjScan.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 namespace sr {
@@ -267,6 +269,16 @@ Result<ObjScanStats> scanObj(TextSpan text, const std::string& name, const ObjLi
             otherIndices += countTokens(p + 2, e);
         } else if (kind == Kind::Weight) {
             weightTokens += countTokens(p + 3, e);
+            // "vw vertex joint weight ...": tinyobjloader converts the vertex and joint ids to int
+            // with no range check (undefined behaviour for 1e38, found by fuzzing), so every value
+            // must be a plain number within int's range.
+            for (const char* q = skipBlanks(p + 3, e); q < e; q = skipBlanks(q, e)) {
+                const char* t = q;
+                while (q < e && !isBlank(*q)) ++q;
+                const std::string token(t, q);
+                if (!isAcceptedNumber(t, q) || !(std::fabs(std::strtod(token.c_str(), nullptr)) <= 2147483647.0))
+                    return R::failure(at() + "vertex weight value " + quoted(t, q) + " is not a number in int's range");
+            }
         } else if (kind == Kind::Group) {
             ++groups;
         } else if (kind == Kind::UseMtl) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "Resources/Image.hpp"
+#include "Resources/ObjLoader.hpp"
 
 using namespace sr;
 
@@ -68,4 +69,17 @@ TEST_CASE("fuzz: stb's error text quoting file bytes stays on one line", "[resou
     // An unknown critical chunk: stb copies its type bytes (here a newline and form feeds) into the message.
     const std::string e = decodeError(pngStart() + be32(0) + "\x0c\n\x0c\x0c" + be32(0));
     CHECK(has(e, "PNG chunk not known"));
+}
+
+TEST_CASE("fuzz: a vertex-weight line with an id beyond int's range is refused before tinyobjloader",
+          "[resources][obj][fuzz]") {
+    // Found by sr_fuzz_obj: tinyobjloader converts "vw" joint ids with int(double) unchecked
+    // (undefined behaviour for 1e38). The scan refuses such a line; ordinary weights still load.
+    const std::string bad = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 1 1e38 0.5\nf 1 2 3\n";
+    const auto r = loadObjFromMemory(reinterpret_cast<const unsigned char*>(bad.data()), bad.size(), "w.obj");
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error() == "w.obj:4: vertex weight value '1e38' is not a number in int's range");
+    const std::string good = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 1 0 0.5 2 0.5\nf 1 2 3\n";
+    const auto ok = loadObjFromMemory(reinterpret_cast<const unsigned char*>(good.data()), good.size(), "w.obj");
+    CHECK(ok.ok());
 }
