@@ -42,6 +42,72 @@ int oversizedJpegHuffmanTable(const unsigned char* data, std::size_t size) {
     return 0;
 }
 
+// stb 2.27 mallocs its JPEG decoder state without clearing it, so a Huffman table that no DHT
+// segment defined is whatever the heap held: a scan that selects one reads symbol ids from
+// garbage (an out-of-bounds read found by fuzzing; 2.28 bounds the id instead). StbImplementation.cpp
+// makes stb's allocations zeroed (a zero table decodes without reading out of bounds); this walk
+// turns the case into a clear error first. It follows the marker structure as stb reads it:
+// segments by their length, each scan's entropy-coded data up to the next marker that is not a
+// stuffed byte or a restart, DHT segments recorded as they come. A scan needs the DC tables of
+// its components when it codes DC coefficients for the first time (baseline, or progressive
+// with Ss = 0 and Ah = 0), and their AC tables when it codes AC coefficients (baseline, or Ss > 0).
+// Returns the problem, or "" when every table a scan uses was defined before it.
+std::string jpegHuffmanSelectionProblem(const unsigned char* data, std::size_t size) {
+    std::size_t p = 0;
+    while (p < size && data[p] == 0xFF) ++p;
+    if (p < 1 || p >= size || data[p] != 0xD8) return ""; // not a JPEG
+    ++p;
+    const auto at = [&](std::size_t i) -> unsigned { return i < size ? data[i] : 0u; };
+    bool defined[2][4] = {};
+    bool progressive = false;
+    while (p < size) {
+        while (p < size && data[p] != 0xFF) ++p; // stb resynchronises on the next 0xFF
+        while (p < size && data[p] == 0xFF) ++p;
+        if (p >= size) break;
+        const unsigned marker = data[p++];
+        if (marker == 0xD9) break;                                               // EOI
+        if (marker == 0x00 || marker == 0x01 || (marker >= 0xD0 && marker <= 0xD7)) continue; // no length
+        const std::size_t length = at(p) << 8 | at(p + 1);
+        if (length < 2) break; // stb refuses the segment
+        const std::size_t end = p + length;
+        if (marker == 0xC2) progressive = true;
+        if (marker == 0xC4) { // DHT: one or more tables
+            std::size_t q = p + 2;
+            while (q < end && q < size) {
+                const unsigned tc = at(q) >> 4, th = at(q) & 15;
+                if (tc > 1 || th > 3) return ""; // stb refuses the table itself
+                std::size_t codes = 0;
+                for (std::size_t i = 1; i <= 16; ++i) codes += at(q + i);
+                defined[tc][th] = true;
+                q += 17 + codes;
+            }
+        } else if (marker == 0xDA) { // SOS: check the selectors, then skip the entropy-coded data
+            const unsigned components = at(p + 2);
+            const std::size_t tail = p + 3 + 2 * std::size_t(components);
+            const unsigned ss = at(tail), se = at(tail + 1), ah = at(tail + 2) >> 4;
+            const bool needDc = !progressive || (ss == 0 && ah == 0);
+            const bool needAc = !progressive || ss > 0 || se > 0;
+            for (unsigned c = 0; c < components; ++c) {
+                const unsigned dc = at(p + 4 + 2 * c) >> 4, ac = at(p + 4 + 2 * c) & 15;
+                if (dc > 3 || ac > 3) return ""; // stb refuses the scan header itself
+                if ((needDc && !defined[0][dc]) || (needAc && !defined[1][ac])) {
+                    const bool dcMissing = needDc && !defined[0][dc];
+                    return std::string("corrupt JPEG (a scan uses Huffman table ") + (dcMissing ? "DC " : "AC ") +
+                           std::to_string(dcMissing ? dc : ac) + ", which no DHT segment before it defines)";
+                }
+            }
+            std::size_t q = end;
+            while (q + 1 < size && !(data[q] == 0xFF && data[q + 1] != 0x00 && data[q + 1] != 0xFF &&
+                                     (data[q + 1] < 0xD0 || data[q + 1] > 0xD7)))
+                ++q;
+            p = q;
+            continue;
+        }
+        p = end;
+    }
+    return "";
+}
+
 // Two stb 2.27 PNM bugs (both fixed upstream in 2.28) are refused before stb reads the header:
 //  - the numbers (width, height, max value) are read into an int with no overflow check;
 //  - a 16-bit file (max value > 255) is converted to RGBA with the 8-bit converter, and the
@@ -113,7 +179,8 @@ Result<Image> decodeImage(const unsigned char* data, std::size_t size, const std
         return R::failure(name + ": corrupt JPEG (a Huffman table defines " + std::to_string(codes) +
                           " codes, at most 256 are possible)");
     }
-    for (const std::string& problem : {pnmHeaderProblem(data, size), pngChunkProblem(data, size)})
+    for (const std::string& problem :
+         {jpegHuffmanSelectionProblem(data, size), pnmHeaderProblem(data, size), pngChunkProblem(data, size)})
         if (!problem.empty()) return R::failure(name + ": " + problem);
     int w = 0, h = 0, channels = 0;
     // Read the header first: a PNG claiming 100000 x 100000 must not allocate 40 GB.

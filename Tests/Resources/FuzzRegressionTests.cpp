@@ -34,7 +34,61 @@ std::string pngStart() {
            be32(0);
 }
 
+// The smallest baseline JPEG: one 8x8 grey component, quantiser 1, a DC and an AC Huffman
+// table (0 and 0) with one 1-bit code each (DC category 0, AC end-of-block), and the entropy-coded
+// bits "0" (DC difference 0) "0" (EOB) padded with ones: every pixel decodes to 128.
+std::string baselineJpeg() {
+    std::string jpg("\xFF\xD8", 2);
+    jpg += std::string("\xFF\xDB\x00\x43\x00", 5) + std::string(64, '\x01');                  // DQT
+    jpg += std::string("\xFF\xC0\x00\x0B\x08\x00\x08\x00\x08\x01\x01\x11\x00", 13);         // SOF0
+    const std::string oneCode = std::string("\x01", 1) + std::string(15, '\0') + std::string(1, '\0');
+    jpg += std::string("\xFF\xC4\x00\x26", 4) + std::string(1, '\x00') + oneCode + "\x10" + oneCode; // DHT
+    jpg += std::string("\xFF\xDA\x00\x08\x01\x01\x00\x00\x3F\x00", 10);                      // SOS
+    jpg += std::string("\x3F\xFF\xD9", 3);                                                    // data, EOI
+    return jpg;
+}
+
+// Offset of the (first) SOS marker.
+std::size_t sosOffset(const std::string& jpg) {
+    const std::size_t at = jpg.find("\xFF\xDA");
+    REQUIRE(at != std::string::npos);
+    return at;
+}
+
 } // namespace
+
+TEST_CASE("fuzz: a JPEG scan that selects a Huffman table no DHT defined is refused (stb 2.27 reads stale heap)",
+          "[resources][image][fuzz]") {
+    const std::string good = baselineJpeg();
+    {
+        const auto r = decodeImage(reinterpret_cast<const unsigned char*>(good.data()), good.size(), "good.jpg");
+        REQUIRE(r.ok()); // the walk must not refuse a well-formed file
+        REQUIRE(r.value().width == 8);
+        REQUIRE(r.value().height == 8);
+        CHECK(int(r.value().texel(7, 7)[0]) == 128);
+    }
+    const std::size_t sos = sosOffset(good);
+    REQUIRE(good[sos + 4] == '\x01'); // one component: selector at sos + 5, its DC/AC table byte at sos + 6
+    std::string dcMissing = good;
+    dcMissing[sos + 6] = '\x20'; // DC table 2 (never defined), AC table 0
+    CHECK(has(decodeError(dcMissing), "corrupt JPEG (a scan uses Huffman table DC 2"));
+    std::string acMissing = good;
+    acMissing[sos + 6] = '\x03'; // DC table 0, AC table 3 (never defined)
+    CHECK(has(decodeError(acMissing), "Huffman table AC 3"));
+    // The tables must be defined before the scan: move the DHT segment behind the scan header.
+    const std::size_t dht = good.find("\xFF\xC4");
+    REQUIRE(dht != std::string::npos);
+    REQUIRE(dht < sos);
+    const std::size_t dhtLength = std::size_t(static_cast<unsigned char>(good[dht + 2])) << 8 |
+                                  static_cast<unsigned char>(good[dht + 3]);
+    std::string late = good;
+    late.erase(dht, 2 + dhtLength);
+    const std::size_t lateSos = sosOffset(late);
+    late.insert(lateSos + 2 + ((std::size_t(static_cast<unsigned char>(late[lateSos + 2])) << 8) |
+                               static_cast<unsigned char>(late[lateSos + 3])),
+                good.substr(dht, 2 + dhtLength));
+    CHECK(has(decodeError(late), "Huffman table DC 0"));
+}
 
 TEST_CASE("fuzz: a JPEG Huffman table with more than 256 codes is refused (stb 2.27 writes out of bounds)",
           "[resources][image][fuzz]") {
