@@ -174,14 +174,28 @@ struct PhongProgram {
             for (int k = 0; k < kVaryings; ++k) f.varyings[std::size_t(k)] = b.v[k][i];
             return f;
         };
-        alignas(16) float kdR[4], kdG[4], kdB[4];
-        for (int i = 0; i < 4; ++i) {
-            Color kd = d->kd;
-            if constexpr (kTextured) kd = sampleKd(*d, setup, laneFragment(i));
-            kdR[i] = kd.r;
-            kdG[i] = kd.g;
-            kdB[i] = kd.b;
+        Texture::ColorLanes kd;
+        if constexpr (kTextured) {
+            if (d->settings.filter == TextureFilter::Bilinear) {
+                d->texture->sampleBilinear4(b.v[0], b.v[1], d->settings.wrap, kd); // == sampleKd per lane
+            } else {
+                for (int i = 0; i < 4; ++i) {
+                    const Color c = sampleKd(*d, setup, laneFragment(i));
+                    kd.r[i] = c.r;
+                    kd.g[i] = c.g;
+                    kd.b[i] = c.b;
+                }
+            }
+        } else {
+            for (int i = 0; i < 4; ++i) {
+                kd.r[i] = d->kd.r;
+                kd.g[i] = d->kd.g;
+                kd.b[i] = d->kd.b;
+            }
         }
+        const float* kdR = kd.r;
+        const float* kdG = kd.g;
+        const float* kdB = kd.b;
         const simd::Vec3x4 n = simd::normalizeFast(simd::load3(b.v[kP + 3], b.v[kP + 4], b.v[kP + 5]), ok);
         const Vec3 eye = d->view.eye;
         const simd::Vec3x4 toEye{_mm_sub_ps(_mm_set1_ps(eye.x), _mm_loadu_ps(b.v[kP])),

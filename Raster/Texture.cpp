@@ -6,6 +6,13 @@
 #include <cassert>
 #include <cmath>
 
+#if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
+#include <emmintrin.h>
+#define SR_TEXTURE_SSE2 1
+#else
+#define SR_TEXTURE_SSE2 0
+#endif
+
 namespace sr {
 
 // --- Names ------------------------------------------------------------------------------------
@@ -290,6 +297,117 @@ Color Texture::sampleBilinear(Vec2 uv, WrapMode wrap) const {
     case WrapMode::Mirror: return toColor(TextureSampling::bilinear<WrapMode::Mirror>(l, uv));
     }
     return {};
+}
+
+// --- Four bilinear samples at once ------------------------------------------------------------
+#if SR_TEXTURE_SSE2
+namespace {
+
+inline __m128d floorPd(__m128d d) { // floorExact for |d| < 2^31: truncate, then one down if above
+    const __m128d t = _mm_cvtepi32_pd(_mm_cvttpd_epi32(d));
+    return _mm_sub_pd(t, _mm_and_pd(_mm_cmpgt_pd(t, d), _mm_set1_pd(1.0)));
+}
+
+// linearTaps(u, size, Repeat) for two lanes (|u| < 2^31, not NaN): the reduction and
+// X = floor((d * size - 0.5) * 256 + 0.5) with the same double operations; X in the low two ints.
+inline __m128i repeatX2(__m128d d, __m128d size) {
+    const __m128d absD = _mm_and_pd(d, _mm_castsi128_pd(_mm_set1_epi64x(0x7FFFFFFFFFFFFFFFLL)));
+    const __m128d big = _mm_cmpge_pd(absD, _mm_set1_pd(1.0));
+    d = _mm_or_pd(_mm_and_pd(big, _mm_sub_pd(d, floorPd(d))), _mm_andnot_pd(big, d));
+    const __m128d y = _mm_add_pd(_mm_mul_pd(_mm_sub_pd(_mm_mul_pd(d, size), _mm_set1_pd(0.5)), _mm_set1_pd(256.0)),
+                                 _mm_set1_pd(0.5));
+    // floor(y) as int32 (|y| < 2^31 here: |d| < 1 and size <= 16384): truncate, minus 1 if above.
+    const __m128i i = _mm_cvttpd_epi32(y);
+    const __m128i above = _mm_castpd_si128(_mm_cmpgt_pd(_mm_cvtepi32_pd(i), y)); // two 64-bit masks
+    return _mm_add_epi32(i, _mm_shuffle_epi32(above, _MM_SHUFFLE(3, 3, 2, 0)));  // + (-1) where above
+}
+
+// Repeat taps of four lanes along one axis: wrapped texel indices a (i0) and b (i0 + 1) and the
+// 8-bit weight w of b; as linearTaps + Wrap<Repeat>::pair. False when a lane is NaN, infinite or
+// |u| >= 2^31 (the caller then samples lane by lane).
+inline bool repeatTaps4(__m128 u, int size, std::uint32_t mask, __m128i& a, __m128i& b, __m128i& w) {
+    const __m128 absU = _mm_and_ps(u, _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF)));
+    if (_mm_movemask_ps(_mm_cmplt_ps(absU, _mm_set1_ps(2147483648.0f))) != 0xF) return false;
+    const __m128d sizeD = _mm_set1_pd(double(size));
+    const __m128i lo = repeatX2(_mm_cvtps_pd(u), sizeD);
+    const __m128i hi = repeatX2(_mm_cvtps_pd(_mm_movehl_ps(u, u)), sizeD);
+    const __m128i x = _mm_unpacklo_epi64(lo, hi);
+    const __m128i i0 = _mm_srai_epi32(x, 8);
+    w = _mm_and_si128(x, _mm_set1_epi32(255));
+    const __m128i one = _mm_set1_epi32(1);
+    if (mask != 0) {
+        const __m128i m = _mm_set1_epi32(int(mask));
+        a = _mm_and_si128(i0, m);
+        b = _mm_and_si128(_mm_add_epi32(i0, one), m);
+        return true;
+    }
+    const __m128i n = _mm_set1_epi32(size), zero = _mm_setzero_si128();
+    a = _mm_add_epi32(i0, _mm_and_si128(_mm_cmplt_epi32(i0, zero), n)); // i0 >= -size - 1: twice
+    a = _mm_add_epi32(a, _mm_and_si128(_mm_cmplt_epi32(a, zero), n));
+    const __m128i next = _mm_add_epi32(a, one);
+    b = _mm_andnot_si128(_mm_cmpeq_epi32(next, n), next);
+    return true;
+}
+
+} // namespace
+#endif
+
+void Texture::sampleBilinear4(const float u[4], const float v[4], WrapMode wrap, ColorLanes& out) const {
+#if SR_TEXTURE_SSE2
+    const Level& l = levels_[0];
+    __m128i x0, x1, wx, y0, y1, wy;
+    if (wrap == WrapMode::Repeat && repeatTaps4(_mm_loadu_ps(u), l.width, l.maskX, x0, x1, wx) &&
+        repeatTaps4(_mm_loadu_ps(v), l.height, l.maskY, y0, y1, wy)) {
+        alignas(16) std::int32_t ix0[4], ix1[4], iy0[4], iy1[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(ix0), x0);
+        _mm_store_si128(reinterpret_cast<__m128i*>(ix1), x1);
+        _mm_store_si128(reinterpret_cast<__m128i*>(iy0), y0);
+        _mm_store_si128(reinterpret_cast<__m128i*>(iy1), y1);
+        alignas(16) std::uint32_t t00[4], t10[4], t01[4], t11[4];
+        const std::uint32_t* texels = l.texels.data();
+        const std::size_t width = std::size_t(l.width);
+        for (int i = 0; i < 4; ++i) { // scalar gathers
+            const std::uint32_t* row0 = texels + std::size_t(iy0[i]) * width;
+            const std::uint32_t* row1 = texels + std::size_t(iy1[i]) * width;
+            t00[i] = row0[ix0[i]];
+            t10[i] = row0[ix1[i]];
+            t01[i] = row1[ix0[i]];
+            t11[i] = row1[ix1[i]];
+        }
+        // blend2x2 per channel in float: texel bytes times 8-bit weights are integers below 2^24,
+        // so every product and sum is exact and raw equals the integer blend.
+        const __m128i w256 = _mm_set1_epi32(256);
+        const __m128 bx = _mm_cvtepi32_ps(wx), ax = _mm_cvtepi32_ps(_mm_sub_epi32(w256, wx));
+        const __m128 by = _mm_cvtepi32_ps(wy), ay = _mm_cvtepi32_ps(_mm_sub_epi32(w256, wy));
+        const __m128i q00 = _mm_load_si128(reinterpret_cast<const __m128i*>(t00));
+        const __m128i q10 = _mm_load_si128(reinterpret_cast<const __m128i*>(t10));
+        const __m128i q01 = _mm_load_si128(reinterpret_cast<const __m128i*>(t01));
+        const __m128i q11 = _mm_load_si128(reinterpret_cast<const __m128i*>(t11));
+        const __m128i byteMask = _mm_set1_epi32(0xFF);
+        const __m128 scale = _mm_set1_ps(kRawScale);
+        auto channel = [&](int shift, float* dst) {
+            auto ch = [&](__m128i t) {
+                return _mm_cvtepi32_ps(_mm_and_si128(_mm_srl_epi32(t, _mm_cvtsi32_si128(shift)), byteMask));
+            };
+            const __m128 bottom = _mm_add_ps(_mm_mul_ps(ch(q00), ax), _mm_mul_ps(ch(q10), bx));
+            const __m128 top = _mm_add_ps(_mm_mul_ps(ch(q01), ax), _mm_mul_ps(ch(q11), bx));
+            const __m128 raw = _mm_add_ps(_mm_mul_ps(bottom, ay), _mm_mul_ps(top, by));
+            _mm_store_ps(dst, _mm_div_ps(raw, scale));
+        };
+        channel(0, out.r);
+        channel(8, out.g);
+        channel(16, out.b);
+        channel(24, out.a);
+        return;
+    }
+#endif
+    for (int i = 0; i < 4; ++i) {
+        const Color c = sampleBilinear(Vec2{u[i], v[i]}, wrap);
+        out.r[i] = c.r;
+        out.g[i] = c.g;
+        out.b[i] = c.b;
+        out.a[i] = c.a;
+    }
 }
 
 Color Texture::sampleTrilinear(Vec2 uv, float lod, WrapMode wrap) const {

@@ -98,6 +98,18 @@ public:
     // texel exactly (byte / 255.0f); halfway between two texels it is the correctly rounded
     // (a + b) / 510; a region of equal texels returns that texel exactly at every uv.
     Color sampleBilinear(Vec2 uv, WrapMode wrap) const;
+    // Four GL_LINEAR samples at once, lane i exactly sampleBilinear({u[i], v[i]}, wrap) (bit for
+    // bit). With SSE2 and Repeat the tap positions are computed two lanes per double register with
+    // the scalar path's very operations, and the 2x2 blend runs in float on exact integers (every
+    // product and sum stays below 2^24); lanes the fast path does not cover (NaN, Inf, |u| >= 2^31)
+    // and the other wrap modes go through sampleBilinear lane by lane.
+    struct ColorLanes {
+        alignas(16) float r[4];
+        alignas(16) float g[4];
+        alignas(16) float b[4];
+        alignas(16) float a[4];
+    };
+    void sampleBilinear4(const float u[4], const float v[4], WrapMode wrap, ColorLanes& out) const;
     // GL_LINEAR_MIPMAP_LINEAR: lod clamped to [0, levelCount() - 1]; GL_LINEAR in levels floor(lod)
     // and floor(lod) + 1, blended by frac(lod) in 8-bit fixed point (wl = floor(256 frac), the
     // integer blends mixed as (c0 (256 - wl) + c1 wl + 128) >> 8). wl == 0 and the last level

@@ -98,3 +98,43 @@ TEST_CASE("a region of equal texels samples to exactly that texel at any uv and 
         }
     }
 }
+
+TEST_CASE("sampleBilinear4 is bit-identical to sampleBilinear lane by lane", "[texture][fastpath][simd]") {
+    std::mt19937 rng(20261122u);
+    // Power-of-two (masked wrap) and other sizes, 1-texel axes, the largest size.
+    const int sizes[][2] = {{1, 1}, {1, 7}, {3, 5}, {4, 4}, {16, 8}, {33, 17}, {64, 64}, {5, 128}, {249, 250}, {16384, 2}};
+    const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror};
+    long compared = 0;
+    for (const auto& s : sizes) {
+        const Texture t = randomTexture(s[0], s[1], rng);
+        for (int i = 0; i < 4000; ++i) {
+            float u[4], v[4];
+            for (int k = 0; k < 4; ++k) {
+                // Mostly ordinary coordinates (the SIMD path), sometimes a special one in one lane
+                // (the whole batch then takes the per-lane path).
+                const bool ordinary = rng() % 8u != 0;
+                u[k] = ordinary ? std::uniform_real_distribution<float>(-4.0f, 4.0f)(rng) : randomCoordinate(rng, s[0]);
+                v[k] = ordinary ? std::uniform_real_distribution<float>(-4.0f, 4.0f)(rng) : randomCoordinate(rng, s[1]);
+                if (rng() % 4u == 0) { // texel centres / edges: weights exactly 0 or 128
+                    const int j = int(rng() % std::uint32_t(4 * s[0] + 1)) - 2 * s[0];
+                    u[k] = (float(j) + ((rng() & 1u) ? 0.5f : 0.0f)) / float(s[0]);
+                }
+            }
+            for (WrapMode w : wraps) {
+                Texture::ColorLanes lanes;
+                t.sampleBilinear4(u, v, w, lanes);
+                for (int k = 0; k < 4; ++k) {
+                    const Color ref = t.sampleBilinear(Vec2{u[k], v[k]}, w);
+                    const Color got{lanes.r[k], lanes.g[k], lanes.b[k], lanes.a[k]};
+                    if (!bitEqual(ref, got)) {
+                        INFO(s[0] << "x" << s[1] << " lane " << k << " uv (" << u[k] << ", " << v[k] << ") "
+                                  << wrapName(w));
+                        REQUIRE(got == ref);
+                    }
+                    ++compared;
+                }
+            }
+        }
+    }
+    REQUIRE(compared == 10L * 4000 * 3 * 4);
+}
