@@ -134,6 +134,8 @@ std::string DemoController::modeSummary() const {
         s += " | wireframe";
     if (depthView_)
         s += " | depth view";
+    if (help_)
+        s += " | help"; // scripts can tell the overlay is up (it hides part of the picture)
     return s;
 }
 

@@ -67,7 +67,7 @@ public:
 
     FrameView frameView(int width, int height) const { return frameViewFor(camera_, width, height, toLight_); }
 
-    // "cull none | phong | bilinear | exact" (+ " | wireframe", " | depth view").
+    // "cull none | phong | bilinear | exact" (+ " | wireframe", " | depth view", " | help").
     std::string modeSummary() const;
 
 private:

@@ -9,6 +9,7 @@ namespace sr::demo {
 bool FrameStats::addFrame(double seconds) {
     accumulated_ += (std::isfinite(seconds) && seconds > 0.0) ? seconds : 0.0;
     ++frames_;
+    ++totalFrames_;
     if (accumulated_ < period_)
         return false;
     fps_ = double(frames_) / accumulated_;
@@ -42,6 +43,8 @@ std::string windowTitle(const FrameStats& stats, std::uint64_t triangles, const 
     std::string title = "SoftRaster";
     title += kDash;
     title += perf;
+    title += kDash;
+    title += "frame " + withThousands(stats.totalFrames());
     title += kDash;
     title += withThousands(triangles) + " tris";
     title += kDash;

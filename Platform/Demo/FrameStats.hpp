@@ -1,5 +1,6 @@
-// Frame statistics for the title bar: FPS and ms per frame averaged over a short period, and the
-// title text itself ("SoftRaster — 143 fps 7.0 ms — 3,212 tris — cull none | phong | ...").
+// Frame statistics for the title bar: FPS and ms per frame averaged over a short period, the
+// frames drawn so far, and the title text itself
+// ("SoftRaster — 143 fps 7.0 ms — frame 1,024 — 3,212 tris — cull none | phong | ...").
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,8 @@ public:
     bool addFrame(double seconds);
 
     bool hasAverage() const { return hasAverage_; }
+    // Every frame added since construction (scripts read it from the title: rendering goes on).
+    std::uint64_t totalFrames() const { return totalFrames_; }
     double fps() const { return fps_; }
     double msPerFrame() const { return ms_; }
 
@@ -25,6 +28,7 @@ private:
     double period_;
     double accumulated_ = 0.0;
     long long frames_ = 0;
+    std::uint64_t totalFrames_ = 0;
     bool hasAverage_ = false;
     double fps_ = 0.0;
     double ms_ = 0.0;
@@ -33,8 +37,9 @@ private:
 // 3212 -> "3,212".
 std::string withThousands(std::uint64_t value);
 
-// The window title (UTF-8): "SoftRaster — F fps M ms — T tris — modes" and, when not empty,
-// " — status". Without an average yet the FPS part reads "-- fps".
+// The window title (UTF-8): "SoftRaster — F fps M ms — frame N — T tris — modes" and, when not
+// empty, " — status". Without an average yet the FPS part reads "-- fps". N is
+// stats.totalFrames() with thousands separators.
 std::string windowTitle(const FrameStats& stats, std::uint64_t triangles, const std::string& modes,
                         const std::string& status = {});
 

@@ -29,6 +29,10 @@ public:
     // Returns false on failure.
     bool create(HINSTANCE instance, int showCommand, int clientWidth, int clientHeight, bool scaleForDpi);
 
+    // Render threads (--threads; RenderContext::setThreads clamps, 0 or 1 = the UI thread only).
+    // The picture is the same for any count.
+    void setThreads(int threads) { context_.setThreads(threads); }
+
     // True while there is nothing to draw into (minimised, or a 0 x 0 client area).
     bool idle() const;
 

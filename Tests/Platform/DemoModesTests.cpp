@@ -80,6 +80,7 @@ TEST_CASE("wireframe, depth view and help toggle; Quit and Screenshot are left t
     CHECK_FALSE(c.helpVisible());
     CHECK(c.keyDown(Key::F1) == Action::ToggleHelp);
     CHECK(c.helpVisible());
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | help");
     CHECK(c.keyDown(Key::Escape) == Action::Quit);
     CHECK(c.keyDown(Key::F12) == Action::Screenshot);
     CHECK(c.keyDown(Key::Unknown) == Action::None);
@@ -95,17 +96,19 @@ TEST_CASE("frame statistics average over the period", "[platform]") {
     CHECK(std::fabs(s.fps() - 100.0) < 1.0);
     CHECK(std::fabs(s.msPerFrame() - 10.0) < 0.1);
     CHECK_FALSE(s.addFrame(std::nan(""))); // ignored time, still a frame
+    CHECK(s.totalFrames() == 101);
 }
 
 TEST_CASE("the title shows fps, ms, triangles with separators and the modes", "[platform]") {
     FrameStats s(0.1);
     CHECK(windowTitle(s, 12, "cull none").rfind("SoftRaster", 0) == 0);
     CHECK(windowTitle(s, 12, "x").find("-- fps") != std::string::npos);
+    CHECK(windowTitle(s, 12, "x").find("frame 0 ") != std::string::npos);
     s.addFrame(0.007);
     s.addFrame(0.007);
     for (int i = 0; i < 14; ++i) s.addFrame(0.007);
     const std::string t = windowTitle(s, 3212, "cull none | phong | bilinear | exact", "saved a.png");
-    CHECK(t == "SoftRaster \xE2\x80\x94 143 fps 7.0 ms \xE2\x80\x94 3,212 tris \xE2\x80\x94 cull none | phong | "
+    CHECK(t == "SoftRaster \xE2\x80\x94 143 fps 7.0 ms \xE2\x80\x94 frame 16 \xE2\x80\x94 3,212 tris \xE2\x80\x94 cull none | phong | "
                "bilinear | exact \xE2\x80\x94 saved a.png");
     CHECK(withThousands(0) == "0");
     CHECK(withThousands(999) == "999");
