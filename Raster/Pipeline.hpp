@@ -84,15 +84,6 @@ struct LaneBands {
     }
 };
 
-// Four fragments in structure-of-arrays form, for programs that shade with SIMD.
-template <int kVaryings>
-struct FragmentBatch {
-    int count = 0;
-    int x[4] = {}, y[4] = {};
-    float invW[4] = {};
-    alignas(16) float v[kVaryings > 0 ? kVaryings : 1][4] = {};
-};
-
 // Programs that also shade four fragments at once: void fragment4(const FragmentBatch<kV>&,
 // Pixel out[4]) with the same per-pixel arithmetic as fragment() (SIMD lanes are IEEE
 // operations like the scalar ones, so the pixels are bit-identical).
@@ -210,10 +201,16 @@ bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands&
         constexpr DepthMode kDepth = decltype(depthTag)::value;
         if constexpr (kBatched<Program, kVaryings>) {
             switch (state.perspective) {
+#if SR_HAVE_SSE2
+            // Four pixels per step, straight from the planes into fragment4 (ScanlineFill.hpp).
+            case PerspectiveMode::Exact: fillTriangle4<kDepth, kVaryings, PerspectiveMode::Exact>(setup, fb, scissor, program, shaded); break;
+            case PerspectiveMode::Affine: fillTriangle4<kDepth, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, program, shaded); break;
+#else
             case PerspectiveMode::Exact: fillTriangle<kDepth, kVaryings, PerspectiveMode::Exact>(setup, fb, scissor, batching); break;
+            case PerspectiveMode::Affine: fillTriangle<kDepth, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, batching); break;
+#endif
             case PerspectiveMode::Span16: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span16>(setup, fb, scissor, batching); break;
             case PerspectiveMode::Span8: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span8>(setup, fb, scissor, batching); break;
-            case PerspectiveMode::Affine: fillTriangle<kDepth, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, batching); break;
             }
             batching.flush();
         } else if constexpr (kVaryings == 0) {
@@ -389,10 +386,6 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
 }
 
 } // namespace detail
-
-// What a Program's optional fragment4() receives (see detail::BatchingShader).
-template <int kVaryings>
-using FragmentBatch = detail::FragmentBatch<kVaryings>;
 
 // Draws the indexed triangle list `indices` (indexCount / 3 triangles) over `vertexCount`
 // vertices into ctx.target(), with a Program: an object with

@@ -7,6 +7,7 @@
 
 #include "Raster/FixedPoint.hpp"
 #include "Raster/FrameBuffer.hpp"
+#include "Raster/ShadingSimd.hpp" // SR_HAVE_SSE2 and <emmintrin.h>
 #include "Raster/TriangleSetup.hpp"
 
 namespace sr {
@@ -193,5 +194,100 @@ template <DepthMode kDepth, int kVaryings, PerspectiveMode kPersp = PerspectiveM
 void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, Shader&& shader) {
     fillTriangle<kDepth, kVaryings, kPersp>(t, fb, fullScissor(fb), shader);
 }
+
+// Four fragments in structure-of-arrays form, for programs that shade with SIMD (fragment4).
+template <int kVaryings>
+struct FragmentBatch {
+    int count = 0;
+    int x[4] = {}, y[4] = {};
+    alignas(16) float invW[4] = {};
+    alignas(16) float v[kVaryings > 0 ? kVaryings : 1][4] = {};
+};
+
+#if SR_HAVE_SSE2
+// fillTriangle for a program with fragment4 (Exact and Affine interpolation), four pixels per
+// step: pixels x, x+1, x+2, x+3 of a span get z, 1/w and the varyings from the same float
+// operations as fillTriangle's (start + gradient * step, then * (1 / (1/w)) for Exact: SSE
+// mulps/addps/divps round like their scalar forms, and there is no FMA), so every value is
+// bit-identical to the one-pixel loop. The depth test is a lane mask (strict GREATER, written
+// for the passing lanes only); groups with no passing lane are skipped; the passing lanes are
+// shaded with one fragment4 call and only they are stored. Lanes past the span's end repeat its
+// last pixel (step clamped), so fragment4 never sees values extrapolated off the triangle.
+// `shaded` counts the passing fragments, as the one-pixel loop's shader does.
+template <DepthMode kDepth, int kVaryings, PerspectiveMode kPersp, class Program>
+void fillTriangle4(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Program& program,
+                   std::uint64_t& shaded) {
+    static_assert(kVaryings > 0 && kVaryings <= kMaxVaryings, "fillTriangle4 interpolates varyings");
+    static_assert(kPersp == PerspectiveMode::Exact || kPersp == PerspectiveMode::Affine, "no span subdivision here");
+    assert(kVaryings <= t.varyingCount);
+    assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= fb.width() && s.y1 <= fb.height());
+    constexpr int kPlanes = kPlaneVarying0 + kVaryings;
+    FragmentBatch<kVaryings> batch;
+    batch.count = 4;
+    forEachSpan(t, s, [&](int y, int x0, int x1) {
+        // Plane values at the span's first pixel centre: fillTriangle's very expression.
+        const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
+        __m128 start[kPlanes], gradient[kPlanes];
+        for (int k = 0; k < kPlanes; ++k) {
+            start[k] = _mm_set1_ps(float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy));
+            gradient[k] = _mm_set1_ps(t.ddxStep[k]);
+        }
+        Pixel* colour = fb.colorRow(y);
+        float* depth = fb.depthRow(y);
+        for (int i = 0; i < 4; ++i) batch.y[i] = y;
+        const __m128 lastStep = _mm_set1_ps(float(x1 - 1 - x0));
+        const __m128 laneOffsets = _mm_setr_ps(0.0f, 1.0f, 2.0f, 3.0f);
+        for (int x = x0; x < x1; x += 4) {
+            const int n = std::min(4, x1 - x); // lanes inside the span
+            const int inside = (1 << n) - 1;
+            // Pixel index along the span (whole numbers, exact in float), clamped to the last pixel.
+            const __m128 step = _mm_min_ps(_mm_add_ps(_mm_set1_ps(float(x - x0)), laneOffsets), lastStep);
+            const __m128 z = _mm_add_ps(start[kPlaneZ], _mm_mul_ps(gradient[kPlaneZ], step));
+            int pass = inside;
+            if constexpr (kDepth != DepthMode::Off) {
+                const __m128 stored = n == 4 ? _mm_loadu_ps(depth + x)
+                                             : _mm_setr_ps(depth[x], depth[x + std::min(1, n - 1)],
+                                                           depth[x + std::min(2, n - 1)], depth[x + std::min(3, n - 1)]);
+                pass &= _mm_movemask_ps(_mm_cmpgt_ps(z, stored));
+                if (pass == 0) continue;
+                if constexpr (kDepth == DepthMode::TestWrite) {
+                    if (pass == 0xF) {
+                        _mm_storeu_ps(depth + x, z);
+                    } else {
+                        alignas(16) float zs[4];
+                        _mm_store_ps(zs, z);
+                        for (int i = 0; i < 4; ++i)
+                            if (pass & (1 << i)) depth[x + i] = zs[i];
+                    }
+                }
+            }
+            shaded += std::uint64_t((pass & 1) + ((pass >> 1) & 1) + ((pass >> 2) & 1) + ((pass >> 3) & 1));
+            const __m128 invW = _mm_add_ps(start[kPlaneInvW], _mm_mul_ps(gradient[kPlaneInvW], step));
+            _mm_store_ps(batch.invW, invW);
+            if constexpr (kPersp == PerspectiveMode::Exact) {
+                const __m128 w = _mm_div_ps(_mm_set1_ps(1.0f), invW);
+                for (int k = 0; k < kVaryings; ++k) {
+                    const int p = kPlaneVarying0 + k;
+                    _mm_store_ps(batch.v[k], _mm_mul_ps(_mm_add_ps(start[p], _mm_mul_ps(gradient[p], step)), w));
+                }
+            } else {
+                for (int k = 0; k < kVaryings; ++k) {
+                    const int p = kPlaneVarying0 + k;
+                    _mm_store_ps(batch.v[k], _mm_add_ps(start[p], _mm_mul_ps(gradient[p], step)));
+                }
+            }
+            for (int i = 0; i < 4; ++i) batch.x[i] = x + std::min(i, n - 1);
+            alignas(16) Pixel out[4];
+            program.fragment4(static_cast<const FragmentBatch<kVaryings>&>(batch), out);
+            if (pass == 0xF) {
+                _mm_storeu_si128(reinterpret_cast<__m128i*>(colour + x), _mm_load_si128(reinterpret_cast<const __m128i*>(out)));
+            } else {
+                for (int i = 0; i < 4; ++i)
+                    if (pass & (1 << i)) colour[x + i] = out[i];
+            }
+        }
+    });
+}
+#endif
 
 } // namespace sr

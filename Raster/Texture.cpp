@@ -363,26 +363,31 @@ void Texture::sampleBilinear4(const float u[4], const float v[4], WrapMode wrap,
         _mm_store_si128(reinterpret_cast<__m128i*>(ix1), x1);
         _mm_store_si128(reinterpret_cast<__m128i*>(iy0), y0);
         _mm_store_si128(reinterpret_cast<__m128i*>(iy1), y1);
-        alignas(16) std::uint32_t t00[4], t10[4], t01[4], t11[4];
         const std::uint32_t* texels = l.texels.data();
         const std::size_t width = std::size_t(l.width);
-        for (int i = 0; i < 4; ++i) { // scalar gathers
-            const std::uint32_t* row0 = texels + std::size_t(iy0[i]) * width;
-            const std::uint32_t* row1 = texels + std::size_t(iy1[i]) * width;
-            t00[i] = row0[ix0[i]];
-            t10[i] = row0[ix1[i]];
-            t01[i] = row1[ix0[i]];
-            t11[i] = row1[ix1[i]];
-        }
+        // Scalar gathers straight into registers (no array round trip: four 32-bit stores read
+        // back as one 128-bit load would stall store forwarding).
+        const std::uint32_t* r00 = texels + std::size_t(iy0[0]) * width;
+        const std::uint32_t* r01 = texels + std::size_t(iy0[1]) * width;
+        const std::uint32_t* r02 = texels + std::size_t(iy0[2]) * width;
+        const std::uint32_t* r03 = texels + std::size_t(iy0[3]) * width;
+        const std::uint32_t* r10 = texels + std::size_t(iy1[0]) * width;
+        const std::uint32_t* r11 = texels + std::size_t(iy1[1]) * width;
+        const std::uint32_t* r12 = texels + std::size_t(iy1[2]) * width;
+        const std::uint32_t* r13 = texels + std::size_t(iy1[3]) * width;
+        auto gather = [](const std::uint32_t* a, const std::uint32_t* b, const std::uint32_t* c, const std::uint32_t* d,
+                         const std::int32_t* x) {
+            return _mm_set_epi32(int(d[x[3]]), int(c[x[2]]), int(b[x[1]]), int(a[x[0]]));
+        };
+        const __m128i q00 = gather(r00, r01, r02, r03, ix0);
+        const __m128i q10 = gather(r00, r01, r02, r03, ix1);
+        const __m128i q01 = gather(r10, r11, r12, r13, ix0);
+        const __m128i q11 = gather(r10, r11, r12, r13, ix1);
         // blend2x2 per channel in float: texel bytes times 8-bit weights are integers below 2^24,
         // so every product and sum is exact and raw equals the integer blend.
         const __m128i w256 = _mm_set1_epi32(256);
         const __m128 bx = _mm_cvtepi32_ps(wx), ax = _mm_cvtepi32_ps(_mm_sub_epi32(w256, wx));
         const __m128 by = _mm_cvtepi32_ps(wy), ay = _mm_cvtepi32_ps(_mm_sub_epi32(w256, wy));
-        const __m128i q00 = _mm_load_si128(reinterpret_cast<const __m128i*>(t00));
-        const __m128i q10 = _mm_load_si128(reinterpret_cast<const __m128i*>(t10));
-        const __m128i q01 = _mm_load_si128(reinterpret_cast<const __m128i*>(t01));
-        const __m128i q11 = _mm_load_si128(reinterpret_cast<const __m128i*>(t11));
         const __m128i byteMask = _mm_set1_epi32(0xFF);
         const __m128 scale = _mm_set1_ps(kRawScale);
         auto channel = [&](int shift, float* dst) {
