@@ -177,7 +177,7 @@ struct PhongProgram {
         Texture::ColorLanes kd;
         if constexpr (kTextured) {
             if (d->settings.filter == TextureFilter::Bilinear) {
-                d->texture->sampleBilinear4(b.v[0], b.v[1], d->settings.wrap, kd); // == sampleKd per lane
+                d->texture->sampleBilinear4(b.v[0], b.v[1], d->settings.wrap, kd, false); // == sampleKd per lane
             } else {
                 for (int i = 0; i < 4; ++i) {
                     const Color c = sampleKd(*d, setup, laneFragment(i));
@@ -205,6 +205,7 @@ struct PhongProgram {
         const bool simdDone = simd::shadeBlinnPhong(d->view.lighting, _mm_load_ps(kdR), _mm_load_ps(kdG),
                                                     _mm_load_ps(kdB), n, v, ok, out);
         const int good = simdDone ? _mm_movemask_ps(ok) : 0;
+        if (good == 0xF) return;
         for (int i = 0; i < 4; ++i)
             if (!(good & (1 << i))) out[i] = fragment(laneFragment(i));
     }

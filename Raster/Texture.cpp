@@ -310,10 +310,13 @@ inline __m128d floorPd(__m128d d) { // floorExact for |d| < 2^31: truncate, then
 
 // linearTaps(u, size, Repeat) for two lanes (|u| < 2^31, not NaN): the reduction and
 // X = floor((d * size - 0.5) * 256 + 0.5) with the same double operations; X in the low two ints.
-inline __m128i repeatX2(__m128d d, __m128d size) {
-    const __m128d absD = _mm_and_pd(d, _mm_castsi128_pd(_mm_set1_epi64x(0x7FFFFFFFFFFFFFFFLL)));
-    const __m128d big = _mm_cmpge_pd(absD, _mm_set1_pd(1.0));
-    d = _mm_or_pd(_mm_and_pd(big, _mm_sub_pd(d, floorPd(d))), _mm_andnot_pd(big, d));
+// `reduce` = false when no lane has |u| >= 1 (the reduction would keep every lane as it is).
+inline __m128i repeatX2(__m128d d, __m128d size, bool reduce) {
+    if (reduce) {
+        const __m128d absD = _mm_and_pd(d, _mm_castsi128_pd(_mm_set1_epi64x(0x7FFFFFFFFFFFFFFFLL)));
+        const __m128d big = _mm_cmpge_pd(absD, _mm_set1_pd(1.0));
+        d = _mm_or_pd(_mm_and_pd(big, _mm_sub_pd(d, floorPd(d))), _mm_andnot_pd(big, d));
+    }
     const __m128d y = _mm_add_pd(_mm_mul_pd(_mm_sub_pd(_mm_mul_pd(d, size), _mm_set1_pd(0.5)), _mm_set1_pd(256.0)),
                                  _mm_set1_pd(0.5));
     // floor(y) as int32 (|y| < 2^31 here: |d| < 1 and size <= 16384): truncate, minus 1 if above.
@@ -329,8 +332,9 @@ inline bool repeatTaps4(__m128 u, int size, std::uint32_t mask, __m128i& a, __m1
     const __m128 absU = _mm_and_ps(u, _mm_castsi128_ps(_mm_set1_epi32(0x7FFFFFFF)));
     if (_mm_movemask_ps(_mm_cmplt_ps(absU, _mm_set1_ps(2147483648.0f))) != 0xF) return false;
     const __m128d sizeD = _mm_set1_pd(double(size));
-    const __m128i lo = repeatX2(_mm_cvtps_pd(u), sizeD);
-    const __m128i hi = repeatX2(_mm_cvtps_pd(_mm_movehl_ps(u, u)), sizeD);
+    const bool reduce = _mm_movemask_ps(_mm_cmpge_ps(absU, _mm_set1_ps(1.0f))) != 0; // |u| >= 1 iff |d| >= 1
+    const __m128i lo = repeatX2(_mm_cvtps_pd(u), sizeD, reduce);
+    const __m128i hi = repeatX2(_mm_cvtps_pd(_mm_movehl_ps(u, u)), sizeD, reduce);
     const __m128i x = _mm_unpacklo_epi64(lo, hi);
     const __m128i i0 = _mm_srai_epi32(x, 8);
     w = _mm_and_si128(x, _mm_set1_epi32(255));
@@ -352,7 +356,8 @@ inline bool repeatTaps4(__m128 u, int size, std::uint32_t mask, __m128i& a, __m1
 } // namespace
 #endif
 
-void Texture::sampleBilinear4(const float u[4], const float v[4], WrapMode wrap, ColorLanes& out) const {
+void Texture::sampleBilinear4(const float u[4], const float v[4], WrapMode wrap, ColorLanes& out,
+                              bool withAlpha) const {
 #if SR_TEXTURE_SSE2
     const Level& l = levels_[0];
     __m128i x0, x1, wx, y0, y1, wy;
@@ -402,7 +407,7 @@ void Texture::sampleBilinear4(const float u[4], const float v[4], WrapMode wrap,
         channel(0, out.r);
         channel(8, out.g);
         channel(16, out.b);
-        channel(24, out.a);
+        if (withAlpha) channel(24, out.a);
         return;
     }
 #endif
@@ -411,7 +416,7 @@ void Texture::sampleBilinear4(const float u[4], const float v[4], WrapMode wrap,
         out.r[i] = c.r;
         out.g[i] = c.g;
         out.b[i] = c.b;
-        out.a[i] = c.a;
+        if (withAlpha) out.a[i] = c.a;
     }
 }
 

@@ -109,7 +109,9 @@ public:
         alignas(16) float b[4];
         alignas(16) float a[4];
     };
-    void sampleBilinear4(const float u[4], const float v[4], WrapMode wrap, ColorLanes& out) const;
+    // withAlpha = false leaves out.a untouched (for callers that ignore alpha, e.g. lighting).
+    void sampleBilinear4(const float u[4], const float v[4], WrapMode wrap, ColorLanes& out,
+                         bool withAlpha = true) const;
     // GL_LINEAR_MIPMAP_LINEAR: lod clamped to [0, levelCount() - 1]; GL_LINEAR in levels floor(lod)
     // and floor(lod) + 1, blended by frac(lod) in 8-bit fixed point (wl = floor(256 frac), the
     // integer blends mixed as (c0 (256 - wl) + c1 wl + 128) >> 8). wl == 0 and the last level

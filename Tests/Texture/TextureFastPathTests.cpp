@@ -4,6 +4,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <random>
 #include <vector>
 
@@ -121,8 +122,14 @@ TEST_CASE("sampleBilinear4 is bit-identical to sampleBilinear lane by lane", "[t
                 }
             }
             for (WrapMode w : wraps) {
-                Texture::ColorLanes lanes;
+                Texture::ColorLanes lanes, rgbOnly;
                 t.sampleBilinear4(u, v, w, lanes);
+                for (int k = 0; k < 4; ++k) rgbOnly.a[k] = -7.0f;
+                t.sampleBilinear4(u, v, w, rgbOnly, false); // alpha left alone, r, g, b the same
+                REQUIRE(std::memcmp(rgbOnly.r, lanes.r, sizeof lanes.r) == 0);
+                REQUIRE(std::memcmp(rgbOnly.g, lanes.g, sizeof lanes.g) == 0);
+                REQUIRE(std::memcmp(rgbOnly.b, lanes.b, sizeof lanes.b) == 0);
+                for (int k = 0; k < 4; ++k) REQUIRE(rgbOnly.a[k] == -7.0f);
                 for (int k = 0; k < 4; ++k) {
                     const Color ref = t.sampleBilinear(Vec2{u[k], v[k]}, w);
                     const Color got{lanes.r[k], lanes.g[k], lanes.b[k], lanes.a[k]};
