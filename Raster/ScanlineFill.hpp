@@ -224,11 +224,13 @@ void fillTriangle4(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Pr
     constexpr int kPlanes = kPlaneVarying0 + kVaryings;
     FragmentBatch<kVaryings> batch;
     batch.count = 4;
+    __m128 gradient[kPlanes]; // per-pixel steps: per triangle
+    for (int k = 0; k < kPlanes; ++k) gradient[k] = _mm_set1_ps(t.ddxStep[k]);
     forEachSpan(t, s, [&](int y, int x0, int x1) {
         // Plane values at the span's first pixel centre: fillTriangle's very expression.
         const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
         // Two planes per double register: the same IEEE multiplies and adds in the same order.
-        __m128 start[kPlanes], gradient[kPlanes];
+        __m128 start[kPlanes];
         const __m128d dxD = _mm_set1_pd(dx), dyD = _mm_set1_pd(dy);
         int k = 0;
         for (; k + 1 < kPlanes; k += 2) {
@@ -239,7 +241,6 @@ void fillTriangle4(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Pr
             start[k + 1] = _mm_shuffle_ps(f, f, _MM_SHUFFLE(1, 1, 1, 1));
         }
         for (; k < kPlanes; ++k) start[k] = _mm_set1_ps(float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy));
-        for (k = 0; k < kPlanes; ++k) gradient[k] = _mm_set1_ps(t.ddxStep[k]);
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);
         for (int i = 0; i < 4; ++i) batch.y[i] = y;

@@ -363,31 +363,28 @@ void Texture::sampleBilinear4(const float u[4], const float v[4], WrapMode wrap,
     __m128i x0, x1, wx, y0, y1, wy;
     if (wrap == WrapMode::Repeat && repeatTaps4(_mm_loadu_ps(u), l.width, l.maskX, x0, x1, wx) &&
         repeatTaps4(_mm_loadu_ps(v), l.height, l.maskY, y0, y1, wy)) {
-        alignas(16) std::int32_t ix0[4], ix1[4], iy0[4], iy1[4];
-        _mm_store_si128(reinterpret_cast<__m128i*>(ix0), x0);
-        _mm_store_si128(reinterpret_cast<__m128i*>(ix1), x1);
-        _mm_store_si128(reinterpret_cast<__m128i*>(iy0), y0);
-        _mm_store_si128(reinterpret_cast<__m128i*>(iy1), y1);
+        // Texel indices row * width + column, four lanes at once (SSE2 has no 32-bit mullo: the
+        // even and odd lanes through the 32 x 32 -> 64-bit pmuludq; indices < 2^28, exact).
+        const __m128i widthV = _mm_set1_epi32(l.width);
+        auto mulWidth = [&](__m128i rows) {
+            const __m128i even = _mm_mul_epu32(rows, widthV);
+            const __m128i odd = _mm_mul_epu32(_mm_srli_epi64(rows, 32), widthV);
+            return _mm_unpacklo_epi32(_mm_shuffle_epi32(even, _MM_SHUFFLE(0, 0, 2, 0)),
+                                      _mm_shuffle_epi32(odd, _MM_SHUFFLE(0, 0, 2, 0)));
+        };
+        const __m128i row0 = mulWidth(y0), row1 = mulWidth(y1);
+        alignas(16) std::int32_t i00[4], i10[4], i01[4], i11[4];
+        _mm_store_si128(reinterpret_cast<__m128i*>(i00), _mm_add_epi32(row0, x0));
+        _mm_store_si128(reinterpret_cast<__m128i*>(i10), _mm_add_epi32(row0, x1));
+        _mm_store_si128(reinterpret_cast<__m128i*>(i01), _mm_add_epi32(row1, x0));
+        _mm_store_si128(reinterpret_cast<__m128i*>(i11), _mm_add_epi32(row1, x1));
         const std::uint32_t* texels = l.texels.data();
-        const std::size_t width = std::size_t(l.width);
         // Scalar gathers straight into registers (no array round trip: four 32-bit stores read
         // back as one 128-bit load would stall store forwarding).
-        const std::uint32_t* r00 = texels + std::size_t(iy0[0]) * width;
-        const std::uint32_t* r01 = texels + std::size_t(iy0[1]) * width;
-        const std::uint32_t* r02 = texels + std::size_t(iy0[2]) * width;
-        const std::uint32_t* r03 = texels + std::size_t(iy0[3]) * width;
-        const std::uint32_t* r10 = texels + std::size_t(iy1[0]) * width;
-        const std::uint32_t* r11 = texels + std::size_t(iy1[1]) * width;
-        const std::uint32_t* r12 = texels + std::size_t(iy1[2]) * width;
-        const std::uint32_t* r13 = texels + std::size_t(iy1[3]) * width;
-        auto gather = [](const std::uint32_t* a, const std::uint32_t* b, const std::uint32_t* c, const std::uint32_t* d,
-                         const std::int32_t* x) {
-            return _mm_set_epi32(int(d[x[3]]), int(c[x[2]]), int(b[x[1]]), int(a[x[0]]));
+        auto gather = [texels](const std::int32_t* i) {
+            return _mm_set_epi32(int(texels[i[3]]), int(texels[i[2]]), int(texels[i[1]]), int(texels[i[0]]));
         };
-        const __m128i q00 = gather(r00, r01, r02, r03, ix0);
-        const __m128i q10 = gather(r00, r01, r02, r03, ix1);
-        const __m128i q01 = gather(r10, r11, r12, r13, ix0);
-        const __m128i q11 = gather(r10, r11, r12, r13, ix1);
+        const __m128i q00 = gather(i00), q10 = gather(i10), q01 = gather(i01), q11 = gather(i11);
         // blend2x2 per channel in float: texel bytes times 8-bit weights are integers below 2^24,
         // so every product and sum is exact and raw equals the integer blend.
         const __m128i w256 = _mm_set1_epi32(256);
