@@ -51,16 +51,6 @@ const char* cullLabel(CullMode mode) {
     return "cull ?";
 }
 
-const char* perspectiveLabel(PerspectiveMode mode) {
-    switch (mode) {
-    case PerspectiveMode::Exact: return "exact";
-    case PerspectiveMode::Span16: return "span16";
-    case PerspectiveMode::Span8: return "span8";
-    case PerspectiveMode::Affine: return "affine";
-    }
-    return "?";
-}
-
 DemoController::DemoController(const Camera& home, const RenderSettings& settings, Vec3 toLight, MotionTuning tuning)
     : home_(home), camera_(home), settings_(settings), toLight_(toLight), tuning_(tuning) {}
 
@@ -129,7 +119,7 @@ std::string DemoController::modeSummary() const {
     s += " | ";
     s += filterName(settings_.filter);
     s += " | ";
-    s += perspectiveLabel(settings_.perspective);
+    s += perspectiveModeName(settings_.perspective);
     if (settings_.wireframe)
         s += " | wireframe";
     if (depthView_)

@@ -33,9 +33,8 @@ Camera cameraFromSetup(const CameraSetup& setup);
 // normalised; the zero vector gives the default +Z light).
 FrameView frameViewFor(const Camera& camera, int width, int height, Vec3 toLight);
 
-// Short names of the modes, as the title bar shows them.
-const char* cullLabel(CullMode mode);                // "cull none", "cull CW", "cull CCW"
-const char* perspectiveLabel(PerspectiveMode mode);  // "exact", "span16", "span8", "affine"
+// Short name of the cull mode, as the title bar shows it (perspective modes: perspectiveModeName).
+const char* cullLabel(CullMode mode); // "cull none", "cull CW", "cull CCW"
 
 class DemoController {
 public:
