@@ -18,51 +18,18 @@ exe=$(readlink -f "$exe")
 rm -rf "$artifacts"
 mkdir -p "$artifacts"
 
-export WINEDEBUG=${WINEDEBUG:--all}
-export WINEDLLOVERRIDES="mscoree,mshtml="   # no Mono / Gecko install dialogs (WINEPREFIX: as set)
-
-t0=$(date +%s%N)
-elapsed() { local ms=$(( ($(date +%s%N) - t0) / 1000000 )); printf '%d.%d' $((ms / 1000)) $((ms % 1000 / 100)); }
-log() { echo "demo_e2e [$(elapsed) s]: $*"; }
-fail() { echo "demo_e2e [$(elapsed) s]: FAIL: $*" >&2; exit 1; }
+e2e_name=demo_e2e
+source "$root/Tests/EndToEnd/xsession.sh"
 
 # The banner probe point of the default view (normalised image coordinates), from the scene.
 probe_x=$(sed -n 's/.*kBannerProbeX = \([0-9.]*\)f;.*/\1/p' "$root/Resources/DefaultScene.hpp")
 probe_y=$(sed -n 's/.*kBannerProbeY = \([0-9.]*\)f;.*/\1/p' "$root/Resources/DefaultScene.hpp")
 [[ -n "$probe_x" && -n "$probe_y" ]] || fail "kBannerProbeX/Y not found in Resources/DefaultScene.hpp"
 
-# --- A private X display (the first free number from :141) and, if installed, a window manager -
-display=""
-for n in $(seq 141 190); do
-  if [[ ! -e /tmp/.X11-unix/X$n && ! -e /tmp/.X$n-lock ]]; then display=":$n"; break; fi
-done
-[[ -n "$display" ]] || fail "no free X display number in :141-:190"
-
-xvfb_pid="" wm_pid="" app_pid=""
-cleanup() {
-  # Only the processes this script started: the app (if still running), the WM and Xvfb.
-  if [[ -n "$app_pid" ]] && kill -0 "$app_pid" 2>/dev/null; then kill "$app_pid" 2>/dev/null || true; fi
-  if [[ -n "$wm_pid" ]]; then kill "$wm_pid" 2>/dev/null || true; wait "$wm_pid" 2>/dev/null || true; fi
-  if [[ -n "$xvfb_pid" ]]; then kill "$xvfb_pid" 2>/dev/null || true; wait "$xvfb_pid" 2>/dev/null || true; fi
-}
-trap cleanup EXIT
-
-Xvfb "$display" -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 &
-xvfb_pid=$!
-export DISPLAY=$display
-for _ in $(seq 200); do
-  xdotool getdisplaygeometry >/dev/null 2>&1 && break
-  kill -0 "$xvfb_pid" 2>/dev/null || fail "Xvfb $display died"
-  sleep 0.1
-done
-# Without a window manager nobody honours an iconify request (xdotool windowminimize does
-# nothing), so the minimise step needs one: openbox (scripts/install-deps.sh installs it).
-if command -v openbox >/dev/null; then
-  openbox --sm-disable >/dev/null 2>&1 &
-  wm_pid=$!
-  for _ in $(seq 100); do xprop -root _NET_SUPPORTING_WM_CHECK 2>/dev/null | grep -q 'window id' && break; sleep 0.1; done
-fi
-log "Xvfb on $display, window manager: $([[ -n "$wm_pid" ]] && echo openbox || echo none)"
+# --- A private X display (:141-:190) and, if installed, a window manager (for minimise) -------
+start_xvfb 141 190
+start_wm
+log "Xvfb on $DISPLAY, window manager: $([[ -n "$wm_pid" ]] && echo openbox || echo none)"
 
 # --- Pixel measures on screenshots (ImageMagick) ----------------------------------------------
 # shot NAME: a screenshot of the window into $artifacts/NAME.png (a retry overwrites it, so the
@@ -120,20 +87,7 @@ title_has() { last=$(xdotool getwindowname "$win" 2>/dev/null || true); [[ "$las
 press() { focus; xdotool key "$1"; }
 
 # --- Start the demo and wait for its window ---------------------------------------------------
-wine "$exe" --width 640 --height 480 &
-app_pid=$!
-win=""
-deadline=$(( $(date +%s) + window_timeout ))
-while (( $(date +%s) < deadline )); do
-  win=$(xdotool search --onlyvisible --name '^SoftRaster' 2>/dev/null | head -n1 || true)
-  [[ -n "$win" ]] && break
-  if ! kill -0 "$app_pid" 2>/dev/null; then
-    wait "$app_pid" && rc=0 || rc=$?
-    fail "SoftRaster.exe exited (code $rc) before showing a window"
-  fi
-  sleep 0.25
-done
-[[ -n "$win" ]] || fail "no window named 'SoftRaster...' within ${window_timeout} s"
+start_app "$exe" --width 640 --height 480
 log "window $win: '$(xdotool getwindowname "$win")'"
 
 # --- 1. The default scene is drawn: a varied picture with the red sphere in the middle --------
@@ -238,10 +192,5 @@ press z; poll "the colour view back" colour_view; log "Z again: colour view, $la
 
 # --- 7. Escape quits with exit code 0 ----------------------------------------------------------
 press Escape
-deadline=$(( $(date +%s) + exit_timeout ))
-while kill -0 "$app_pid" 2>/dev/null && (( $(date +%s) < deadline )); do sleep 0.1; done
-kill -0 "$app_pid" 2>/dev/null && fail "SoftRaster.exe still running ${exit_timeout} s after Escape"
-wait "$app_pid" && rc=0 || rc=$?
-app_pid=""
-(( rc == 0 )) || fail "SoftRaster.exe exited with code $rc after Escape (expected 0)"
+wait_exit Escape
 log "Escape -> exit code 0. PASS (screenshots in $artifacts)"

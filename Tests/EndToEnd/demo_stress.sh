@@ -27,13 +27,8 @@ exe=$(readlink -f "$exe")
 rm -rf "$artifacts"
 mkdir -p "$artifacts"
 
-export WINEDEBUG=${WINEDEBUG:--all}
-export WINEDLLOVERRIDES="mscoree,mshtml="   # no Mono / Gecko install dialogs (WINEPREFIX: as set)
-
-t0=$(date +%s%N)
-elapsed() { local ms=$(( ($(date +%s%N) - t0) / 1000000 )); printf '%d.%d' $((ms / 1000)) $((ms % 1000 / 100)); }
-log() { echo "demo_stress [$(elapsed) s]: $*"; }
-fail() { echo "demo_stress [$(elapsed) s]: FAIL: $*" >&2; diagnose >&2 || true; exit 1; }
+e2e_name=demo_stress
+source "$(dirname "$0")/xsession.sh"
 # On failure: what X knows about our window and every SoftRaster window, and the app's state.
 diagnose() {
   [[ -n "${win:-}" && -n "${DISPLAY:-}" ]] || return 0
@@ -45,41 +40,12 @@ diagnose() {
 }
 gt() { awk -v a="$1" -v b="$2" 'BEGIN{exit !(a > b)}'; }
 
-xvfb_pid="" wm_pid="" app_pid=""
-cleanup() {
-  # Only the processes this script started: the app (if still running), the WM and Xvfb.
-  if [[ -n "$app_pid" ]] && kill -0 "$app_pid" 2>/dev/null; then kill "$app_pid" 2>/dev/null || true; fi
-  if [[ -n "$wm_pid" ]]; then kill "$wm_pid" 2>/dev/null || true; wait "$wm_pid" 2>/dev/null || true; fi
-  if [[ -n "$xvfb_pid" ]]; then kill "$xvfb_pid" 2>/dev/null || true; wait "$xvfb_pid" 2>/dev/null || true; fi
-}
-trap cleanup EXIT
-
 # --- A private X display (:191-:240, apart from the other end-to-end tests' ranges) -----------
-# Another test run on the same machine may take the same free number at the same moment: if our
-# Xvfb dies at start, try the next number.
-display=""
-for n in $(seq 191 240); do
-  [[ -e /tmp/.X11-unix/X$n || -e /tmp/.X$n-lock ]] && continue
-  Xvfb ":$n" -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 &
-  xvfb_pid=$!
-  for _ in $(seq 100); do
-    kill -0 "$xvfb_pid" 2>/dev/null || break
-    DISPLAY=":$n" xdotool getdisplaygeometry >/dev/null 2>&1 && { display=":$n"; break; }
-    sleep 0.1
-  done
-  [[ -n "$display" ]] && break
-  kill "$xvfb_pid" 2>/dev/null || true; wait "$xvfb_pid" 2>/dev/null || true; xvfb_pid=""
-done
-[[ -n "$display" ]] || fail "could not start Xvfb on any display in :191-:240"
-export DISPLAY=$display
+start_xvfb 191 240
 # The window manager honours iconify requests and sends the app its size; without one the
-# minimise operations are skipped (scripts/install-deps.sh installs openbox).
-if command -v openbox >/dev/null; then
-  openbox --sm-disable >/dev/null 2>&1 &
-  wm_pid=$!
-  for _ in $(seq 100); do xprop -root _NET_SUPPORTING_WM_CHECK 2>/dev/null | grep -q 'window id' && break; sleep 0.1; done
-fi
-log "Xvfb on $display ($(xdotool getdisplaygeometry | tr ' ' x)), window manager: $([[ -n "$wm_pid" ]] && echo openbox || echo "none: minimise steps skipped")"
+# minimise operations are skipped.
+start_wm
+log "Xvfb on $DISPLAY ($(xdotool getdisplaygeometry | tr ' ' x)), window manager: $([[ -n "$wm_pid" ]] && echo openbox || echo "none: minimise steps skipped")"
 
 # --- Helpers -----------------------------------------------------------------------------------
 x() { timeout 10 xdotool "$@" >/dev/null 2>&1 || true; } # storm operations: never hang, never fail
@@ -119,17 +85,7 @@ sample() {
 mib() { awk -v k="$1" 'BEGIN{printf "%.1f MiB", k / 1024}'; }
 
 # --- Start the demo and wait for its window ---------------------------------------------------
-wine "$exe" --width 640 --height 480 --threads "$threads" &
-app_pid=$!
-win=""
-deadline=$(( $(date +%s) + window_timeout ))
-while (( $(date +%s) < deadline )); do
-  win=$(xdotool search --onlyvisible --name '^SoftRaster' 2>/dev/null | head -n1 || true)
-  [[ -n "$win" ]] && break
-  if ! alive; then wait "$app_pid" && rc=0 || rc=$?; fail "SoftRaster.exe exited (code $rc) before showing a window"; fi
-  sleep 0.25
-done
-[[ -n "$win" ]] || fail "no window named 'SoftRaster...' within ${window_timeout} s"
+start_app "$exe" --width 640 --height 480 --threads "$threads"
 # Wine sets _NET_WM_PID to the Unix process that runs the .exe (not the `wine` launcher).
 unix_pid=$(xdotool getwindowpid "$win" 2>/dev/null || true)
 [[ -n "$unix_pid" && -r /proc/$unix_pid/status ]] || fail "no /proc entry for the window's process (pid '${unix_pid}')"
@@ -313,10 +269,5 @@ log "rendering after $total_ops operations in $storm_s s: frame $n0 -> $n1 in 2 
 # --- 5. Escape quits with exit code 0 ----------------------------------------------------------
 focus
 x key Escape
-deadline=$(( $(date +%s) + exit_timeout ))
-while alive && (( $(date +%s) < deadline )); do sleep 0.1; done
-alive && fail "SoftRaster.exe still running ${exit_timeout} s after Escape"
-wait "$app_pid" && rc=0 || rc=$?
-app_pid=""
-(( rc == 0 )) || fail "SoftRaster.exe exited with code $rc after Escape (expected 0)"
+wait_exit Escape
 log "Escape -> exit code 0. PASS ($total_ops operations, screenshots in $artifacts)"

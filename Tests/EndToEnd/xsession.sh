@@ -1,0 +1,88 @@
+# Shared by the end-to-end tests (sourced, not run): log lines with elapsed time, a private Xvfb,
+# an optional window manager, SoftRaster.exe started under Wine with its window found, the wait
+# for its exit, and cleanup of exactly the processes the test started.
+# Before sourcing, set e2e_name (the prefix of every log line). A script may define diagnose()
+# to print more context when it fails. Timeouts (seconds) may be set before the calls:
+# window_timeout (default 90: Wine's first start in a fresh prefix takes 20-40 s on a loaded
+# machine) and exit_timeout (default 15).
+
+export WINEDEBUG=${WINEDEBUG:--all}
+export WINEDLLOVERRIDES="mscoree,mshtml=" # no Mono / Gecko install dialogs (WINEPREFIX: as set)
+
+e2e_t0=$(date +%s%N)
+elapsed() { local ms=$(( ($(date +%s%N) - e2e_t0) / 1000000 )); printf '%d.%d' $((ms / 1000)) $((ms % 1000 / 100)); }
+log() { echo "$e2e_name [$(elapsed) s]: $*"; }
+fail() {
+  echo "$e2e_name [$(elapsed) s]: FAIL: $*" >&2
+  if declare -F diagnose >/dev/null; then diagnose >&2 || true; fi
+  exit 1
+}
+
+xvfb_pid="" wm_pid="" app_pid="" win=""
+e2e_cleanup() {
+  # Only the processes this script started: the app (if still running), the WM and Xvfb.
+  if [[ -n "$app_pid" ]] && kill -0 "$app_pid" 2>/dev/null; then kill "$app_pid" 2>/dev/null || true; fi
+  if [[ -n "$wm_pid" ]]; then kill "$wm_pid" 2>/dev/null || true; wait "$wm_pid" 2>/dev/null || true; fi
+  if [[ -n "$xvfb_pid" ]]; then kill "$xvfb_pid" 2>/dev/null || true; wait "$xvfb_pid" 2>/dev/null || true; fi
+}
+trap e2e_cleanup EXIT
+
+# start_xvfb FIRST LAST: a 1280x800 Xvfb on the first free display number in FIRST..LAST, exported
+# as DISPLAY. Each test has its own range; another run on the same machine may still take the
+# same free number at the same moment, so when our Xvfb dies at start the next number is tried.
+start_xvfb() {
+  local n display=""
+  for n in $(seq "$1" "$2"); do
+    [[ -e /tmp/.X11-unix/X$n || -e /tmp/.X$n-lock ]] && continue
+    Xvfb ":$n" -screen 0 1280x800x24 -nolisten tcp >/dev/null 2>&1 &
+    xvfb_pid=$!
+    for _ in $(seq 100); do
+      kill -0 "$xvfb_pid" 2>/dev/null || break
+      DISPLAY=":$n" xdotool getdisplaygeometry >/dev/null 2>&1 && { display=":$n"; break; }
+      sleep 0.1
+    done
+    [[ -n "$display" ]] && break
+    kill "$xvfb_pid" 2>/dev/null || true; wait "$xvfb_pid" 2>/dev/null || true; xvfb_pid=""
+  done
+  [[ -n "$display" ]] || fail "could not start Xvfb on any display in :$1-:$2"
+  export DISPLAY=$display
+}
+
+# start_wm: openbox, when installed (scripts/install-deps.sh installs it). Without a window manager
+# nobody honours an iconify request (xdotool windowminimize does nothing); wm_pid stays empty.
+start_wm() {
+  command -v openbox >/dev/null || return 0
+  openbox --sm-disable >/dev/null 2>&1 &
+  wm_pid=$!
+  for _ in $(seq 100); do xprop -root _NET_SUPPORTING_WM_CHECK 2>/dev/null | grep -q 'window id' && break; sleep 0.1; done
+}
+
+# start_app EXE ARGS...: runs EXE under Wine in the background (app_pid) and waits up to
+# window_timeout for its visible window titled "SoftRaster..." (win).
+start_app() {
+  local exe=$1 rc deadline; shift
+  wine "$exe" "$@" &
+  app_pid=$!
+  win=""
+  deadline=$(( $(date +%s) + ${window_timeout:-90} ))
+  while (( $(date +%s) < deadline )); do
+    win=$(xdotool search --onlyvisible --name '^SoftRaster' 2>/dev/null | head -n1 || true)
+    [[ -n "$win" ]] && return 0
+    if ! kill -0 "$app_pid" 2>/dev/null; then
+      wait "$app_pid" && rc=0 || rc=$?
+      fail "SoftRaster.exe exited (code $rc) before showing a window"
+    fi
+    sleep 0.25
+  done
+  fail "no window named 'SoftRaster...' within ${window_timeout:-90} s"
+}
+
+# wait_exit WHAT: after WHAT (e.g. "Escape") the app must exit within exit_timeout with code 0.
+wait_exit() {
+  local rc deadline=$(( $(date +%s) + ${exit_timeout:-15} ))
+  while kill -0 "$app_pid" 2>/dev/null && (( $(date +%s) < deadline )); do sleep 0.1; done
+  kill -0 "$app_pid" 2>/dev/null && fail "SoftRaster.exe still running ${exit_timeout:-15} s after $1"
+  wait "$app_pid" && rc=0 || rc=$?
+  app_pid=""
+  (( rc == 0 )) || fail "SoftRaster.exe exited with code $rc after $1 (expected 0)"
+}
