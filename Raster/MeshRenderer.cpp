@@ -210,6 +210,52 @@ struct PhongProgram {
             if (!(good & (1 << i))) out[i] = fragment(laneFragment(i));
     }
 #endif
+#if SR_HAVE_AVX2
+    // Eight pixels at once (AVX2), as fragment4.
+    SR_TARGET_AVX2 void fragment8(const FragmentBatch8<kVaryings>& b, Pixel out[8]) const {
+        __m256 ok = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+        Texture::ColorLanes8 kd;
+        if constexpr (kTextured) {
+            if (d->settings.filter == TextureFilter::Bilinear) {
+                d->texture->sampleBilinear8(b.v[0], b.v[1], d->settings.wrap, kd, false); // == sampleKd per lane
+            } else {
+                for (int i = 0; i < 8; ++i) {
+                    const Color c = sampleKd(*d, setup, laneFragment8(b, i));
+                    kd.r[i] = c.r;
+                    kd.g[i] = c.g;
+                    kd.b[i] = c.b;
+                }
+            }
+        } else {
+            for (int i = 0; i < 8; ++i) {
+                kd.r[i] = d->kd.r;
+                kd.g[i] = d->kd.g;
+                kd.b[i] = d->kd.b;
+            }
+        }
+        const simd8::Vec3x8 n = simd8::normalizeFast(
+            {_mm256_load_ps(b.v[kP + 3]), _mm256_load_ps(b.v[kP + 4]), _mm256_load_ps(b.v[kP + 5])}, ok);
+        const Vec3 eye = d->view.eye;
+        const simd8::Vec3x8 toEye{_mm256_sub_ps(_mm256_set1_ps(eye.x), _mm256_load_ps(b.v[kP])),
+                                  _mm256_sub_ps(_mm256_set1_ps(eye.y), _mm256_load_ps(b.v[kP + 1])),
+                                  _mm256_sub_ps(_mm256_set1_ps(eye.z), _mm256_load_ps(b.v[kP + 2]))};
+        const simd8::Vec3x8 v = simd8::normalizeFast(toEye, ok);
+        const bool simdDone = simd8::shadeBlinnPhong(d->view.lighting, _mm256_load_ps(kd.r), _mm256_load_ps(kd.g),
+                                                     _mm256_load_ps(kd.b), n, v, ok, out);
+        const int good = simdDone ? _mm256_movemask_ps(ok) : 0;
+        if (good == 0xFF) return;
+        for (int i = 0; i < 8; ++i)
+            if (!(good & (1 << i))) out[i] = fragment(laneFragment8(b, i));
+    }
+    static Fragment<kVaryings> laneFragment8(const FragmentBatch8<kVaryings>& b, int i) {
+        Fragment<kVaryings> f;
+        f.x = b.x(i);
+        f.y = b.y;
+        f.invW = b.invW[i];
+        for (int k = 0; k < kVaryings; ++k) f.varyings[std::size_t(k)] = b.v[k][i];
+        return f;
+    }
+#endif
 };
 
 template <class Program>

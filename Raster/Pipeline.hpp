@@ -97,6 +97,20 @@ struct HasFragment4<Program, kVaryings,
 template <class Program, int kVaryings>
 inline constexpr bool kBatched = kVaryings > 0 && HasFragment4<Program, kVaryings>::value;
 
+#if SR_HAVE_AVX2
+// Programs that also shade eight fragments at once with AVX2: void fragment8(const
+// FragmentBatch8<kV>&, Pixel out[8]), bit-identical to fragment() per lane.
+template <class Program, int kVaryings, class = void>
+struct HasFragment8 : std::false_type {};
+template <class Program, int kVaryings>
+struct HasFragment8<Program, kVaryings,
+                    std::void_t<decltype(std::declval<Program&>().fragment8(std::declval<const FragmentBatch8<kVaryings>&>(),
+                                                                            std::declval<Pixel*>()))>>
+    : std::true_type {};
+template <class Program, int kVaryings>
+inline constexpr bool kBatched8 = kVaryings > 0 && HasFragment8<Program, kVaryings>::value;
+#endif
+
 // The fill's per-pixel shader for a batching program: collects the fragments that passed the
 // depth test (their pixel, 1/w and varyings) and shades them four at a time. The fill stores
 // what this returns into the pixel at once; a fragment whose batch is not complete yet gets a
@@ -195,10 +209,24 @@ bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands&
         return program.fragment(f);
     };
     BatchingShader<kVaryings, Program> batching{shaded, program, fb};
+#if SR_HAVE_AVX2
+    const bool useAvx2 = cpuHasAvx2();
+#endif
     // Depth mode x perspective mode, resolved once per triangle; without varyings only Exact
     // exists (nothing to interpolate), which keeps the number of instantiated loops down.
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
+#if SR_HAVE_AVX2
+        if constexpr (kBatched8<Program, kVaryings>) {
+            if (useAvx2 && (state.perspective == PerspectiveMode::Exact || state.perspective == PerspectiveMode::Affine)) {
+                if (state.perspective == PerspectiveMode::Exact)
+                    fillTriangle8<kDepth, kVaryings, PerspectiveMode::Exact>(setup, fb, scissor, program, shaded);
+                else
+                    fillTriangle8<kDepth, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, program, shaded);
+                return;
+            }
+        }
+#endif
         if constexpr (kBatched<Program, kVaryings>) {
             switch (state.perspective) {
 #if SR_HAVE_SSE2

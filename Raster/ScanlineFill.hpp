@@ -299,4 +299,106 @@ void fillTriangle4(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Pr
 }
 #endif
 
+#if SR_HAVE_AVX2
+// Eight fragments for fragment8 (AVX2), as FragmentBatch.
+template <int kVaryings>
+struct FragmentBatch8 {
+    int x0 = 0, y = 0;  // lane i is pixel (x0 + min(i, last), y)
+    int last = 7;       // lanes past `last` repeat that lane's pixel (the end of a span)
+    int x(int i) const { return x0 + (i < last ? i : last); }
+    alignas(32) float invW[8] = {};
+    alignas(32) float v[kVaryings > 0 ? kVaryings : 1][8] = {};
+};
+
+namespace detail {
+// One span of fillTriangle8 (a functor rather than a lambda: GCC does not give a lambda its
+// enclosing function's target("avx2")).
+template <DepthMode kDepth, int kVaryings, PerspectiveMode kPersp, class Program>
+struct Span8 {
+    static constexpr int kPlanes = kPlaneVarying0 + kVaryings;
+    const TriangleSetup& t;
+    FrameBuffer& fb;
+    Program& program;
+    std::uint64_t& shaded;
+    FragmentBatch8<kVaryings>& batch;
+    const __m256* gradient;
+
+    SR_TARGET_AVX2 void operator()(int y, int x0, int x1) const {
+        const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
+        __m256 start[kPlanes];
+        const __m128d dxD = _mm_set1_pd(dx), dyD = _mm_set1_pd(dy);
+        int k = 0;
+        for (; k + 1 < kPlanes; k += 2) {
+            const __m128d v = _mm_add_pd(_mm_add_pd(_mm_loadu_pd(t.value + k), _mm_mul_pd(_mm_loadu_pd(t.ddx + k), dxD)),
+                                         _mm_mul_pd(_mm_loadu_pd(t.ddy + k), dyD));
+            const __m128 f = _mm_cvtpd_ps(v);
+            start[k] = _mm256_broadcastss_ps(f);
+            start[k + 1] = _mm256_broadcastss_ps(_mm_shuffle_ps(f, f, _MM_SHUFFLE(1, 1, 1, 1)));
+        }
+        for (; k < kPlanes; ++k) start[k] = _mm256_set1_ps(float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy));
+        Pixel* colour = fb.colorRow(y);
+        float* depth = fb.depthRow(y);
+        batch.y = y;
+        const __m256 lastStep = _mm256_set1_ps(float(x1 - 1 - x0));
+        const __m256 laneOffsets = _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
+        const __m256i laneIndex = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+        for (int x = x0; x < x1; x += 8) {
+            const int n = std::min(8, x1 - x);
+            // Lanes inside the span, as a vector mask: masked loads and stores never touch the others.
+            const __m256i insideV = _mm256_cmpgt_epi32(_mm256_set1_epi32(n), laneIndex);
+            const __m256 step = _mm256_min_ps(_mm256_add_ps(_mm256_set1_ps(float(x - x0)), laneOffsets), lastStep);
+            const __m256 z = _mm256_add_ps(start[kPlaneZ], _mm256_mul_ps(gradient[kPlaneZ], step));
+            __m256i passV = insideV;
+            if constexpr (kDepth != DepthMode::Off) {
+                const __m256 stored = _mm256_maskload_ps(depth + x, insideV);
+                passV = _mm256_and_si256(passV, _mm256_castps_si256(_mm256_cmp_ps(z, stored, _CMP_GT_OQ)));
+            }
+            const int pass = _mm256_movemask_ps(_mm256_castsi256_ps(passV));
+            if (pass == 0) continue;
+            if constexpr (kDepth == DepthMode::TestWrite) _mm256_maskstore_ps(depth + x, passV, z);
+            shaded += std::uint64_t(((0x4332322132212110ull >> (4 * (pass & 0xF))) & 0xFu) +
+                                    ((0x4332322132212110ull >> (4 * (pass >> 4))) & 0xFu));
+            const __m256 invW = _mm256_add_ps(start[kPlaneInvW], _mm256_mul_ps(gradient[kPlaneInvW], step));
+            _mm256_store_ps(batch.invW, invW);
+            if constexpr (kPersp == PerspectiveMode::Exact) {
+                const __m256 w = _mm256_div_ps(_mm256_set1_ps(1.0f), invW);
+                for (int j = 0; j < kVaryings; ++j) {
+                    const int p = kPlaneVarying0 + j;
+                    _mm256_store_ps(batch.v[j], _mm256_mul_ps(_mm256_add_ps(start[p], _mm256_mul_ps(gradient[p], step)), w));
+                }
+            } else {
+                for (int j = 0; j < kVaryings; ++j) {
+                    const int p = kPlaneVarying0 + j;
+                    _mm256_store_ps(batch.v[j], _mm256_add_ps(start[p], _mm256_mul_ps(gradient[p], step)));
+                }
+            }
+            batch.x0 = x;
+            batch.last = n - 1;
+            alignas(32) Pixel out[8];
+            program.fragment8(static_cast<const FragmentBatch8<kVaryings>&>(batch), out);
+            _mm256_maskstore_epi32(reinterpret_cast<int*>(colour + x), passV,
+                                   _mm256_load_si256(reinterpret_cast<const __m256i*>(out)));
+        }
+    }
+};
+} // namespace detail
+
+// fillTriangle4 with eight pixels per step (AVX2: same operations, so the same bits) for a
+// program with fragment8(const FragmentBatch8<kVaryings>&, Pixel out[8]). Precondition: the CPU
+// has AVX2 (cpuHasAvx2()).
+template <DepthMode kDepth, int kVaryings, PerspectiveMode kPersp, class Program>
+SR_TARGET_AVX2 void fillTriangle8(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Program& program,
+                                  std::uint64_t& shaded) {
+    static_assert(kVaryings > 0 && kVaryings <= kMaxVaryings, "fillTriangle8 interpolates varyings");
+    static_assert(kPersp == PerspectiveMode::Exact || kPersp == PerspectiveMode::Affine, "no span subdivision here");
+    assert(kVaryings <= t.varyingCount);
+    assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= fb.width() && s.y1 <= fb.height());
+    constexpr int kPlanes = kPlaneVarying0 + kVaryings;
+    FragmentBatch8<kVaryings> batch;
+    __m256 gradient[kPlanes];
+    for (int k = 0; k < kPlanes; ++k) gradient[k] = _mm256_set1_ps(t.ddxStep[k]);
+    forEachSpan(t, s, detail::Span8<kDepth, kVaryings, kPersp, Program>{t, fb, program, shaded, batch, gradient});
+}
+#endif
+
 } // namespace sr

@@ -6,6 +6,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "Raster/ShadingSimd.hpp" // SR_HAVE_AVX2, SR_TARGET_AVX2
+
 #if defined(__SSE2__) || defined(_M_X64) || (defined(_M_IX86_FP) && _M_IX86_FP >= 2)
 #include <emmintrin.h>
 #define SR_TEXTURE_SSE2 1
@@ -416,6 +418,99 @@ void Texture::sampleBilinear4(const float u[4], const float v[4], WrapMode wrap,
         if (withAlpha) out.a[i] = c.a;
     }
 }
+
+#if SR_HAVE_AVX2
+namespace {
+
+// linearTaps(u, size, Repeat) for four lanes with AVX's exact floor (vroundpd): the same double
+// operations as the scalar path (floorExact equals floor for every |d| < 2^31).
+SR_TARGET_AVX2 inline __m128i repeatX4(__m128 u, __m256d size, bool reduce) {
+    __m256d d = _mm256_cvtps_pd(u);
+    if (reduce) {
+        const __m256d absD = _mm256_and_pd(d, _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFFLL)));
+        const __m256d big = _mm256_cmp_pd(absD, _mm256_set1_pd(1.0), _CMP_GE_OQ);
+        d = _mm256_blendv_pd(d, _mm256_sub_pd(d, _mm256_floor_pd(d)), big);
+    }
+    const __m256d y = _mm256_add_pd(
+        _mm256_mul_pd(_mm256_sub_pd(_mm256_mul_pd(d, size), _mm256_set1_pd(0.5)), _mm256_set1_pd(256.0)), _mm256_set1_pd(0.5));
+    return _mm256_cvttpd_epi32(_mm256_floor_pd(y));
+}
+
+// repeatTaps4 for eight lanes.
+SR_TARGET_AVX2 inline bool repeatTaps8(__m256 u, int size, std::uint32_t mask, __m256i& a, __m256i& b, __m256i& w) {
+    const __m256 absU = _mm256_and_ps(u, _mm256_castsi256_ps(_mm256_set1_epi32(0x7FFFFFFF)));
+    if (_mm256_movemask_ps(_mm256_cmp_ps(absU, _mm256_set1_ps(2147483648.0f), _CMP_LT_OQ)) != 0xFF) return false;
+    const bool reduce = _mm256_movemask_ps(_mm256_cmp_ps(absU, _mm256_set1_ps(1.0f), _CMP_GE_OQ)) != 0;
+    const __m256d sizeD = _mm256_set1_pd(double(size));
+    const __m128i lo = repeatX4(_mm256_castps256_ps128(u), sizeD, reduce);
+    const __m128i hi = repeatX4(_mm256_extractf128_ps(u, 1), sizeD, reduce);
+    const __m256i x = _mm256_insertf128_si256(_mm256_castsi128_si256(lo), hi, 1);
+    const __m256i i0 = _mm256_srai_epi32(x, 8);
+    w = _mm256_and_si256(x, _mm256_set1_epi32(255));
+    const __m256i one = _mm256_set1_epi32(1);
+    if (mask != 0) {
+        const __m256i m = _mm256_set1_epi32(int(mask));
+        a = _mm256_and_si256(i0, m);
+        b = _mm256_and_si256(_mm256_add_epi32(i0, one), m);
+        return true;
+    }
+    const __m256i n = _mm256_set1_epi32(size), zero = _mm256_setzero_si256();
+    a = _mm256_add_epi32(i0, _mm256_and_si256(_mm256_cmpgt_epi32(zero, i0), n));
+    a = _mm256_add_epi32(a, _mm256_and_si256(_mm256_cmpgt_epi32(zero, a), n));
+    const __m256i next = _mm256_add_epi32(a, one);
+    b = _mm256_andnot_si256(_mm256_cmpeq_epi32(next, n), next);
+    return true;
+}
+
+// One channel of the eight-lane blend (see sampleBilinear4): exact integers in float.
+SR_TARGET_AVX2 inline void blendChannel8(__m256i q00, __m256i q10, __m256i q01, __m256i q11, int shift, __m256 ax,
+                                         __m256 bx, __m256 ay, __m256 by, float* dst) {
+    const __m128i count = _mm_cvtsi32_si128(shift);
+    const __m256i byteMask = _mm256_set1_epi32(0xFF);
+    const __m256 c00 = _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srl_epi32(q00, count), byteMask));
+    const __m256 c10 = _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srl_epi32(q10, count), byteMask));
+    const __m256 c01 = _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srl_epi32(q01, count), byteMask));
+    const __m256 c11 = _mm256_cvtepi32_ps(_mm256_and_si256(_mm256_srl_epi32(q11, count), byteMask));
+    const __m256 bottom = _mm256_add_ps(_mm256_mul_ps(c00, ax), _mm256_mul_ps(c10, bx));
+    const __m256 top = _mm256_add_ps(_mm256_mul_ps(c01, ax), _mm256_mul_ps(c11, bx));
+    const __m256 raw = _mm256_add_ps(_mm256_mul_ps(bottom, ay), _mm256_mul_ps(top, by));
+    _mm256_store_ps(dst, _mm256_div_ps(raw, _mm256_set1_ps(kRawScale)));
+}
+
+} // namespace
+
+SR_TARGET_AVX2 void Texture::sampleBilinear8(const float u[8], const float v[8], WrapMode wrap, ColorLanes8& out,
+                                             bool withAlpha) const {
+    const Level& l = levels_[0];
+    __m256i x0, x1, wx, y0, y1, wy;
+    if (wrap == WrapMode::Repeat && repeatTaps8(_mm256_loadu_ps(u), l.width, l.maskX, x0, x1, wx) &&
+        repeatTaps8(_mm256_loadu_ps(v), l.height, l.maskY, y0, y1, wy)) {
+        // Indices row * width + column (< 2^28) and hardware gathers.
+        const __m256i widthV = _mm256_set1_epi32(l.width);
+        const __m256i row0 = _mm256_mullo_epi32(y0, widthV), row1 = _mm256_mullo_epi32(y1, widthV);
+        const int* texels = reinterpret_cast<const int*>(l.texels.data());
+        const __m256i q00 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(row0, x0), 4);
+        const __m256i q10 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(row0, x1), 4);
+        const __m256i q01 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(row1, x0), 4);
+        const __m256i q11 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(row1, x1), 4);
+        const __m256i w256 = _mm256_set1_epi32(256);
+        const __m256 bx = _mm256_cvtepi32_ps(wx), ax = _mm256_cvtepi32_ps(_mm256_sub_epi32(w256, wx));
+        const __m256 by = _mm256_cvtepi32_ps(wy), ay = _mm256_cvtepi32_ps(_mm256_sub_epi32(w256, wy));
+        blendChannel8(q00, q10, q01, q11, 0, ax, bx, ay, by, out.r);
+        blendChannel8(q00, q10, q01, q11, 8, ax, bx, ay, by, out.g);
+        blendChannel8(q00, q10, q01, q11, 16, ax, bx, ay, by, out.b);
+        if (withAlpha) blendChannel8(q00, q10, q01, q11, 24, ax, bx, ay, by, out.a);
+        return;
+    }
+    for (int i = 0; i < 8; ++i) {
+        const Color c = sampleBilinear(Vec2{u[i], v[i]}, wrap);
+        out.r[i] = c.r;
+        out.g[i] = c.g;
+        out.b[i] = c.b;
+        if (withAlpha) out.a[i] = c.a;
+    }
+}
+#endif
 
 Color Texture::sampleTrilinear(Vec2 uv, float lod, WrapMode wrap) const {
     switch (wrap) {

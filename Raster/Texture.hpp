@@ -112,6 +112,16 @@ public:
     // withAlpha = false leaves out.a untouched (for callers that ignore alpha, e.g. lighting).
     void sampleBilinear4(const float u[4], const float v[4], WrapMode wrap, ColorLanes& out,
                          bool withAlpha = true) const;
+    // The same for eight lanes with AVX2 (Repeat; the rest lane by lane). Precondition: the CPU
+    // has AVX2 (cpuHasAvx2() in ShadingSimd.hpp); only compiled where SR_HAVE_AVX2 is 1.
+    struct ColorLanes8 {
+        alignas(32) float r[8];
+        alignas(32) float g[8];
+        alignas(32) float b[8];
+        alignas(32) float a[8];
+    };
+    void sampleBilinear8(const float u[8], const float v[8], WrapMode wrap, ColorLanes8& out,
+                         bool withAlpha = true) const;
     // GL_LINEAR_MIPMAP_LINEAR: lod clamped to [0, levelCount() - 1]; GL_LINEAR in levels floor(lod)
     // and floor(lod) + 1, blended by frac(lod) in 8-bit fixed point (wl = floor(256 frac), the
     // integer blends mixed as (c0 (256 - wl) + c1 wl + 128) >> 8). wl == 0 and the last level

@@ -209,10 +209,15 @@ struct HashProgram {
     void fragment4(const FragmentBatch<kV>& b, Pixel out[4]) const {
         for (int i = 0; i < 4; ++i) out[i] = hash(b.x[i], b.y[i], b.invW[i], &b.v[0][i], 4);
     }
+#if SR_HAVE_AVX2
+    void fragment8(const FragmentBatch8<kV>& b, Pixel out[8]) const {
+        for (int i = 0; i < 8; ++i) out[i] = hash(b.x(i), b.y, b.invW[i], &b.v[0][i], 8);
+    }
+#endif
 };
 
 template <DepthMode kDepth, PerspectiveMode kPersp>
-void compareFills(std::mt19937& rng, long& pixels) {
+void compareFills(std::mt19937& rng, long& pixels, bool eightWide = false) {
     constexpr int kV = 5;
     std::uniform_real_distribution<float> pos(-20.0f, 84.0f), small(0.0f, 4.0f), unit(0.0f, 1.0f), var(-50.0f, 50.0f);
     const int w = 64, h = 48;
@@ -249,7 +254,12 @@ void compareFills(std::mt19937& rng, long& pixels) {
                 ++shadedRef;
                 return program.hash(f.x, f.y, f.invW, f.varyings.data(), 1);
             });
-            fillTriangle4<kDepth, kV, kPersp>(*setup, simd, sc, program, shadedSimd);
+#if SR_HAVE_AVX2
+            if (eightWide) fillTriangle8<kDepth, kV, kPersp>(*setup, simd, sc, program, shadedSimd);
+            else
+#endif
+                fillTriangle4<kDepth, kV, kPersp>(*setup, simd, sc, program, shadedSimd);
+            (void)eightWide;
             REQUIRE(shadedSimd == shadedRef);
             pixels += long(shadedRef);
         }
@@ -271,5 +281,63 @@ TEST_CASE("the four-pixel span loop hands fragment4 exactly the one-pixel loop's
     compareFills<DepthMode::TestWrite, PerspectiveMode::Affine>(rng, pixels);
     compareFills<DepthMode::Off, PerspectiveMode::Affine>(rng, pixels);
     CHECK(pixels > 100000);
+}
+#endif
+
+#if SR_HAVE_AVX2
+TEST_CASE("the eight-pixel AVX2 span loop hands fragment8 exactly the one-pixel loop's fragments", "[threads][simd][fill][avx2]") {
+    if (!cpuHasAvx2()) {
+        WARN("no AVX2 on this CPU (or SR_NO_AVX2 set): not tested");
+        return;
+    }
+    std::mt19937 rng(9u);
+    long pixels = 0;
+    compareFills<DepthMode::TestWrite, PerspectiveMode::Exact>(rng, pixels, true);
+    compareFills<DepthMode::Test, PerspectiveMode::Exact>(rng, pixels, true);
+    compareFills<DepthMode::Off, PerspectiveMode::Exact>(rng, pixels, true);
+    compareFills<DepthMode::TestWrite, PerspectiveMode::Affine>(rng, pixels, true);
+    compareFills<DepthMode::Off, PerspectiveMode::Affine>(rng, pixels, true);
+    CHECK(pixels > 100000);
+}
+
+TEST_CASE("AVX2 Blinn-Phong of eight pixels is bit-identical to the scalar shading", "[threads][simd][avx2]") {
+    if (!cpuHasAvx2()) {
+        WARN("no AVX2 on this CPU (or SR_NO_AVX2 set): not tested");
+        return;
+    }
+    std::mt19937 rng(2025);
+    std::uniform_real_distribution<float> u(-1.0f, 1.0f), c(-0.2f, 1.2f);
+    std::uniform_int_distribution<int> e(-40, 40), special(0, 15);
+    Lighting lighting;
+    lighting.toLight = {normalize(Vec3(1, 1, 1)), normalize(Vec3(-0.3f, 0.2f, 1.0f))};
+    int simdLanes = 0;
+    for (int i = 0; i < 30000; ++i) {
+        alignas(32) float nx[8], ny[8], nz[8], vx[8], vy[8], vz[8], kr[8], kg[8], kb[8];
+        for (int l = 0; l < 8; ++l) {
+            const float s = std::ldexp(1.0f, e(rng));
+            nx[l] = u(rng) * s, ny[l] = u(rng) * s, nz[l] = u(rng) * s;
+            vx[l] = u(rng), vy[l] = u(rng), vz[l] = u(rng);
+            kr[l] = c(rng), kg[l] = c(rng), kb[l] = c(rng);
+            if (special(rng) == 0) nx[l] = ny[l] = nz[l] = 0.0f;
+            if (special(rng) == 0) vx[l] = -lighting.toLight[0].x, vy[l] = -lighting.toLight[0].y,
+                                   vz[l] = -lighting.toLight[0].z;
+        }
+        std::uint32_t out[8];
+        int good = 0;
+        [&]() SR_TARGET_AVX2 {
+            __m256 ok = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
+            const simd8::Vec3x8 n = simd8::normalizeFast({_mm256_load_ps(nx), _mm256_load_ps(ny), _mm256_load_ps(nz)}, ok);
+            const simd8::Vec3x8 v = simd8::normalizeFast({_mm256_load_ps(vx), _mm256_load_ps(vy), _mm256_load_ps(vz)}, ok);
+            REQUIRE(simd8::shadeBlinnPhong(lighting, _mm256_load_ps(kr), _mm256_load_ps(kg), _mm256_load_ps(kb), n, v, ok, out));
+            good = _mm256_movemask_ps(ok);
+        }();
+        for (int l = 0; l < 8; ++l) {
+            if (!(good & (1 << l))) continue;
+            ++simdLanes;
+            const LightTerms t = blinnPhong(lighting, normalize(Vec3{nx[l], ny[l], nz[l]}), normalize(Vec3{vx[l], vy[l], vz[l]}));
+            REQUIRE(out[l] == packBgra8(applyTerms(Color{kr[l], kg[l], kb[l], 1.0f}, t)));
+        }
+    }
+    CHECK(simdLanes > 150000);
 }
 #endif
