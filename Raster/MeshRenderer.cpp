@@ -249,8 +249,8 @@ struct PhongProgram {
     }
     static Fragment<kVaryings> laneFragment8(const FragmentBatch8<kVaryings>& b, int i) {
         Fragment<kVaryings> f;
-        f.x = b.x(i);
-        f.y = b.y;
+        f.x = b.x[i];
+        f.y = b.y[i];
         f.invW = b.invW[i];
         for (int k = 0; k < kVaryings; ++k) f.varyings[std::size_t(k)] = b.v[k][i];
         return f;

@@ -300,17 +300,42 @@ void fillTriangle4(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Pr
 #endif
 
 #if SR_HAVE_AVX2
-// Eight fragments for fragment8 (AVX2), as FragmentBatch.
+// Eight fragments for fragment8 (AVX2): lane i is pixel (x[i], y[i]) with its 1/w and varyings.
+// The lanes are not necessarily neighbours (see fillTriangle8); unused lanes repeat a used one.
 template <int kVaryings>
 struct FragmentBatch8 {
-    int x0 = 0, y = 0;  // lane i is pixel (x0 + min(i, last), y)
-    int last = 7;       // lanes past `last` repeat that lane's pixel (the end of a span)
-    int x(int i) const { return x0 + (i < last ? i : last); }
+    alignas(32) int x[8] = {};
+    alignas(32) int y[8] = {};
     alignas(32) float invW[8] = {};
     alignas(32) float v[kVaryings > 0 ? kVaryings : 1][8] = {};
 };
 
 namespace detail {
+// Left-packing permutations for _mm256_permutevar8x32: entry m lists the set bits of m in
+// ascending order (then zeros), so the lanes that passed the depth test move to the front.
+struct PackTable8 {
+    alignas(32) int lanes[256][8];
+    constexpr PackTable8() : lanes{} {
+        for (int m = 0; m < 256; ++m) {
+            int n = 0;
+            for (int i = 0; i < 8; ++i)
+                if (m & (1 << i)) lanes[m][n++] = i;
+        }
+    }
+};
+inline constexpr PackTable8 kPackTable8{};
+
+// The fragments of one triangle waiting to be shaded: up to 15 (a full group of 8 is shaded as
+// soon as it exists), each with its pixel, 1/w and varyings in lane-major arrays.
+template <int kVaryings>
+struct FragmentQueue8 {
+    int count = 0;
+    alignas(32) int x[16] = {};
+    alignas(32) int y[16] = {};
+    alignas(32) float invW[16] = {};
+    alignas(32) float v[kVaryings][16] = {};
+};
+
 // One span of fillTriangle8 (a functor rather than a lambda: GCC does not give a lambda its
 // enclosing function's target("avx2")).
 template <DepthMode kDepth, int kVaryings, PerspectiveMode kPersp, class Program>
@@ -320,8 +345,27 @@ struct Span8 {
     FrameBuffer& fb;
     Program& program;
     std::uint64_t& shaded;
-    FragmentBatch8<kVaryings>& batch;
+    FragmentQueue8<kVaryings>& queue;
     const __m256* gradient;
+
+    // Shades the queue's first eight fragments (lanes past `used` repeat lane used - 1, so the
+    // program sees only real fragments) and stores the first `used` colours at their pixels.
+    SR_TARGET_AVX2 void shadeQueued(int used) const {
+        FragmentBatch8<kVaryings> batch;
+        const __m256i clampIndex = _mm256_min_epi32(_mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7), _mm256_set1_epi32(used - 1));
+        const auto pick = [&](const float* from, float* to) SR_TARGET_AVX2 {
+            _mm256_store_ps(to, _mm256_permutevar8x32_ps(_mm256_load_ps(from), clampIndex));
+        };
+        _mm256_store_si256(reinterpret_cast<__m256i*>(batch.x),
+                           _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(queue.x)), clampIndex));
+        _mm256_store_si256(reinterpret_cast<__m256i*>(batch.y),
+                           _mm256_permutevar8x32_epi32(_mm256_load_si256(reinterpret_cast<const __m256i*>(queue.y)), clampIndex));
+        pick(queue.invW, batch.invW);
+        for (int j = 0; j < kVaryings; ++j) pick(queue.v[j], batch.v[j]);
+        alignas(32) Pixel out[8];
+        program.fragment8(static_cast<const FragmentBatch8<kVaryings>&>(batch), out);
+        for (int i = 0; i < used; ++i) fb.colorRow(batch.y[i])[batch.x[i]] = out[i];
+    }
 
     SR_TARGET_AVX2 void operator()(int y, int x0, int x1) const {
         const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
@@ -338,10 +382,10 @@ struct Span8 {
         for (; k < kPlanes; ++k) start[k] = _mm256_set1_ps(float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy));
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);
-        batch.y = y;
         const __m256 lastStep = _mm256_set1_ps(float(x1 - 1 - x0));
         const __m256 laneOffsets = _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
         const __m256i laneIndex = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+        const __m256i row = _mm256_set1_epi32(y);
         for (int x = x0; x < x1; x += 8) {
             const int n = std::min(8, x1 - x);
             // Lanes inside the span, as a vector mask: masked loads and stores never touch the others.
@@ -349,43 +393,81 @@ struct Span8 {
             const __m256 step = _mm256_min_ps(_mm256_add_ps(_mm256_set1_ps(float(x - x0)), laneOffsets), lastStep);
             const __m256 z = _mm256_add_ps(start[kPlaneZ], _mm256_mul_ps(gradient[kPlaneZ], step));
             __m256i passV = insideV;
+            __m256 stored = _mm256_setzero_ps();
             if constexpr (kDepth != DepthMode::Off) {
-                const __m256 stored = _mm256_maskload_ps(depth + x, insideV);
+                // Plain loads and stores for a whole group (masked ones are slow on some CPUs).
+                stored = n == 8 ? _mm256_loadu_ps(depth + x) : _mm256_maskload_ps(depth + x, insideV);
                 passV = _mm256_and_si256(passV, _mm256_castps_si256(_mm256_cmp_ps(z, stored, _CMP_GT_OQ)));
             }
             const int pass = _mm256_movemask_ps(_mm256_castsi256_ps(passV));
             if (pass == 0) continue;
-            if constexpr (kDepth == DepthMode::TestWrite) _mm256_maskstore_ps(depth + x, passV, z);
-            shaded += std::uint64_t(((0x4332322132212110ull >> (4 * (pass & 0xF))) & 0xFu) +
-                                    ((0x4332322132212110ull >> (4 * (pass >> 4))) & 0xFu));
+            if constexpr (kDepth == DepthMode::TestWrite) {
+                if (n == 8) _mm256_storeu_ps(depth + x, _mm256_blendv_ps(stored, z, _mm256_castsi256_ps(passV)));
+                else _mm256_maskstore_ps(depth + x, passV, z);
+            }
+            const int passed = int(((0x4332322132212110ull >> (4 * (pass & 0xF))) & 0xFu) +
+                                   ((0x4332322132212110ull >> (4 * (pass >> 4))) & 0xFu));
+            shaded += std::uint64_t(passed);
             const __m256 invW = _mm256_add_ps(start[kPlaneInvW], _mm256_mul_ps(gradient[kPlaneInvW], step));
-            _mm256_store_ps(batch.invW, invW);
+            __m256 values[kVaryings];
             if constexpr (kPersp == PerspectiveMode::Exact) {
                 const __m256 w = _mm256_div_ps(_mm256_set1_ps(1.0f), invW);
                 for (int j = 0; j < kVaryings; ++j) {
                     const int p = kPlaneVarying0 + j;
-                    _mm256_store_ps(batch.v[j], _mm256_mul_ps(_mm256_add_ps(start[p], _mm256_mul_ps(gradient[p], step)), w));
+                    values[j] = _mm256_mul_ps(_mm256_add_ps(start[p], _mm256_mul_ps(gradient[p], step)), w);
                 }
             } else {
                 for (int j = 0; j < kVaryings; ++j) {
                     const int p = kPlaneVarying0 + j;
-                    _mm256_store_ps(batch.v[j], _mm256_add_ps(start[p], _mm256_mul_ps(gradient[p], step)));
+                    values[j] = _mm256_add_ps(start[p], _mm256_mul_ps(gradient[p], step));
                 }
             }
-            batch.x0 = x;
-            batch.last = n - 1;
-            alignas(32) Pixel out[8];
-            program.fragment8(static_cast<const FragmentBatch8<kVaryings>&>(batch), out);
-            _mm256_maskstore_epi32(reinterpret_cast<int*>(colour + x), passV,
-                                   _mm256_load_si256(reinterpret_cast<const __m256i*>(out)));
+            const __m256i columns = _mm256_add_epi32(_mm256_set1_epi32(x), laneIndex);
+            if (pass == 0xFF) {
+                // A whole group: shaded at once and stored with one vector store.
+                FragmentBatch8<kVaryings> batch;
+                _mm256_store_si256(reinterpret_cast<__m256i*>(batch.x), columns);
+                _mm256_store_si256(reinterpret_cast<__m256i*>(batch.y), row);
+                _mm256_store_ps(batch.invW, invW);
+                for (int j = 0; j < kVaryings; ++j) _mm256_store_ps(batch.v[j], values[j]);
+                alignas(32) Pixel out[8];
+                program.fragment8(static_cast<const FragmentBatch8<kVaryings>&>(batch), out);
+                _mm256_storeu_si256(reinterpret_cast<__m256i*>(colour + x), _mm256_load_si256(reinterpret_cast<const __m256i*>(out)));
+                continue;
+            }
+            // A partial group: its passing lanes join the queue (packed to the front), which is
+            // shaded eight at a time. The pixels of one triangle are distinct, so the order in
+            // which they are stored does not matter; the queue is emptied before the next triangle.
+            const __m256i pack = _mm256_load_si256(reinterpret_cast<const __m256i*>(kPackTable8.lanes[pass]));
+            const int at = queue.count;
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(queue.x + at), _mm256_permutevar8x32_epi32(columns, pack));
+            _mm256_storeu_si256(reinterpret_cast<__m256i*>(queue.y + at), row);
+            _mm256_storeu_ps(queue.invW + at, _mm256_permutevar8x32_ps(invW, pack));
+            for (int j = 0; j < kVaryings; ++j) _mm256_storeu_ps(queue.v[j] + at, _mm256_permutevar8x32_ps(values[j], pack));
+            queue.count = at + passed;
+            if (queue.count >= 8) {
+                shadeQueued(8);
+                // Move the rest (fewer than 8) to the front.
+                queue.count -= 8;
+                const auto down = [](auto* lanes) SR_TARGET_AVX2 {
+                    _mm256_store_si256(reinterpret_cast<__m256i*>(lanes), _mm256_loadu_si256(reinterpret_cast<const __m256i*>(lanes + 8)));
+                };
+                down(queue.x);
+                down(queue.y);
+                down(queue.invW);
+                for (int j = 0; j < kVaryings; ++j) down(queue.v[j]);
+            }
         }
     }
 };
 } // namespace detail
 
-// fillTriangle4 with eight pixels per step (AVX2: same operations, so the same bits) for a
-// program with fragment8(const FragmentBatch8<kVaryings>&, Pixel out[8]). Precondition: the CPU
-// has AVX2 (cpuHasAvx2()).
+// fillTriangle4 with eight pixels per step (AVX2: the same operations, so the same bits) for a
+// program with fragment8(const FragmentBatch8<kVaryings>&, Pixel out[8]). A group whose eight
+// pixels all pass the depth test is shaded at once; the passing pixels of the other groups are
+// packed into a queue and shaded eight at a time (whatever is left at the end of the triangle,
+// with repeated lanes), so the shader rarely runs on lanes that are thrown away.
+// Precondition: the CPU has AVX2 (cpuHasAvx2()).
 template <DepthMode kDepth, int kVaryings, PerspectiveMode kPersp, class Program>
 SR_TARGET_AVX2 void fillTriangle8(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Program& program,
                                   std::uint64_t& shaded) {
@@ -394,10 +476,12 @@ SR_TARGET_AVX2 void fillTriangle8(const TriangleSetup& t, FrameBuffer& fb, const
     assert(kVaryings <= t.varyingCount);
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= fb.width() && s.y1 <= fb.height());
     constexpr int kPlanes = kPlaneVarying0 + kVaryings;
-    FragmentBatch8<kVaryings> batch;
+    detail::FragmentQueue8<kVaryings> queue;
     __m256 gradient[kPlanes];
     for (int k = 0; k < kPlanes; ++k) gradient[k] = _mm256_set1_ps(t.ddxStep[k]);
-    forEachSpan(t, s, detail::Span8<kDepth, kVaryings, kPersp, Program>{t, fb, program, shaded, batch, gradient});
+    const detail::Span8<kDepth, kVaryings, kPersp, Program> span{t, fb, program, shaded, queue, gradient};
+    forEachSpan(t, s, span);
+    if (queue.count > 0) span.shadeQueued(queue.count);
 }
 #endif
 

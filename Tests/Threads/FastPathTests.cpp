@@ -211,7 +211,7 @@ struct HashProgram {
     }
 #if SR_HAVE_AVX2
     void fragment8(const FragmentBatch8<kV>& b, Pixel out[8]) const {
-        for (int i = 0; i < 8; ++i) out[i] = hash(b.x(i), b.y, b.invW[i], &b.v[0][i], 8);
+        for (int i = 0; i < 8; ++i) out[i] = hash(b.x[i], b.y[i], b.invW[i], &b.v[0][i], 8);
     }
 #endif
 };
