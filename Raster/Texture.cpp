@@ -462,6 +462,19 @@ SR_TARGET_AVX2 inline bool repeatTaps8(__m256 u, int size, std::uint32_t mask, _
     return true;
 }
 
+// texels[index[i]] and texels[index[i] + 1] for eight lanes, from two 64-bit gathers (index + 1
+// stays inside the texel array thanks to its padding texel).
+SR_TARGET_AVX2 inline void pairGather8(const int* texels, __m256i index, __m256i& first, __m256i& second) {
+    const auto* pairs = reinterpret_cast<const long long*>(texels);
+    const __m256 lo = _mm256_castsi256_ps(_mm256_i32gather_epi64(pairs, _mm256_castsi256_si128(index), 4));
+    const __m256 hi = _mm256_castsi256_ps(_mm256_i32gather_epi64(pairs, _mm256_extracti128_si256(index, 1), 4));
+    // lo = [a0 b0 a1 b1 | a2 b2 a3 b3], hi = [a4 b4 a5 b5 | a6 b6 a7 b7]
+    const __m256i a = _mm256_castps_si256(_mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0))); // a0 a1 a4 a5 | a2 a3 a6 a7
+    const __m256i b = _mm256_castps_si256(_mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1)));
+    first = _mm256_permute4x64_epi64(a, _MM_SHUFFLE(3, 1, 2, 0));
+    second = _mm256_permute4x64_epi64(b, _MM_SHUFFLE(3, 1, 2, 0));
+}
+
 // One channel of the eight-lane blend (see sampleBilinear4): exact integers in float.
 SR_TARGET_AVX2 inline void blendChannel8(__m256i q00, __m256i q10, __m256i q01, __m256i q11, int shift, __m256 ax,
                                          __m256 bx, __m256 ay, __m256 by, float* dst) {
@@ -489,10 +502,17 @@ SR_TARGET_AVX2 void Texture::sampleBilinear8(const float u[8], const float v[8],
         const __m256i widthV = _mm256_set1_epi32(l.width);
         const __m256i row0 = _mm256_mullo_epi32(y0, widthV), row1 = _mm256_mullo_epi32(y1, widthV);
         const int* texels = reinterpret_cast<const int*>(l.texels.data());
-        const __m256i q00 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(row0, x0), 4);
-        const __m256i q10 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(row0, x1), 4);
-        const __m256i q01 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(row1, x0), 4);
-        const __m256i q11 = _mm256_i32gather_epi32(texels, _mm256_add_epi32(row1, x1), 4);
+        // Texels x0 and x0 + 1 of a row as one 64-bit value (two 4-lane gathers per row instead
+        // of two 8-lane ones); a lane whose x1 is not x0 + 1 (it wrapped to 0) is fetched again.
+        __m256i q00, q10, q01, q11;
+        pairGather8(texels, _mm256_add_epi32(row0, x0), q00, q10);
+        pairGather8(texels, _mm256_add_epi32(row1, x0), q01, q11);
+        const __m256i wrapped = _mm256_xor_si256(_mm256_cmpeq_epi32(x1, _mm256_add_epi32(x0, _mm256_set1_epi32(1))),
+                                                 _mm256_set1_epi32(-1));
+        if (!_mm256_testz_si256(wrapped, wrapped)) {
+            q10 = _mm256_blendv_epi8(q10, _mm256_i32gather_epi32(texels, _mm256_add_epi32(row0, x1), 4), wrapped);
+            q11 = _mm256_blendv_epi8(q11, _mm256_i32gather_epi32(texels, _mm256_add_epi32(row1, x1), 4), wrapped);
+        }
         const __m256i w256 = _mm256_set1_epi32(256);
         const __m256 bx = _mm256_cvtepi32_ps(wx), ax = _mm256_cvtepi32_ps(_mm256_sub_epi32(w256, wx));
         const __m256 by = _mm256_cvtepi32_ps(wy), ay = _mm256_cvtepi32_ps(_mm256_sub_epi32(w256, wy));
@@ -594,7 +614,7 @@ Texture::Level Texture::makeLevel(int width, int height) {
     l.maskX = isPowerOfTwo(width) ? std::uint32_t(width - 1) : 0u;
     l.maskY = isPowerOfTwo(height) ? std::uint32_t(height - 1) : 0u;
     // A size of 1 is a power of two with mask 0: the generic branch handles it (index 0 always).
-    l.texels.assign(std::size_t(width) * std::size_t(height), 0u);
+    l.texels.assign(std::size_t(width) * std::size_t(height) + 1, 0u); // + the padding texel (Level)
     return l;
 }
 

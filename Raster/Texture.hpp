@@ -136,7 +136,9 @@ private:
     struct Level {
         int width = 0, height = 0;
         std::uint32_t maskX = 0, maskY = 0; // width - 1 / height - 1 when a power of two, else 0
-        std::vector<std::uint32_t> texels;  // packed RGBA8, bottom row first, rows packed
+        // Packed RGBA8, bottom row first, rows packed, then one zero texel of padding: the AVX2
+        // sampler loads texels x and x + 1 as one 64-bit value, also for the last texel.
+        std::vector<std::uint32_t> texels;
     };
 
     static Level makeLevel(int width, int height);
