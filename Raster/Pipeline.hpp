@@ -349,6 +349,9 @@ void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipp
 
 // The vertex stage for vertices [begin, end): program.vertex, the clip code, and the divide
 // wherever it is defined (w > 0).
+// The vertex stage is split across lanes only when each lane gets at least this many vertices.
+inline constexpr std::size_t kMinVerticesPerLane = 4096;
+
 template <int kVaryings, class Program>
 void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, std::size_t end, Program& program) {
     const int width = ctx.target().width(), height = ctx.target().height();
@@ -393,15 +396,21 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         ctx.stats += lane.stats;
         return;
     }
-    // 1. Vertex stage split by vertex ranges (each lane with its own copy of the program).
+    // 1. Vertex stage split by vertex ranges (each lane with its own copy of the program), unless
+    //    there are too few vertices to pay for waking the workers (tens of microseconds, against
+    //    about 20 ns per vertex): then the calling thread transforms them all.
     ThreadPool& pool = *ctx.pool();
-    auto vertexJob = [&](int l) {
-        Program copy = program;
-        const std::size_t begin = vertexCount * std::size_t(l) / std::size_t(lanes);
-        const std::size_t end = vertexCount * std::size_t(l + 1) / std::size_t(lanes);
-        vertexRange<kVaryings>(ctx, clipper, begin, end, copy);
-    };
-    pool.run(vertexJob);
+    if (vertexCount < kMinVerticesPerLane * std::size_t(lanes)) {
+        vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program);
+    } else {
+        auto vertexJob = [&](int l) {
+            Program copy = program;
+            const std::size_t begin = vertexCount * std::size_t(l) / std::size_t(lanes);
+            const std::size_t end = vertexCount * std::size_t(l + 1) / std::size_t(lanes);
+            vertexRange<kVaryings>(ctx, clipper, begin, end, copy);
+        };
+        pool.run(vertexJob);
+    }
     // 2. Primitive stage: every lane walks the triangles in order and fills its own bands.
     LaneState laneStates[kMaxRenderThreads];
     auto rasterJob = [&](int l) {
