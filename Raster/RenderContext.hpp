@@ -74,8 +74,8 @@ public:
         auto job = [&](int lane) {
             const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
             if (y0 >= y1) return;
-            std::fill(fb.colorRow(y0), fb.colorRow(y0) + std::size_t(y1 - y0) * std::size_t(width), colour);
-            std::fill(fb.depthRow(y0), fb.depthRow(y0) + std::size_t(y1 - y0) * std::size_t(width), depth);
+            fillWords(fb.colorRow(y0), std::size_t(y1 - y0) * std::size_t(width), colour);
+            fillWords(fb.depthRow(y0), std::size_t(y1 - y0) * std::size_t(width), depth);
         };
         if (pool_) pool_->run(job);
         else fb.clear(colour, depth);

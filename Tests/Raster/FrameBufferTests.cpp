@@ -1,6 +1,11 @@
 // Tests of FrameBuffer: resize (including 0x0 and limits), clear, DIB pixel layout.
 #include "TestFramework.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
 #include "Raster/FrameBuffer.hpp"
 
 using namespace sr;
@@ -37,4 +42,36 @@ TEST_CASE("resizing back to a smaller size does not reallocate", "[raster][frame
     REQUIRE(fb.resize(32, 16));
     REQUIRE(fb.resize(64, 64));
     CHECK(fb.colorData() == before);
+}
+
+TEST_CASE("fillWords writes exactly [dst, dst + count) at any alignment, as std::fill", "[raster][framebuffer]") {
+    // Guard words around every slice: a vector loop that runs past either end changes them.
+    std::vector<std::uint32_t> buffer(300), expected(300);
+    std::uint32_t value = 0x9E3779B9u;
+    for (std::size_t offset = 0; offset < 9; ++offset) {
+        for (std::size_t count : {std::size_t(0), std::size_t(1), std::size_t(3), std::size_t(4), std::size_t(7),
+                                  std::size_t(8), std::size_t(15), std::size_t(16), std::size_t(17), std::size_t(63),
+                                  std::size_t(64), std::size_t(65), std::size_t(250)}) {
+            for (std::size_t i = 0; i < buffer.size(); ++i) buffer[i] = expected[i] = std::uint32_t(i * 2654435761u);
+            value = value * 1664525u + 1013904223u;
+            fillWords(buffer.data() + offset, count, value);
+            std::fill(expected.begin() + std::ptrdiff_t(offset), expected.begin() + std::ptrdiff_t(offset + count), value);
+            INFO("offset " << offset << ", count " << count);
+            REQUIRE(buffer == expected);
+        }
+    }
+}
+
+TEST_CASE("clear fills colour and depth, with the depth value's exact bits", "[raster][framebuffer]") {
+    FrameBuffer fb(37, 5); // 185 pixels: not a multiple of any vector width
+    fb.clear(packBgra(1, 2, 3), -0.0f);
+    for (int y = 0; y < fb.height(); ++y)
+        for (int x = 0; x < fb.width(); ++x) {
+            REQUIRE(fb.pixel(x, y) == packBgra(1, 2, 3));
+            REQUIRE(std::signbit(fb.depth(x, y))); // -0.0f, not +0.0f
+        }
+    fb.clearDepth(0.25f);
+    fb.clearColor(packBgra(9, 8, 7));
+    CHECK(fb.depth(36, 4) == 0.25f);
+    CHECK(fb.pixel(36, 4) == packBgra(9, 8, 7));
 }
