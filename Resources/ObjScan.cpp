@@ -68,7 +68,9 @@ std::string quoted(const char* b, const char* e) {
 // True when tinyobjloader's tryParseDouble accepts the token (else it silently uses 0), and the
 // token is not a decimal comma ("0,5") or an MSVC non-finite spelling ("1.#INF", "-1.#IND"),
 // which it would misread as a plain number. Trailing junk after a number is tolerated, as there.
-bool isAcceptedNumber(const char* b, const char* e) {
+// *exponent (when given) receives the token's decimal exponent (0 without one).
+bool isAcceptedNumber(const char* b, const char* e, long* exponentOut = nullptr) {
+    if (exponentOut) *exponentOut = 0;
     for (const char* q = b; q < e; ++q)
         if (*q == '#' || *q == ',') return false;
     const auto digit = [](char c) { return c >= '0' && c <= '9'; };
@@ -82,6 +84,7 @@ bool isAcceptedNumber(const char* b, const char* e) {
     }
     if (p >= e || (*p != 'e' && *p != 'E')) return true;
     ++p;
+    const bool negative = p < e && *p == '-';
     if (p < e && (*p == '+' || *p == '-')) ++p;
     std::size_t expDigits = 0;
     long exponent = 0;
@@ -90,6 +93,7 @@ bool isAcceptedNumber(const char* b, const char* e) {
         exponent = exponent * 10 + (*p++ - '0');
         ++expDigits;
     }
+    if (exponentOut) *exponentOut = negative ? -exponent : exponent;
     return expDigits > 0;
 }
 
@@ -271,12 +275,16 @@ Result<ObjScanStats> scanObj(TextSpan text, const std::string& name, const ObjLi
             weightTokens += countTokens(p + 3, e);
             // "vw vertex joint weight ...": tinyobjloader converts the vertex and joint ids to int
             // with no range check (undefined behaviour for 1e38, found by fuzzing), so every value
-            // must be a plain number within int's range.
+            // must be a plain number within int's range. It also computes a number as
+            // mantissa * pow(5, exponent) * 2^exponent: "0e999" is 0 * inf = NaN there (0 for
+            // strtod), so exponents above 300 (pow(5, 300) is finite) are refused too.
             for (const char* q = skipBlanks(p + 3, e); q < e; q = skipBlanks(q, e)) {
                 const char* t = q;
                 while (q < e && !isBlank(*q)) ++q;
                 const std::string token(t, q);
-                if (!isAcceptedNumber(t, q) || !(std::fabs(std::strtod(token.c_str(), nullptr)) <= 2147483647.0))
+                long exponent = 0;
+                if (!isAcceptedNumber(t, q, &exponent) || exponent > 300 ||
+                    !(std::fabs(std::strtod(token.c_str(), nullptr)) <= 2147483647.0))
                     return R::failure(at() + "vertex weight value " + quoted(t, q) + " is not a number in int's range");
             }
         } else if (kind == Kind::Group) {

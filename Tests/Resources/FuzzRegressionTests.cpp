@@ -137,3 +137,20 @@ TEST_CASE("fuzz: a vertex-weight line with an id beyond int's range is refused b
     const auto ok = loadObjFromMemory(reinterpret_cast<const unsigned char*>(good.data()), good.size(), "w.obj");
     CHECK(ok.ok());
 }
+
+TEST_CASE("fuzz: a vertex-weight value that tinyobjloader would compute as NaN is refused", "[resources][obj][fuzz]") {
+    // Found by sr_fuzz_obj (seed 1, 12-minute run): tinyobjloader computes "0e999" and ".e1384"
+    // as 0 * pow(5, exponent) = 0 * inf = NaN and converts that to int (undefined behaviour),
+    // while strtod reads them as 0. Values with an exponent above 300 are refused; a negative
+    // exponent of any size and an ordinary exponent still load.
+    for (const char* value : {".e1384", "0e999", "0.0e442", "-0E+500"}) {
+        const std::string bad = std::string("v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 1 ") + value + " 0.5\nf 1 2 3\n";
+        const auto r = loadObjFromMemory(reinterpret_cast<const unsigned char*>(bad.data()), bad.size(), "w.obj");
+        INFO(value);
+        REQUIRE_FALSE(r.ok());
+        CHECK(r.error() == std::string("w.obj:4: vertex weight value '") + value + "' is not a number in int's range");
+    }
+    const std::string good = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 1 2e1 0.5 0e-999 5e-1\nf 1 2 3\n";
+    const auto ok = loadObjFromMemory(reinterpret_cast<const unsigned char*>(good.data()), good.size(), "w.obj");
+    CHECK(ok.ok());
+}
