@@ -347,11 +347,11 @@ void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipp
     }
 }
 
-// The vertex stage for vertices [begin, end): program.vertex, the clip code, and the divide
-// wherever it is defined (w > 0).
 // The vertex stage is split across lanes only when each lane gets at least this many vertices.
 inline constexpr std::size_t kMinVerticesPerLane = 4096;
 
+// The vertex stage for vertices [begin, end): program.vertex, the clip code, and the divide
+// wherever it is defined (w > 0).
 template <int kVaryings, class Program>
 void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, std::size_t end, Program& program) {
     const int width = ctx.target().width(), height = ctx.target().height();
