@@ -64,10 +64,13 @@ done
 # run for SR_FUZZ_SECONDS (default 60) with a fixed seed on a fresh copy of the generated seed
 # corpus. A crash, leak, timeout or out-of-memory is reported with its input kept in
 # build/fuzz/crashes/ and its path printed (reproduce: build/fuzz/bin/<target> <input>).
-# A time-limited run explores differently on every machine (the executions per second differ),
-# so its findings do not gate the test command unless SR_FUZZ_STRICT=1: the deterministic gate
-# is the regression suite (Tests/Resources/FuzzRegressionTests.cpp), where every finding that
-# has been fixed is replayed from inputs built in code. A fuzz build failure always fails.
+# A finding fails the command: every earlier finding is fixed and replayed deterministically by
+# the regression suite (Tests/Resources/FuzzRegressionTests.cpp), and longer runs with this
+# seed (3.2M OBJ and 0.59M image inputs, against ~0.7M and ~0.33M in a 60-s run, which is
+# roughly their prefix: libFuzzer's mutations follow the seed) and a 20-minute image run with
+# another seed found nothing more. A time-limited run still explores differently on a
+# much faster machine, so SR_FUZZ_STRICT=0 reports findings without failing (e.g. to finish a
+# run while triaging one). A fuzz build failure always fails.
 fuzz_seconds=${SR_FUZZ_SECONDS:-60}
 echo "=== [fuzz] configure + build"
 t0=$SECONDS
@@ -100,11 +103,11 @@ else
       echo "    FAILED: sr_fuzz_$target exit $rc; crash input: ${crash:-none} (log $log)"
     fi
   done
-  if [[ $fuzz_fail -eq 0 || "${SR_FUZZ_STRICT:-0}" == 1 ]]; then
+  if [[ $fuzz_fail -eq 0 || "${SR_FUZZ_STRICT:-1}" != 0 ]]; then
     result[fuzz]="$fuzz_pass passed, $fuzz_fail failed ($((SECONDS - t0)) s)"
     [[ $fuzz_fail -eq 0 ]] || result[fuzz]+=" FAILED"
   else
-    fuzz_note="fuzz: $fuzz_pass clean, $fuzz_fail with findings (reported above, not gating; SR_FUZZ_STRICT=1 makes them fail)"
+    fuzz_note="fuzz: $fuzz_pass clean, $fuzz_fail with findings (reported above, not gating because SR_FUZZ_STRICT=0)"
     result[fuzz]="$fuzz_pass passed, 0 failed ($((SECONDS - t0)) s)"
   fi
 fi
