@@ -386,6 +386,7 @@ struct Span8 {
         const __m256 laneOffsets = _mm256_setr_ps(0.0f, 1.0f, 2.0f, 3.0f, 4.0f, 5.0f, 6.0f, 7.0f);
         const __m256i laneIndex = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
         const __m256i row = _mm256_set1_epi32(y);
+        const int rowWidth = fb.width();
         for (int x = x0; x < x1; x += 8) {
             const int n = std::min(8, x1 - x);
             // Lanes inside the span, as a vector mask: masked loads and stores never touch the others.
@@ -394,15 +395,18 @@ struct Span8 {
             const __m256 z = _mm256_add_ps(start[kPlaneZ], _mm256_mul_ps(gradient[kPlaneZ], step));
             __m256i passV = insideV;
             __m256 stored = _mm256_setzero_ps();
+            // Plain loads and stores whenever all eight pixels are in this row (masked ones are
+            // slow on some CPUs): pixels past the span's end are read and written back unchanged,
+            // and they belong to this row, i.e. to this lane's band.
+            const bool inRow = x + 8 <= rowWidth;
             if constexpr (kDepth != DepthMode::Off) {
-                // Plain loads and stores for a whole group (masked ones are slow on some CPUs).
-                stored = n == 8 ? _mm256_loadu_ps(depth + x) : _mm256_maskload_ps(depth + x, insideV);
+                stored = inRow ? _mm256_loadu_ps(depth + x) : _mm256_maskload_ps(depth + x, insideV);
                 passV = _mm256_and_si256(passV, _mm256_castps_si256(_mm256_cmp_ps(z, stored, _CMP_GT_OQ)));
             }
             const int pass = _mm256_movemask_ps(_mm256_castsi256_ps(passV));
             if (pass == 0) continue;
             if constexpr (kDepth == DepthMode::TestWrite) {
-                if (n == 8) _mm256_storeu_ps(depth + x, _mm256_blendv_ps(stored, z, _mm256_castsi256_ps(passV)));
+                if (inRow) _mm256_storeu_ps(depth + x, _mm256_blendv_ps(stored, z, _mm256_castsi256_ps(passV)));
                 else _mm256_maskstore_ps(depth + x, passV, z);
             }
             const int passed = int(((0x4332322132212110ull >> (4 * (pass & 0xF))) & 0xFu) +
