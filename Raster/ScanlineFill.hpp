@@ -302,12 +302,14 @@ void fillTriangle4(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Pr
 #if SR_HAVE_AVX2
 // Eight fragments for fragment8 (AVX2): lane i is pixel (x[i], y[i]) with its 1/w and varyings.
 // The lanes are not necessarily neighbours (see fillTriangle8); unused lanes repeat a used one.
+// No initialisers: the fill writes every member before each fragment8 call (zeroing it cost a
+// `rep stos` per eight pixels).
 template <int kVaryings>
 struct FragmentBatch8 {
-    alignas(32) int x[8] = {};
-    alignas(32) int y[8] = {};
-    alignas(32) float invW[8] = {};
-    alignas(32) float v[kVaryings > 0 ? kVaryings : 1][8] = {};
+    alignas(32) int x[8];
+    alignas(32) int y[8];
+    alignas(32) float invW[8];
+    alignas(32) float v[kVaryings > 0 ? kVaryings : 1][8];
 };
 
 namespace detail {
