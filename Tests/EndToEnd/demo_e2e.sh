@@ -164,7 +164,26 @@ app_unix_pid=$(xdotool getwindowpid "$win" 2>/dev/null || true)
 cpu_ticks() { awk '{print $14 + $15}' "/proc/$app_unix_pid/stat"; }
 if [[ -n "$wm_pid" ]]; then
   xdotool windowminimize "$win"
-  iconic() { last=$(xprop -id "$win" WM_STATE 2>/dev/null | grep -o 'state: [A-Za-z]*' || true); [[ "$last" == "state: Iconic" ]]; }
+  minimise_sent=$(date +%s); minimise_resent=0
+  iconic() {
+    # `last` keeps xprop's answer, errors included (a missing WM_STATE or window shows up there).
+    last=$(xprop -id "$win" WM_STATE 2>&1 | grep -o 'state: [A-Za-z]*\|not found\|BadWindow' | head -n1 || true)
+    [[ "$last" == "state: Iconic" ]] && return 0
+    if [[ "$last" == BadWindow ]]; then
+      # Wine replaced the X window behind the Win32 one: follow the window with our title.
+      local again; again=$(xdotool search --name '^SoftRaster' 2>/dev/null | head -n1 || true)
+      [[ -n "$again" && "$again" != "$win" ]] && { log "X window $win is gone, following $again"; win=$again; }
+    fi
+    # Once, after 10 s: the iconify request (a client message to the window manager) can be lost
+    # when it arrives while openbox is still configuring the window after the resize. A demo
+    # that does not let itself be minimised still fails after the second request.
+    if (( !minimise_resent && $(date +%s) - minimise_sent >= 10 )); then
+      minimise_resent=1
+      log "not iconic 10 s after windowminimize (xprop: ${last:-nothing}; windows: $(xdotool search --name '^SoftRaster' 2>/dev/null | tr '\n' ' ')): asking again"
+      xdotool windowminimize "$win" || true
+    fi
+    return 1
+  }
   poll "the window to be minimised (WM_STATE Iconic)" iconic
   if [[ -n "$app_unix_pid" && -r /proc/$app_unix_pid/stat ]]; then
     sleep 1 # let the frame in flight finish
