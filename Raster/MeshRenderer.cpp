@@ -163,51 +163,24 @@ struct PhongProgram {
     }
 #if SR_HAVE_SSE2
     // Four pixels at once (ShadingSimd.hpp): the same operations lane by lane, so the same bits;
-    // lanes off the fast normalize path are redone by fragment(). Textures are sampled per lane.
+    // lanes off the fast normalize path are redone by fragment(). Bilinear textures are sampled
+    // four lanes at once, other filters lane by lane (kdLanes).
     void fragment4(const FragmentBatch<kVaryings>& b, Pixel out[4]) const {
         __m128 ok = _mm_castsi128_ps(_mm_set1_epi32(-1));
-        Fragment<kVaryings> f;
-        auto laneFragment = [&](int i) -> const Fragment<kVaryings>& {
-            f.x = b.x[i];
-            f.y = b.y[i];
-            f.invW = b.invW[i];
-            for (int k = 0; k < kVaryings; ++k) f.varyings[std::size_t(k)] = b.v[k][i];
-            return f;
-        };
         Texture::ColorLanes kd;
-        if constexpr (kTextured) {
-            if (d->settings.filter == TextureFilter::Bilinear) {
-                d->texture->sampleBilinear4(b.v[0], b.v[1], d->settings.wrap, kd, false); // == sampleKd per lane
-            } else {
-                for (int i = 0; i < 4; ++i) {
-                    const Color c = sampleKd(*d, setup, laneFragment(i));
-                    kd.r[i] = c.r;
-                    kd.g[i] = c.g;
-                    kd.b[i] = c.b;
-                }
-            }
-        } else {
-            for (int i = 0; i < 4; ++i) {
-                kd.r[i] = d->kd.r;
-                kd.g[i] = d->kd.g;
-                kd.b[i] = d->kd.b;
-            }
-        }
-        const float* kdR = kd.r;
-        const float* kdG = kd.g;
-        const float* kdB = kd.b;
+        kdLanes<4>(b, kd, [&] { d->texture->sampleBilinear4(b.v[0], b.v[1], d->settings.wrap, kd, false); });
         const simd::Vec3x4 n = simd::normalizeFast(simd::load3(b.v[kP + 3], b.v[kP + 4], b.v[kP + 5]), ok);
         const Vec3 eye = d->view.eye;
         const simd::Vec3x4 toEye{_mm_sub_ps(_mm_set1_ps(eye.x), _mm_loadu_ps(b.v[kP])),
                                  _mm_sub_ps(_mm_set1_ps(eye.y), _mm_loadu_ps(b.v[kP + 1])),
                                  _mm_sub_ps(_mm_set1_ps(eye.z), _mm_loadu_ps(b.v[kP + 2]))};
         const simd::Vec3x4 v = simd::normalizeFast(toEye, ok);
-        const bool simdDone = simd::shadeBlinnPhong(d->view.lighting, _mm_load_ps(kdR), _mm_load_ps(kdG),
-                                                    _mm_load_ps(kdB), n, v, ok, out);
+        const bool simdDone = simd::shadeBlinnPhong(d->view.lighting, _mm_load_ps(kd.r), _mm_load_ps(kd.g),
+                                                    _mm_load_ps(kd.b), n, v, ok, out);
         const int good = simdDone ? _mm_movemask_ps(ok) : 0;
         if (good == 0xF) return;
         for (int i = 0; i < 4; ++i)
-            if (!(good & (1 << i))) out[i] = fragment(laneFragment(i));
+            if (!(good & (1 << i))) out[i] = fragment(laneFragment(b, i));
     }
 #endif
 #if SR_HAVE_AVX2
@@ -215,24 +188,7 @@ struct PhongProgram {
     SR_TARGET_AVX2 void fragment8(const FragmentBatch8<kVaryings>& b, Pixel out[8]) const {
         __m256 ok = _mm256_castsi256_ps(_mm256_set1_epi32(-1));
         Texture::ColorLanes8 kd;
-        if constexpr (kTextured) {
-            if (d->settings.filter == TextureFilter::Bilinear) {
-                d->texture->sampleBilinear8(b.v[0], b.v[1], d->settings.wrap, kd, false); // == sampleKd per lane
-            } else {
-                for (int i = 0; i < 8; ++i) {
-                    const Color c = sampleKd(*d, setup, laneFragment8(b, i));
-                    kd.r[i] = c.r;
-                    kd.g[i] = c.g;
-                    kd.b[i] = c.b;
-                }
-            }
-        } else {
-            for (int i = 0; i < 8; ++i) {
-                kd.r[i] = d->kd.r;
-                kd.g[i] = d->kd.g;
-                kd.b[i] = d->kd.b;
-            }
-        }
+        kdLanes<8>(b, kd, [&] { d->texture->sampleBilinear8(b.v[0], b.v[1], d->settings.wrap, kd, false); });
         const simd8::Vec3x8 n = simd8::normalizeFast(
             {_mm256_load_ps(b.v[kP + 3]), _mm256_load_ps(b.v[kP + 4]), _mm256_load_ps(b.v[kP + 5])}, ok);
         const Vec3 eye = d->view.eye;
@@ -245,9 +201,12 @@ struct PhongProgram {
         const int good = simdDone ? _mm256_movemask_ps(ok) : 0;
         if (good == 0xFF) return;
         for (int i = 0; i < 8; ++i)
-            if (!(good & (1 << i))) out[i] = fragment(laneFragment8(b, i));
+            if (!(good & (1 << i))) out[i] = fragment(laneFragment(b, i));
     }
-    static Fragment<kVaryings> laneFragment8(const FragmentBatch8<kVaryings>& b, int i) {
+#endif
+    // Lane i of a FragmentBatch / FragmentBatch8 as a Fragment (for the per-lane fallbacks).
+    template <class Batch>
+    static Fragment<kVaryings> laneFragment(const Batch& b, int i) {
         Fragment<kVaryings> f;
         f.x = b.x[i];
         f.y = b.y[i];
@@ -255,7 +214,25 @@ struct PhongProgram {
         for (int k = 0; k < kVaryings; ++k) f.varyings[std::size_t(k)] = b.v[k][i];
         return f;
     }
-#endif
+    // The diffuse colour of kLanes fragments into kd's r/g/b lanes: the material's, or the
+    // texture's (bilinearLanes samples all lanes at once; other filters go lane by lane, exactly
+    // as sampleKd).
+    template <int kLanes, class Batch, class Lanes, class BilinearLanes>
+    void kdLanes(const Batch& b, Lanes& kd, BilinearLanes&& bilinearLanes) const {
+        if constexpr (kTextured) {
+            if (d->settings.filter == TextureFilter::Bilinear) {
+                bilinearLanes(); // == sampleKd per lane
+                return;
+            }
+        }
+        for (int i = 0; i < kLanes; ++i) {
+            Color c = d->kd;
+            if constexpr (kTextured) c = sampleKd(*d, setup, laneFragment(b, i));
+            kd.r[i] = c.r;
+            kd.g[i] = c.g;
+            kd.b[i] = c.b;
+        }
+    }
 };
 
 template <class Program>
