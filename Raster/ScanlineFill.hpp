@@ -205,6 +205,22 @@ struct FragmentBatch {
 };
 
 #if SR_HAVE_SSE2
+// The first kPlanes plane values at the centre of pixel (x0, y), the start of a span of the SIMD
+// loops: fillTriangle's very expression (value + ddx dx + ddy dy in double, rounded to float),
+// two planes per double register with the same IEEE multiplies and adds in the same order.
+template <int kPlanes>
+inline void spanStartPlanes(const TriangleSetup& t, int y, int x0, float out[kPlanes]) {
+    const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
+    const __m128d dxD = _mm_set1_pd(dx), dyD = _mm_set1_pd(dy);
+    int k = 0;
+    for (; k + 1 < kPlanes; k += 2) {
+        const __m128d v = _mm_add_pd(_mm_add_pd(_mm_loadu_pd(t.value + k), _mm_mul_pd(_mm_loadu_pd(t.ddx + k), dxD)),
+                                     _mm_mul_pd(_mm_loadu_pd(t.ddy + k), dyD));
+        _mm_storel_pi(reinterpret_cast<__m64*>(out + k), _mm_cvtpd_ps(v)); // round to nearest, as float(double)
+    }
+    for (; k < kPlanes; ++k) out[k] = float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy);
+}
+
 // fillTriangle for a program with fragment4 (Exact and Affine interpolation), four pixels per
 // step: pixels x, x+1, x+2, x+3 of a span get z, 1/w and the varyings from the same float
 // operations as fillTriangle's (start + gradient * step, then * (1 / (1/w)) for Exact: SSE
@@ -227,20 +243,10 @@ void fillTriangle4(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Pr
     __m128 gradient[kPlanes]; // per-pixel steps: per triangle
     for (int k = 0; k < kPlanes; ++k) gradient[k] = _mm_set1_ps(t.ddxStep[k]);
     forEachSpan(t, s, [&](int y, int x0, int x1) {
-        // Plane values at the span's first pixel centre: fillTriangle's very expression.
-        const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
-        // Two planes per double register: the same IEEE multiplies and adds in the same order.
+        alignas(16) float first[kPlanes];
+        spanStartPlanes<kPlanes>(t, y, x0, first);
         __m128 start[kPlanes];
-        const __m128d dxD = _mm_set1_pd(dx), dyD = _mm_set1_pd(dy);
-        int k = 0;
-        for (; k + 1 < kPlanes; k += 2) {
-            const __m128d v = _mm_add_pd(_mm_add_pd(_mm_loadu_pd(t.value + k), _mm_mul_pd(_mm_loadu_pd(t.ddx + k), dxD)),
-                                         _mm_mul_pd(_mm_loadu_pd(t.ddy + k), dyD));
-            const __m128 f = _mm_cvtpd_ps(v); // round to nearest, as float(double)
-            start[k] = _mm_shuffle_ps(f, f, _MM_SHUFFLE(0, 0, 0, 0));
-            start[k + 1] = _mm_shuffle_ps(f, f, _MM_SHUFFLE(1, 1, 1, 1));
-        }
-        for (; k < kPlanes; ++k) start[k] = _mm_set1_ps(float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy));
+        for (int k = 0; k < kPlanes; ++k) start[k] = _mm_set1_ps(first[k]);
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);
         for (int i = 0; i < 4; ++i) batch.y[i] = y;
@@ -370,18 +376,10 @@ struct Span8 {
     }
 
     SR_TARGET_AVX2 void operator()(int y, int x0, int x1) const {
-        const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
+        alignas(16) float first[kPlanes];
+        spanStartPlanes<kPlanes>(t, y, x0, first);
         __m256 start[kPlanes];
-        const __m128d dxD = _mm_set1_pd(dx), dyD = _mm_set1_pd(dy);
-        int k = 0;
-        for (; k + 1 < kPlanes; k += 2) {
-            const __m128d v = _mm_add_pd(_mm_add_pd(_mm_loadu_pd(t.value + k), _mm_mul_pd(_mm_loadu_pd(t.ddx + k), dxD)),
-                                         _mm_mul_pd(_mm_loadu_pd(t.ddy + k), dyD));
-            const __m128 f = _mm_cvtpd_ps(v);
-            start[k] = _mm256_broadcastss_ps(f);
-            start[k + 1] = _mm256_broadcastss_ps(_mm_shuffle_ps(f, f, _MM_SHUFFLE(1, 1, 1, 1)));
-        }
-        for (; k < kPlanes; ++k) start[k] = _mm256_set1_ps(float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy));
+        for (int k = 0; k < kPlanes; ++k) start[k] = _mm256_broadcast_ss(first + k);
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);
         const __m256 lastStep = _mm256_set1_ps(float(x1 - 1 - x0));
