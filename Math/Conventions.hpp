@@ -1,6 +1,14 @@
 // Conventions of SoftRaster's math and pipeline: read this first; everything else keeps it true.
 #pragma once
 
+#include <cfloat>
+
+// Floating point: IEEE binary32/binary64, every operation rounded on its own (to nearest, ties to
+// even). No x87 excess precision (asserted below) and no FMA contraction (the build passes
+// -ffp-contract=off, MSVC /fp:precise): the SIMD kernels are bit-identical to the scalar
+// reference only because both round each multiply and add the same way.
+static_assert(FLT_EVAL_METHOD == 0, "SoftRaster needs float/double evaluated at their own precision (SSE, not x87)");
+
 // World and view space
 //  - Right-handed, +Y up. In view space the camera sits at the origin and looks down -Z.
 //  - Angles are radians inside the code; degrees only at the user interface (flags, UI text).
