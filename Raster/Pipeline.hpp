@@ -84,74 +84,17 @@ struct LaneBands {
     }
 };
 
-// Programs that also shade four fragments at once: void fragment4(const FragmentBatch<kV>&,
-// Pixel out[4]) with the same per-pixel arithmetic as fragment() (SIMD lanes are IEEE
-// operations like the scalar ones, so the pixels are bit-identical).
-template <class Program, int kVaryings, class = void>
-struct HasFragment4 : std::false_type {};
-template <class Program, int kVaryings>
-struct HasFragment4<Program, kVaryings,
-                    std::void_t<decltype(std::declval<Program&>().fragment4(std::declval<const FragmentBatch<kVaryings>&>(),
-                                                                            std::declval<Pixel*>()))>>
+// Programs with their own span kernel: bool fillKernel(const TriangleSetup&, FrameBuffer&, const
+// Scissor&, std::uint64_t& shaded) fills the triangle (bit-identical to fillTriangle with the
+// program's fragment()) and returns true, or returns false to leave it to the scalar loop.
+// drawMesh's programs carry the kernel chosen once per draw (Raster/Kernels/KernelTable.hpp).
+template <class Program, class = void>
+struct HasFillKernel : std::false_type {};
+template <class Program>
+struct HasFillKernel<Program, std::void_t<decltype(std::declval<Program&>().fillKernel(
+                                  std::declval<const TriangleSetup&>(), std::declval<FrameBuffer&>(),
+                                  std::declval<const Scissor&>(), std::declval<std::uint64_t&>()))>>
     : std::true_type {};
-template <class Program, int kVaryings>
-inline constexpr bool kBatched = kVaryings > 0 && HasFragment4<Program, kVaryings>::value;
-
-#if SR_HAVE_AVX2
-// Programs that also shade eight fragments at once with AVX2: void fragment8(const
-// FragmentBatch8<kV>&, Pixel out[8]), bit-identical to fragment() per lane.
-template <class Program, int kVaryings, class = void>
-struct HasFragment8 : std::false_type {};
-template <class Program, int kVaryings>
-struct HasFragment8<Program, kVaryings,
-                    std::void_t<decltype(std::declval<Program&>().fragment8(std::declval<const FragmentBatch8<kVaryings>&>(),
-                                                                            std::declval<Pixel*>()))>>
-    : std::true_type {};
-template <class Program, int kVaryings>
-inline constexpr bool kBatched8 = kVaryings > 0 && HasFragment8<Program, kVaryings>::value;
-#endif
-
-// The fill's per-pixel shader for a batching program: collects the fragments that passed the
-// depth test (their pixel, 1/w and varyings) and shades them four at a time. The fill stores
-// what this returns into the pixel at once; a fragment whose batch is not complete yet gets a
-// placeholder that flush() (or the batch's completion) overwrites before the triangle ends.
-// Every pixel of one triangle is visited once and nothing reads colour meanwhile, so the
-// final image is the per-pixel one.
-template <int kVaryings, class Program>
-struct BatchingShader {
-    std::uint64_t& shaded;
-    Program& program;
-    FrameBuffer& fb;
-    FragmentBatch<kVaryings> batch{};
-
-    Pixel operator()(const Fragment<kVaryings>& f) {
-        ++shaded;
-        const int i = batch.count++;
-        batch.x[i] = f.x;
-        batch.y[i] = f.y;
-        batch.invW[i] = f.invW;
-        for (int k = 0; k < kVaryings; ++k) batch.v[k][i] = f.varyings[std::size_t(k)];
-        if (batch.count < 4) return 0;
-        Pixel out[4];
-        program.fragment4(static_cast<const FragmentBatch<kVaryings>&>(batch), out);
-        for (int j = 0; j < 3; ++j) fb.colorRow(batch.y[j])[batch.x[j]] = out[j];
-        batch.count = 0;
-        return out[3]; // the fill stores it at (f.x, f.y)
-    }
-    void flush() {
-        if (batch.count == 0) return;
-        for (int i = batch.count; i < 4; ++i) { // pad with copies of lane 0 (results dropped)
-            batch.x[i] = batch.x[0];
-            batch.y[i] = batch.y[0];
-            batch.invW[i] = batch.invW[0];
-            for (int k = 0; k < kVaryings; ++k) batch.v[k][i] = batch.v[k][0];
-        }
-        Pixel out[4];
-        program.fragment4(static_cast<const FragmentBatch<kVaryings>&>(batch), out);
-        for (int j = 0; j < batch.count; ++j) fb.colorRow(batch.y[j])[batch.x[j]] = out[j];
-        batch.count = 0;
-    }
-};
 
 // Snapped pixel-row range [begin, end) whose centres a screen triangle can cover (the rows
 // setupTriangle computes), from the y coordinates only: a cheap band test before the setup.
@@ -201,47 +144,21 @@ bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands&
     ++stats->rasterized;
     if (state.stopAfter == PipelineStop::Setup) return true;
     program.triangle(t, static_cast<const TriangleSetup&>(setup));
-    // Count the fragments that pass the depth test (one add per pixel: overdraw statistics),
-    // and shade them four at a time when the program can (BatchingShader).
+    // Count the fragments that pass the depth test (one add per pixel: overdraw statistics).
     std::uint64_t& shaded = lane.stats.fragmentsShaded;
     auto counted = [&shaded, &program](const Fragment<kVaryings>& f) {
         ++shaded;
         return program.fragment(f);
     };
-    BatchingShader<kVaryings, Program> batching{shaded, program, fb};
-#if SR_HAVE_AVX2
-    const bool useAvx2 = cpuHasAvx2();
-#endif
-    // Depth mode x perspective mode, resolved once per triangle; without varyings only Exact
-    // exists (nothing to interpolate), which keeps the number of instantiated loops down.
+    // The program's own kernel if it has one for this draw; else the scalar loop, depth mode x
+    // perspective mode resolved once per triangle (without varyings only Exact exists: nothing
+    // to interpolate, which keeps the number of instantiated loops down).
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
-#if SR_HAVE_AVX2
-        if constexpr (kBatched8<Program, kVaryings>) {
-            if (useAvx2 && (state.perspective == PerspectiveMode::Exact || state.perspective == PerspectiveMode::Affine)) {
-                if (state.perspective == PerspectiveMode::Exact)
-                    fillTriangle8<kDepth, kVaryings, PerspectiveMode::Exact>(setup, fb, scissor, program, shaded);
-                else
-                    fillTriangle8<kDepth, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, program, shaded);
-                return;
-            }
+        if constexpr (HasFillKernel<Program>::value) {
+            if (program.fillKernel(static_cast<const TriangleSetup&>(setup), fb, scissor, shaded)) return;
         }
-#endif
-        if constexpr (kBatched<Program, kVaryings>) {
-            switch (state.perspective) {
-#if SR_HAVE_SSE2
-            // Four pixels per step, straight from the planes into fragment4 (ScanlineFill.hpp).
-            case PerspectiveMode::Exact: fillTriangle4<kDepth, kVaryings, PerspectiveMode::Exact>(setup, fb, scissor, program, shaded); break;
-            case PerspectiveMode::Affine: fillTriangle4<kDepth, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, program, shaded); break;
-#else
-            case PerspectiveMode::Exact: fillTriangle<kDepth, kVaryings, PerspectiveMode::Exact>(setup, fb, scissor, batching); break;
-            case PerspectiveMode::Affine: fillTriangle<kDepth, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, batching); break;
-#endif
-            case PerspectiveMode::Span16: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span16>(setup, fb, scissor, batching); break;
-            case PerspectiveMode::Span8: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span8>(setup, fb, scissor, batching); break;
-            }
-            batching.flush();
-        } else if constexpr (kVaryings == 0) {
+        if constexpr (kVaryings == 0) {
             fillTriangle<kDepth, kVaryings>(setup, fb, scissor, counted);
         } else {
             switch (state.perspective) {
@@ -434,8 +351,8 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
 //    derivatives goes there, never in the fragment shader;
 //  - Pixel fragment(const Fragment<kVaryings>&): runs per covered pixel that passes the depth
 //    test, with perspective-correct varyings;
-//  - optionally void fragment4(const FragmentBatch<kVaryings>&, Pixel out[4]): four such
-//    pixels at once (SIMD), giving exactly what fragment() gives for each.
+//  - optionally bool fillKernel(setup, fb, scissor, shaded): a span kernel of its own (SIMD),
+//    giving exactly what the scalar loop with fragment() gives (HasFillKernel above).
 // All are inlined (templates): the span loop is specialised per program, and a draw with
 // kVaryings == 0 interpolates nothing but depth.
 // Threads: with ctx.threads() > 1 (and no wireframe, whose lines cross bands) each lane works

@@ -3,6 +3,7 @@
 
 #include "Math/Mat4.hpp"
 #include "Raster/Cull.hpp"
+#include "Raster/Kernels/Isa.hpp"
 #include "Raster/Pipeline.hpp"
 #include "Raster/Shading.hpp"
 #include "Raster/Texture.hpp"
@@ -17,6 +18,7 @@ struct RenderSettings {
     PerspectiveMode perspective = PerspectiveMode::Exact;
     bool wireframe = false; // overlay triangle edges (DDA lines) on the shaded image
     PipelineStop stopAfter = PipelineStop::Fill; // partial pipelines, for per-stage timing only
+    Isa isa = bestIsa(); // which span kernels fill (Raster/Kernels/Isa.hpp); Scalar = the reference loop
 };
 
 // What every draw of one frame shares.

@@ -3,10 +3,7 @@
 
 #include <cctype>
 #include <cmath>
-#include <cstdlib>
 #include <string>
-
-#include "Raster/ShadingSimd.hpp"
 
 namespace sr {
 
@@ -27,28 +24,5 @@ std::optional<ShadingMode> parseShadingMode(std::string_view text) {
         if (lower == shadingModeName(m)) return m;
     return std::nullopt;
 }
-
-#if SR_HAVE_AVX2
-bool cpuHasAvx2() {
-    static const bool has = [] {
-        const char* off = std::getenv("SR_NO_AVX2");
-        if (off && *off && *off != '0') return false;
-#if defined(__GNUC__) || defined(__clang__)
-        __builtin_cpu_init();
-        return __builtin_cpu_supports("avx2") != 0; // includes the OS's YMM state check
-#else
-        int info[4];
-        __cpuid(info, 0);
-        if (info[0] < 7) return false;
-        __cpuid(info, 1);
-        const bool osxsave = (info[2] & (1 << 27)) != 0, avx = (info[2] & (1 << 28)) != 0;
-        if (!osxsave || !avx || (_xgetbv(0) & 6) != 6) return false;
-        __cpuidex(info, 7, 0);
-        return (info[1] & (1 << 5)) != 0;
-#endif
-    }();
-    return has;
-}
-#endif
 
 } // namespace sr

@@ -81,6 +81,18 @@ public:
     std::uint32_t texel(int level, int x, int y) const;
     Color texelColor(int level, int x, int y) const;
 
+    // One level's storage, for the SIMD samplers of Raster/Kernels: packed RGBA8 texels, bottom
+    // row first, followed by one padding texel; mask = size - 1 for a power-of-two size, else 0.
+    struct LevelView {
+        const std::uint32_t* texels = nullptr;
+        int width = 0, height = 0;
+        std::uint32_t maskX = 0, maskY = 0;
+    };
+    LevelView levelView(int level) const {
+        const Level& l = levels_[std::size_t(level)];
+        return {l.texels.data(), l.width, l.height, l.maskX, l.maskY};
+    }
+
     // --- Sampling -------------------------------------------------------------------------------
     // General entry: Nearest and Bilinear read the base level and ignore lod; Trilinear uses lod
     // (see mipLevel() in TextureLod.hpp). Dispatches to the specialised paths below.
@@ -98,30 +110,6 @@ public:
     // texel exactly (byte / 255.0f); halfway between two texels it is the correctly rounded
     // (a + b) / 510; a region of equal texels returns that texel exactly at every uv.
     Color sampleBilinear(Vec2 uv, WrapMode wrap) const;
-    // Four GL_LINEAR samples at once, lane i exactly sampleBilinear({u[i], v[i]}, wrap) (bit for
-    // bit). With SSE2 and Repeat the tap positions are computed two lanes per double register with
-    // the scalar path's very operations, and the 2x2 blend runs in float on exact integers (every
-    // product and sum stays below 2^24); lanes the fast path does not cover (NaN, Inf, |u| >= 2^31)
-    // and the other wrap modes go through sampleBilinear lane by lane.
-    struct ColorLanes {
-        alignas(16) float r[4];
-        alignas(16) float g[4];
-        alignas(16) float b[4];
-        alignas(16) float a[4];
-    };
-    // withAlpha = false leaves out.a untouched (for callers that ignore alpha, e.g. lighting).
-    void sampleBilinear4(const float u[4], const float v[4], WrapMode wrap, ColorLanes& out,
-                         bool withAlpha = true) const;
-    // The same for eight lanes with AVX2 (Repeat; the rest lane by lane). Precondition: the CPU
-    // has AVX2 (cpuHasAvx2() in ShadingSimd.hpp); only compiled where SR_HAVE_AVX2 is 1.
-    struct ColorLanes8 {
-        alignas(32) float r[8];
-        alignas(32) float g[8];
-        alignas(32) float b[8];
-        alignas(32) float a[8];
-    };
-    void sampleBilinear8(const float u[8], const float v[8], WrapMode wrap, ColorLanes8& out,
-                         bool withAlpha = true) const;
     // GL_LINEAR_MIPMAP_LINEAR: lod clamped to [0, levelCount() - 1]; GL_LINEAR in levels floor(lod)
     // and floor(lod) + 1, blended by frac(lod) in 8-bit fixed point (wl = floor(256 frac), the
     // integer blends mixed as (c0 (256 - wl) + c1 wl + 128) >> 8). wl == 0 and the last level

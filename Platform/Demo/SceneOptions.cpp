@@ -56,7 +56,8 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     }
     static const char* const kFlags[] = {"--obj",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
-                                         "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp"};
+                                         "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
+                                         "--isa"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
@@ -131,6 +132,17 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         const auto m = parsePerspectiveMode(value);
         if (!m) return bad("exact, span16, span8 or affine");
         o.perspective = *m;
+    } else if (flag == "--isa") {
+        const auto m = parseIsa(value);
+        if (!m) return bad("auto, scalar, sse2, avx2 or avx512");
+        if (!isaAvailable(*m)) {
+            std::string have;
+            for (Isa isa : kAllIsas)
+                if (isaAvailable(isa)) have += std::string(have.empty() ? "" : ", ") + isaName(isa);
+            error = "--isa " + value + ": not available on this CPU or build (available: " + have + ")";
+            return FlagResult::Error;
+        }
+        o.isa = *m;
     } else if (flag == "--wrap") {
         const auto m = parseWrap(value);
         if (!m) return bad("repeat, clamp or mirror");
@@ -165,6 +177,8 @@ std::string sceneFlagsHelp() {
            "  --filter F            nearest | bilinear | trilinear (default bilinear)\n"
            "  --wrap W              repeat | clamp | mirror (default repeat)\n"
            "  --persp P             exact | span16 | span8 | affine: perspective correction (default exact)\n"
+           "  --isa I               auto | scalar | sse2 | avx2 | avx512: span kernels (default auto, the\n"
+           "                        widest this CPU has; scalar = the reference loop; same image for all)\n"
            "  --kd r,g,b            colour of untextured surfaces (default 0.8,0.8,0.8)\n"
            "  --wireframe           overlay triangle edges\n";
 }

@@ -8,6 +8,7 @@
 
 #include "Math/Color.hpp"
 #include "Math/Vec.hpp"
+#include "Raster/Kernels/Isa.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Shading.hpp"
 #include "Raster/Texture.hpp"
@@ -31,6 +32,7 @@ struct SceneOptions {
     TextureFilter filter = TextureFilter::Bilinear;
     WrapMode wrap = WrapMode::Repeat;
     PerspectiveMode perspective = PerspectiveMode::Exact;
+    Isa isa = bestIsa(); // --isa: which span kernels fill (auto = the widest this CPU has)
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
     bool wireframe = false;
 };

@@ -198,6 +198,7 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.filter = o.filter;
     s.wrap = o.wrap;
     s.perspective = o.perspective;
+    s.isa = o.isa;
     s.wireframe = o.wireframe;
     return s;
 }

@@ -86,7 +86,14 @@ elseif(MODE STREQUAL "soak")
       foreach(kind rss peak anon)
         string(JSON at100 GET "${out}" ${kind}_kb_frame_100)
         string(JSON atEnd GET "${out}" ${kind}_kb_end)
-        math(EXPR limit "${at100} + ${at100} / 100") # within 1%
+        # Within 1%. Resident and peak sizes also count the executable's code pages, mapped the
+        # first time a pose reaches a kernel or fallback not used before frame 100 (the per-ISA
+        # kernel tables hold hundreds of them): those two get 256 KiB of code on top. Heap
+        # growth (anon) gets nothing extra.
+        math(EXPR limit "${at100} + ${at100} / 100")
+        if(NOT kind STREQUAL "anon")
+          math(EXPR limit "${limit} + 256")
+        endif()
         if(at100 LESS_EQUAL 0 OR atEnd GREATER limit)
           fail("bench --flight: ${kind} memory ${atEnd} KiB at the end vs ${at100} KiB at frame 100 (limit ${limit})")
         endif()

@@ -9,7 +9,6 @@
 #include <vector>
 
 #include "TextureTestUtil.hpp"
-#include "Raster/ShadingSimd.hpp"
 
 using namespace sr;
 using namespace sr::test;
@@ -101,95 +100,3 @@ TEST_CASE("a region of equal texels samples to exactly that texel at any uv and 
     }
 }
 
-TEST_CASE("sampleBilinear4 is bit-identical to sampleBilinear lane by lane", "[texture][fastpath][simd]") {
-    std::mt19937 rng(20261122u);
-    // Power-of-two (masked wrap) and other sizes, 1-texel axes, the largest size.
-    const int sizes[][2] = {{1, 1}, {1, 7}, {3, 5}, {4, 4}, {16, 8}, {33, 17}, {64, 64}, {5, 128}, {249, 250}, {16384, 2}};
-    const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror};
-    long compared = 0;
-    for (const auto& s : sizes) {
-        const Texture t = randomTexture(s[0], s[1], rng);
-        for (int i = 0; i < 4000; ++i) {
-            float u[4], v[4];
-            for (int k = 0; k < 4; ++k) {
-                // Mostly ordinary coordinates (the SIMD path), sometimes a special one in one lane
-                // (the whole batch then takes the per-lane path).
-                const bool ordinary = rng() % 8u != 0;
-                u[k] = ordinary ? std::uniform_real_distribution<float>(-4.0f, 4.0f)(rng) : randomCoordinate(rng, s[0]);
-                v[k] = ordinary ? std::uniform_real_distribution<float>(-4.0f, 4.0f)(rng) : randomCoordinate(rng, s[1]);
-                if (rng() % 4u == 0) { // texel centres / edges: weights exactly 0 or 128
-                    const int j = int(rng() % std::uint32_t(4 * s[0] + 1)) - 2 * s[0];
-                    u[k] = (float(j) + ((rng() & 1u) ? 0.5f : 0.0f)) / float(s[0]);
-                }
-            }
-            for (WrapMode w : wraps) {
-                Texture::ColorLanes lanes, rgbOnly;
-                t.sampleBilinear4(u, v, w, lanes);
-                for (int k = 0; k < 4; ++k) rgbOnly.a[k] = -7.0f;
-                t.sampleBilinear4(u, v, w, rgbOnly, false); // alpha left alone, r, g, b the same
-                REQUIRE(std::memcmp(rgbOnly.r, lanes.r, sizeof lanes.r) == 0);
-                REQUIRE(std::memcmp(rgbOnly.g, lanes.g, sizeof lanes.g) == 0);
-                REQUIRE(std::memcmp(rgbOnly.b, lanes.b, sizeof lanes.b) == 0);
-                for (int k = 0; k < 4; ++k) REQUIRE(rgbOnly.a[k] == -7.0f);
-                for (int k = 0; k < 4; ++k) {
-                    const Color ref = t.sampleBilinear(Vec2{u[k], v[k]}, w);
-                    const Color got{lanes.r[k], lanes.g[k], lanes.b[k], lanes.a[k]};
-                    if (!bitEqual(ref, got)) {
-                        INFO(s[0] << "x" << s[1] << " lane " << k << " uv (" << u[k] << ", " << v[k] << ") "
-                                  << wrapName(w));
-                        REQUIRE(got == ref);
-                    }
-                    ++compared;
-                }
-            }
-        }
-    }
-    REQUIRE(compared == 10L * 4000 * 3 * 4);
-}
-
-#if SR_HAVE_AVX2
-TEST_CASE("sampleBilinear8 (AVX2) is bit-identical to sampleBilinear lane by lane", "[texture][fastpath][simd][avx2]") {
-    if (!cpuHasAvx2()) {
-        WARN("no AVX2 on this CPU (or SR_NO_AVX2 set): not tested");
-        return;
-    }
-    std::mt19937 rng(20261123u);
-    const int sizes[][2] = {{1, 1}, {1, 7}, {3, 5}, {4, 4}, {16, 8}, {33, 17}, {64, 64}, {5, 128}, {249, 250}, {16384, 2}};
-    const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror};
-    long compared = 0;
-    for (const auto& s : sizes) {
-        const Texture t = randomTexture(s[0], s[1], rng);
-        for (int i = 0; i < 3000; ++i) {
-            float u[8], v[8];
-            for (int k = 0; k < 8; ++k) {
-                const bool ordinary = rng() % 16u != 0;
-                u[k] = ordinary ? std::uniform_real_distribution<float>(-4.0f, 4.0f)(rng) : randomCoordinate(rng, s[0]);
-                v[k] = ordinary ? std::uniform_real_distribution<float>(-4.0f, 4.0f)(rng) : randomCoordinate(rng, s[1]);
-                if (rng() % 4u == 0) {
-                    const int j = int(rng() % std::uint32_t(4 * s[0] + 1)) - 2 * s[0];
-                    u[k] = (float(j) + ((rng() & 1u) ? 0.5f : 0.0f)) / float(s[0]);
-                }
-                if (rng() % 3u == 0) v[k] = std::uniform_real_distribution<float>(0.0f, 1.0f)(rng); // no reduction
-            }
-            for (WrapMode w : wraps) {
-                Texture::ColorLanes8 lanes, rgbOnly;
-                t.sampleBilinear8(u, v, w, lanes);
-                for (int k = 0; k < 8; ++k) rgbOnly.a[k] = -7.0f;
-                t.sampleBilinear8(u, v, w, rgbOnly, false);
-                for (int k = 0; k < 8; ++k) {
-                    const Color ref = t.sampleBilinear(Vec2{u[k], v[k]}, w);
-                    const Color got{lanes.r[k], lanes.g[k], lanes.b[k], lanes.a[k]};
-                    if (!bitEqual(ref, got)) {
-                        INFO(s[0] << "x" << s[1] << " lane " << k << " uv (" << u[k] << ", " << v[k] << ") " << wrapName(w));
-                        REQUIRE(got == ref);
-                    }
-                    REQUIRE(bitEqual(Color{rgbOnly.r[k], rgbOnly.g[k], rgbOnly.b[k], -7.0f}, Color{ref.r, ref.g, ref.b, -7.0f}));
-                    REQUIRE(rgbOnly.a[k] == -7.0f);
-                    ++compared;
-                }
-            }
-        }
-    }
-    REQUIRE(compared == 10L * 3000 * 3 * 8);
-}
-#endif

@@ -1,0 +1,60 @@
+// The per-draw kernel table: which span kernel fills a program's triangles, chosen once per draw.
+#pragma once
+
+#include <cstdint>
+
+#include "Raster/Kernels/Isa.hpp"
+#include "Raster/Kernels/KernelConfig.hpp"
+#include "Raster/RenderSettings.hpp"
+#include "Raster/ScanlineFill.hpp"
+
+namespace sr {
+
+// What a draw needs from its span kernel besides the program type (shading model, textured):
+// depth mode, perspective mode, filter and wrap. As llvmpipe's setup picks its triangle
+// function, drawMesh looks the kernel up ONCE per draw; per triangle only the walk runs.
+struct KernelKey {
+    DepthMode depth = DepthMode::TestWrite;
+    PerspectiveMode perspective = PerspectiveMode::Exact;
+    TextureFilter filter = TextureFilter::Bilinear;
+    WrapMode wrap = WrapMode::Repeat;
+};
+
+// A span kernel: fills the covered pixels of one set-up triangle inside the scissor with the
+// program's shading (reading its per-triangle state), adds the fragments that passed the depth
+// test to `shaded`. Bit-identical to fillTriangle + Prog::fragment().
+template <class Prog>
+using FillKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, const Scissor&, std::uint64_t& shaded);
+
+// One table per ISA (Kernels*.cpp); nullptr where the ISA has no kernel for the key (the
+// scalar reference then fills: span modes, non-integer shininess).
+namespace kernels_sse2 {
+template <class Prog>
+FillKernel<Prog> fillKernel(const KernelKey& key);
+}
+namespace kernels_avx2 {
+template <class Prog>
+FillKernel<Prog> fillKernel(const KernelKey& key);
+}
+namespace kernels_avx512 {
+template <class Prog>
+FillKernel<Prog> fillKernel(const KernelKey& key);
+}
+
+template <class Prog>
+FillKernel<Prog> selectFillKernel(Isa isa, const KernelKey& key) {
+    if (!isaAvailable(isa)) return nullptr;
+#if SR_KERNELS_X86
+    switch (isa) {
+    case Isa::Scalar: return nullptr;
+    case Isa::Sse2: return kernels_sse2::fillKernel<Prog>(key);
+    case Isa::Avx2: return kernels_avx2::fillKernel<Prog>(key);
+    case Isa::Avx512: return kernels_avx512::fillKernel<Prog>(key);
+    }
+#else
+    (void)key;
+#endif
+    return nullptr;
+}
+
+} // namespace sr

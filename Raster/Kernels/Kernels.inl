@@ -1,0 +1,518 @@
+// The span kernels, written once over the vector types of one ISA (SimdSse2/Avx2/Avx512.hpp).
+//
+// Included by KernelsSse2.cpp, KernelsAvx2.cpp and KernelsAvx512.cpp INSIDE their namespace
+// (sr::kernels_<isa>) and target region, after `using namespace sr::simd_<isa>;`, so every
+// function here exists once per ISA, compiled for it, and no symbol is shared between ISAs.
+// The scalar twins are ScanlineFill.hpp's fillTriangle and the programs of MeshPrograms.hpp:
+// every operation below is theirs, in the same order, lane by lane (IEEE, no FMA), so the
+// pixels, depths and counters are bit-identical (Tests/Kernels proves it for every key).
+
+using sr::programs::DrawContext;
+
+// Set bits of a lane mask (no POPCNT at the x86-64 baseline): a nibble table.
+SR_SIMD_INLINE int popcount(int b) {
+    int n = 0;
+    for (; b != 0; b >>= 4) n += int((0x4332322132212110ull >> (4 * (b & 0xF))) & 0xFu);
+    return n;
+}
+
+// --- Colour and lighting, lane by lane -------------------------------------------------------
+struct V3 {
+    F x, y, z;
+};
+struct Rgb {
+    F r, g, b;
+};
+
+// dot(a, b) as Vec.hpp evaluates it: (ax bx + ay by) + az bz.
+SR_SIMD_INLINE F dot3(const V3& a, const V3& b) { return (a.x * b.x + a.y * b.y) + a.z * b.z; }
+
+// normalize(Vec3)'s inline fast path (Vec.hpp): divide by the largest |component|, sum of
+// squares, 1 / sqrt, three products. `ok` loses the lanes off that path (zero, non-finite, or
+// |x| + |y| + |z| overflowing), which the caller redoes with the scalar code.
+SR_SIMD_INLINE V3 normalizeFast(const V3& v, M& ok) {
+    const F ax = fabs(v.x), ay = fabs(v.y), az = fabs(v.z);
+    // std::max(std::max(ax, ay), az): maxps returns its second operand on ties and NaN; NaN lanes fail `ok`.
+    const F m = fmax(fmax(ax, ay), az);
+    ok = ok & (m > fzero()) & ((ax + ay) + az <= fset(3.40282347e38f));
+    const F x = v.x / m, y = v.y / m, z = v.z / m;
+    F sum = x * x;
+    sum = sum + y * y;
+    sum = sum + z * z;
+    const F inv = fset(1.0f) / fsqrt(sum);
+    return {x * inv, y * inv, z * inv};
+}
+
+// toUnorm8 (Color.hpp): 0 for !(c > 0), 255 for c >= 1, else c * 255 rounded to nearest-even
+// with the 2^23 trick.
+SR_SIMD_INLINE I toUnorm8(F c) {
+    const F x = c * fset(255.0f);
+    const F two23 = fset(8388608.0f);
+    const F rounded = (x + two23) - two23;
+    const F value = select(c >= fset(1.0f), fset(255.0f), select(c > fzero(), rounded, fzero()));
+    return truncToInt(value);
+}
+
+// packBgra8 (Color.hpp): 0xFF000000 | r << 16 | g << 8 | b.
+SR_SIMD_INLINE I packBgra8(const Rgb& c) {
+    return (iset(int(0xFF000000u)) | shiftLeft<16>(toUnorm8(c.r))) | (shiftLeft<8>(toUnorm8(c.g)) | toUnorm8(c.b));
+}
+
+struct Terms {
+    F diffuse, specular;
+};
+
+// blinnPhong (Shading.hpp) for unit n and v, with a whole-number shininess in [0, 1024] (the
+// table only offers kernels for such lighting; shininessPow's binary exponentiation, the same
+// multiplications in the same order).
+SR_SIMD_INLINE Terms blinnPhong(const Lighting& lighting, const V3& n, const V3& v, M& ok) {
+    F diffuse = fset(lighting.ambient);
+    F specular = fzero();
+    const unsigned exponent = unsigned(lighting.shininess);
+    for (const Vec3& l : lighting.toLight) {
+        const V3 lv{fset(l.x), fset(l.y), fset(l.z)};
+        const F ndl = dot3(n, lv);
+        const M lit = ndl > fzero();
+        diffuse = select(lit, diffuse + ndl, diffuse);
+        M hOk = ok;
+        const V3 h = normalizeFast({lv.x + v.x, lv.y + v.y, lv.z + v.z}, hOk);
+        ok = (lit & hOk) | andNot(ok, lit); // a bad half vector matters only where it is used
+        // std::max(dot(n, h), 0.0f): NaN lanes already failed `ok`.
+        const F base0 = fmax(dot3(n, h), fzero());
+        unsigned e = exponent;
+        F result = fset(1.0f), base = base0;
+        while (e) {
+            if (e & 1u) result = result * base;
+            base = base * base;
+            e >>= 1u;
+        }
+        specular = select(lit, specular + result, specular);
+    }
+    return {diffuse, specular * fset(lighting.ks)};
+}
+
+// applyTerms (Shading.hpp): kd * diffuse + specular per channel.
+SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, const Terms& t) {
+    return {kd.r * t.diffuse + t.specular, kd.g * t.diffuse + t.specular, kd.b * t.diffuse + t.specular};
+}
+
+// --- Texture sampling (Texture.cpp's fast paths, lane by lane) -------------------------------
+// Lanes whose coordinate is NaN, infinite or |u| >= 2^31 are "off" the vector path: they are
+// computed with a harmless stand-in (u = 0) and redone by Texture::sample* afterwards.
+SR_SIMD_INLINE M onVectorPath(F u) { return fabs(u) < fset(2147483648.0f); }
+
+// reduceCoordinate (Texture.cpp), for finite |u| < 2^31, without branches:
+//  Repeat: |d| >= 1 -> d - floor(d); Mirror: |d| >= 2 -> d - 2 floor(d / 2); Clamp: clamp(d, -1, 2).
+// The selection multiplies by min(floor(|d|), 1), which is 0 or 1 exactly.
+template <WrapMode kWrap>
+SR_SIMD_INLINE D reduceCoordinate(D d) {
+    if constexpr (kWrap == WrapMode::Repeat) return d - dfloor(d) * dmin(dfloor(dabs(d)), dset(1.0));
+    else if constexpr (kWrap == WrapMode::Mirror)
+        return d - (dset(2.0) * dfloor(d * dset(0.5))) * dmin(dfloor(dabs(d) * dset(0.5)), dset(1.0));
+    else return dmin(dmax(d, dset(-1.0)), dset(2.0));
+}
+
+// GL_LINEAR taps along one axis (linearTaps + Wrap<kWrap>::pair): wrapped texel indices a (i0)
+// and b (i0 + 1), and the 8-bit weight w of b.
+template <WrapMode kWrap>
+SR_SIMD_INLINE void linearAxis(F u, int size, std::uint32_t mask, I& a, I& b, I& w) {
+    const D sizeD = dset(double(size));
+    auto fixedX = [&](D d) SR_SIMD_LAMBDA {
+        d = reduceCoordinate<kWrap>(d);
+        return dfloor(((d * sizeD - dset(0.5)) * dset(256.0)) + dset(0.5));
+    };
+    const I x = toInt(fixedX(lowHalf(u)), fixedX(highHalf(u)));
+    const I i0 = shiftRightArith<8>(x);
+    w = x & iset(255);
+    const I one = iset(1), n = iset(size);
+    if constexpr (kWrap == WrapMode::Repeat) {
+        if (mask != 0) {
+            a = i0 & iset(int(mask));
+            b = (i0 + one) & iset(int(mask));
+            return;
+        }
+        const I zero = iset(0);
+        a = i0 + (select(i0 < zero, n, zero)); // i0 >= -size - 1: twice
+        a = a + (select(a < zero, n, zero));
+        const I next = a + one;
+        b = select(next == n, zero, next);
+    } else if constexpr (kWrap == WrapMode::Clamp) {
+        a = imin(imax(i0, iset(0)), n - one);
+        b = imin(imax(i0 + one, iset(0)), n - one);
+    } else {
+        auto mirror = [&](I i) SR_SIMD_LAMBDA {
+            const I twice = iset(2 * size);
+            I m = select(i < iset(0), iset(-1) - i, i);
+            m = select(m < twice, m, m - twice);
+            return select(m < n, m, (twice - one) - m);
+        };
+        a = mirror(i0);
+        b = mirror(i0 + one);
+    }
+}
+
+// GL_NEAREST along one axis (nearestTap + Wrap<kWrap>::one).
+template <WrapMode kWrap>
+SR_SIMD_INLINE I nearestAxis(F u, int size, std::uint32_t mask) {
+    const D sizeD = dset(double(size));
+    auto tap = [&](D d) SR_SIMD_LAMBDA { return dfloor(reduceCoordinate<kWrap>(d) * sizeD); };
+    const I i = toInt(tap(lowHalf(u)), tap(highHalf(u)));
+    const I n = iset(size), zero = iset(0);
+    if constexpr (kWrap == WrapMode::Repeat) {
+        if (mask != 0) return i & iset(int(mask));
+        return i + select(i < zero, n, zero);
+    } else if constexpr (kWrap == WrapMode::Clamp) {
+        return imin(imax(i, zero), n - iset(1));
+    } else {
+        const I twice = iset(2 * size);
+        I m = select(i < zero, iset(-1) - i, i);
+        m = select(m < twice, m, m - twice);
+        return select(m < n, m, (twice - iset(1)) - m);
+    }
+}
+
+// Byte k of each texel as a float.
+template <int kShift>
+SR_SIMD_INLINE F channel(I texel) { return toFloat(shiftRightLogical<kShift>(texel) & iset(0xFF)); }
+
+// The diffuse colour of the lanes from the texture with the kernel's filter and wrap, the
+// lanes off the vector path (NaN / Inf / huge uv) redone by the scalar sampler. Trilinear goes
+// lane by lane through the scalar program's sampleKd (it needs the per-pixel level of detail).
+template <TextureFilter kFilter, WrapMode kWrap, class Prog>
+SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, I xs, I ys) {
+    const Texture& texture = *p.d->texture;
+    Rgb kd;
+    if constexpr (kFilter == TextureFilter::Trilinear) {
+        alignas(64) float us[kLanes], vs[kLanes], ws[kLanes], r[kLanes], g[kLanes], b[kLanes];
+        fstore(us, u);
+        fstore(vs, v);
+        fstore(ws, invW);
+        for (int i = 0; i < kLanes; ++i) {
+            Fragment<2> f;
+            f.invW = ws[i];
+            f.varyings = {us[i], vs[i]};
+            const Color c = programs::sampleKd(*p.d, p.setup, f);
+            r[i] = c.r;
+            g[i] = c.g;
+            b[i] = c.b;
+        }
+        (void)xs;
+        (void)ys;
+        return {fload(r), fload(g), fload(b)};
+    } else {
+        const Texture::LevelView l = texture.levelView(0);
+        const M good = onVectorPath(u) & onVectorPath(v);
+        const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
+        const I width = iset(l.width);
+        if constexpr (kFilter == TextureFilter::Nearest) {
+            const I x = nearestAxis<kWrap>(uSafe, l.width, l.maskX);
+            const I y = nearestAxis<kWrap>(vSafe, l.height, l.maskY);
+            const I t = gather(l.texels, mulLow(y, width) + x);
+            const F scale = fset(255.0f); // kUnorm8: byte / 255.0f, correctly rounded
+            kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
+        } else {
+            I x0, x1, wx, y0, y1, wy;
+            linearAxis<kWrap>(uSafe, l.width, l.maskX, x0, x1, wx);
+            linearAxis<kWrap>(vSafe, l.height, l.maskY, y0, y1, wy);
+            const I row0 = mulLow(y0, width), row1 = mulLow(y1, width);
+            const I t00 = gather(l.texels, row0 + x0), t10 = gather(l.texels, row0 + x1);
+            const I t01 = gather(l.texels, row1 + x0), t11 = gather(l.texels, row1 + x1);
+            // blend2x2 in float: bytes times 8-bit weights are integers below 2^24, every
+            // product and sum exact, so raw equals the integer blend; then raw / (255 * 65536).
+            const I w256 = iset(256);
+            const F bx = toFloat(wx), ax = toFloat(w256 - wx), by = toFloat(wy), ay = toFloat(w256 - wy);
+            const F scale = fset(255.0f * 65536.0f);
+            auto blend = [&](F c00, F c10, F c01, F c11) SR_SIMD_LAMBDA {
+                return ((c00 * ax + c10 * bx) * ay + (c01 * ax + c11 * bx) * by) / scale;
+            };
+            kd = {blend(channel<0>(t00), channel<0>(t10), channel<0>(t01), channel<0>(t11)),
+                  blend(channel<8>(t00), channel<8>(t10), channel<8>(t01), channel<8>(t11)),
+                  blend(channel<16>(t00), channel<16>(t10), channel<16>(t01), channel<16>(t11))};
+        }
+        if (bits(good) != bits(mAll())) {
+            alignas(64) float us[kLanes], vs[kLanes], r[kLanes], g[kLanes], b[kLanes];
+            fstore(us, u);
+            fstore(vs, v);
+            fstore(r, kd.r);
+            fstore(g, kd.g);
+            fstore(b, kd.b);
+            for (int i = 0, m = bits(good); i < kLanes; ++i) {
+                if (m & (1 << i)) continue;
+                const Color c = kFilter == TextureFilter::Nearest ? texture.sampleNearest({us[i], vs[i]}, kWrap)
+                                                                  : texture.sampleBilinear({us[i], vs[i]}, kWrap);
+                r[i] = c.r;
+                g[i] = c.g;
+                b[i] = c.b;
+            }
+            kd = {fload(r), fload(g), fload(b)};
+        }
+        (void)invW;
+        (void)xs;
+        (void)ys;
+    }
+    return kd;
+}
+
+// --- Shading: the programs' fragment(), lane by lane -----------------------------------------
+// Shades one group of fragments (pixel columns xs, rows ys, 1/w and the perspective-correct
+// varyings) and returns their packed colours. Lanes the vector code does not cover (a normal
+// or half vector off normalize's fast path) are redone by the scalar program.
+template <class Prog, TextureFilter kFilter, WrapMode kWrap>
+SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys) {
+    constexpr int kV = Prog::kVaryings;
+    const DrawContext& d = *p.d;
+    M ok = mAll();
+    Rgb kd{fset(d.kd.r), fset(d.kd.g), fset(d.kd.b)};
+    if constexpr (Prog::kIsTextured) kd = sampleTexture<kFilter, kWrap>(p, v[0], v[1], invW, xs, ys);
+    constexpr int kT = Prog::kIsTextured ? 2 : 0; // the first varying after the uv
+    I out;
+    if constexpr (Prog::kMode == ShadingMode::Unlit) {
+        out = packBgra8(kd);
+    } else if constexpr (Prog::kMode == ShadingMode::Flat) {
+        out = packBgra8(applyTerms(kd, Terms{fset(p.terms.diffuse), fset(p.terms.specular)}));
+    } else if constexpr (Prog::kMode == ShadingMode::Gouraud) {
+        out = packBgra8(applyTerms(kd, Terms{v[kT], v[kT + 1]}));
+    } else {
+        const V3 n = normalizeFast({v[kT + 3], v[kT + 4], v[kT + 5]}, ok);
+        const Vec3 eye = d.view.eye;
+        const V3 toEye = normalizeFast({fset(eye.x) - v[kT], fset(eye.y) - v[kT + 1], fset(eye.z) - v[kT + 2]}, ok);
+        out = packBgra8(applyTerms(kd, blinnPhong(d.view.lighting, n, toEye, ok)));
+    }
+    if (bits(ok) != bits(mAll())) {
+        alignas(64) std::int32_t pixels[kLanes], x[kLanes], y[kLanes];
+        alignas(64) float w[kLanes], lanes[kV > 0 ? kV : 1][kLanes];
+        istore(pixels, out);
+        istore(x, xs);
+        istore(y, ys);
+        fstore(w, invW);
+        for (int k = 0; k < kV; ++k) fstore(lanes[k], v[k]);
+        for (int i = 0, m = bits(ok); i < kLanes; ++i) {
+            if (m & (1 << i)) continue;
+            Fragment<kV> f;
+            f.x = x[i];
+            f.y = y[i];
+            f.invW = w[i];
+            for (int k = 0; k < kV; ++k) f.varyings[std::size_t(k)] = lanes[k][i];
+            pixels[i] = std::int32_t(p.fragment(f));
+        }
+        out = iload(pixels);
+    }
+    return out;
+}
+
+// --- The span loop ---------------------------------------------------------------------------
+// The fragments of one triangle that passed the depth test in partial groups, waiting to be
+// shaded kLanes at a time (left-packed: the lanes used stay high). Room for two groups: a
+// whole vector is stored at `count` < kLanes.
+template <int kV>
+struct FragmentQueue {
+    int count = 0;
+    alignas(64) std::int32_t x[2 * kLanes];
+    alignas(64) std::int32_t y[2 * kLanes];
+    alignas(64) float invW[2 * kLanes];
+    alignas(64) float v[kV > 0 ? kV : 1][2 * kLanes];
+};
+
+// fillTriangle (ScanlineFill.hpp) kLanes pixels per step. Per span: the plane values at the
+// first pixel in double (fillTriangle's very expression), then pixel k of the span gets
+// start + k * gradient in float, as one lane. Groups whose lanes all pass the depth test are
+// shaded at once and stored with one vector store; the passing lanes of the other groups go to
+// the queue (so the shading runs on few wasted lanes for small triangles). A draw whose
+// colour is constant per triangle (no varyings) stores it without shading anything.
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+struct SpanKernel {
+    static constexpr int kV = Prog::kVaryings;
+    static constexpr int kPlanes = kV > 0 ? kPlaneVarying0 + kV : 1;
+    const Prog& p;
+    const TriangleSetup& t;
+    FrameBuffer& fb;
+    std::uint64_t& shaded;
+    FragmentQueue<kV>& queue;
+    F gradient[kPlanes];
+
+    // Shades the queue's first kLanes fragments and stores the first `used` colours.
+    void shadeQueued(int used) const {
+        F values[kV > 0 ? kV : 1];
+        for (int k = 0; k < kV; ++k) values[k] = fload(queue.v[k]);
+        alignas(64) std::uint32_t out[kLanes];
+        istore(out, shadeGroup<Prog, kFilter, kWrap>(p, values, fload(queue.invW), iload(queue.x), iload(queue.y)));
+        for (int i = 0; i < used; ++i) fb.colorRow(queue.y[i])[queue.x[i]] = out[i];
+    }
+
+    void flush() const {
+        const int used = queue.count;
+        if (used == 0) return;
+        for (int i = used; i < kLanes; ++i) { // repeat the last fragment (results dropped)
+            queue.x[i] = queue.x[used - 1];
+            queue.y[i] = queue.y[used - 1];
+            queue.invW[i] = queue.invW[used - 1];
+            for (int k = 0; k < kV; ++k) queue.v[k][i] = queue.v[k][used - 1];
+        }
+        shadeQueued(used);
+    }
+
+    void operator()(int y, int x0, int x1) const {
+        // Plane values at the centre of the span's first pixel (double, rounded once), as fillTriangle.
+        const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
+        F start[kPlanes];
+        for (int k = 0; k < kPlanes; ++k) start[k] = fset(float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy));
+        Pixel* colour = fb.colorRow(y);
+        float* depth = fb.depthRow(y);
+        const int rowWidth = fb.width();
+        // Pixel index along the span (whole numbers, exact in float), clamped to the last pixel so
+        // that lanes past the end never see values extrapolated off the triangle.
+        const F lastStep = fset(float(x1 - 1 - x0));
+        const I row = iset(y);
+        Pixel constant = 0;
+        if constexpr (kV == 0) constant = p.flat;
+        for (int x = x0; x < x1; x += kLanes) {
+            const int n = std::min(kLanes, x1 - x);
+            const M inside = firstN(n);
+            // Whole vectors load and store whenever the group lies in the row: lanes past the
+            // span are read and written back unchanged (they belong to this row, i.e. this band).
+            const bool inRow = x + kLanes <= rowWidth;
+            const F step = fmin(fset(float(x - x0)) + fiota(), lastStep);
+            const F z = start[kPlaneZ] + gradient[kPlaneZ] * step;
+            M pass = inside;
+            F stored = fzero();
+            if constexpr (kDepth != DepthMode::Off) {
+                if (inRow) {
+                    stored = fload(depth + x);
+                } else {
+                    alignas(64) float part[kLanes] = {};
+                    for (int i = 0; i < n; ++i) part[i] = depth[x + i];
+                    stored = fload(part);
+                }
+                pass = pass & (z > stored);
+            }
+            const int passBits = bits(pass);
+            if (passBits == 0) continue;
+            if constexpr (kDepth == DepthMode::TestWrite) {
+                if (inRow) {
+                    fstore(depth + x, select(pass, z, stored));
+                } else {
+                    alignas(64) float zs[kLanes];
+                    fstore(zs, z);
+                    for (int i = 0; i < n; ++i)
+                        if (passBits & (1 << i)) depth[x + i] = zs[i];
+                }
+            }
+            const int passed = popcount(passBits);
+            shaded += std::uint64_t(passed);
+            if constexpr (kV == 0) {
+                if (inRow) {
+                    istore(colour + x, select(pass, iset(int(constant)), iload(colour + x)));
+                } else {
+                    for (int i = 0; i < n; ++i)
+                        if (passBits & (1 << i)) colour[x + i] = constant;
+                }
+                continue;
+            } else {
+                const F invW = start[kPlaneInvW] + gradient[kPlaneInvW] * step;
+                F values[kV];
+                if constexpr (kPersp == PerspectiveMode::Exact) {
+                    const F w = fset(1.0f) / invW;
+                    for (int k = 0; k < kV; ++k) values[k] = (start[kPlaneVarying0 + k] + gradient[kPlaneVarying0 + k] * step) * w;
+                } else {
+                    for (int k = 0; k < kV; ++k) values[k] = start[kPlaneVarying0 + k] + gradient[kPlaneVarying0 + k] * step;
+                }
+                const I columns = iset(x) + iiota();
+                if (passBits == bits(mAll())) {
+                    istore(colour + x, shadeGroup<Prog, kFilter, kWrap>(p, values, invW, columns, row));
+                    continue;
+                }
+                const int at = queue.count;
+                compressStore(queue.x + at, columns, pass);
+                compressStore(queue.y + at, row, pass);
+                compressStore(queue.invW + at, invW, pass);
+                for (int k = 0; k < kV; ++k) compressStore(queue.v[k] + at, values[k], pass);
+                queue.count = at + passed;
+                if (queue.count >= kLanes) {
+                    shadeQueued(kLanes);
+                    queue.count -= kLanes; // move the rest (fewer than kLanes) to the front
+                    istore(queue.x, iload(queue.x + kLanes));
+                    istore(queue.y, iload(queue.y + kLanes));
+                    fstore(queue.invW, fload(queue.invW + kLanes));
+                    for (int k = 0; k < kV; ++k) fstore(queue.v[k], fload(queue.v[k] + kLanes));
+                }
+            }
+        }
+    }
+};
+
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) {
+    assert(Prog::kVaryings <= t.varyingCount);
+    assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= fb.width() && s.y1 <= fb.height());
+    // One queue per thread, reused by every triangle (only `count` is reset; the rest is
+    // written before it is read).
+    static thread_local FragmentQueue<Prog::kVaryings> queue;
+    queue.count = 0;
+    SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap> span{p, t, fb, shaded, queue, {}};
+    for (int k = 0; k < SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap>::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
+    forEachSpan(t, s, span);
+    if constexpr (Prog::kVaryings > 0) span.flush();
+}
+
+// --- The table ---------------------------------------------------------------------------------
+// Resolves the key's run-time values into template arguments, one level at a time; a program
+// that does not read a setting gets the one instantiation that ignores it.
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
+FillKernel<Prog> pickWrap(const KernelKey& key) {
+    if constexpr (!Prog::kIsTextured || kFilter == TextureFilter::Trilinear) {
+        return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>; // wrap unused here / in sampleKd
+    } else {
+        switch (key.wrap) {
+        case WrapMode::Repeat: return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>;
+        case WrapMode::Clamp: return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Clamp>;
+        case WrapMode::Mirror: return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Mirror>;
+        }
+        return nullptr;
+    }
+}
+
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp>
+FillKernel<Prog> pickFilter(const KernelKey& key) {
+    if constexpr (!Prog::kIsTextured) {
+        return pickWrap<Prog, kDepth, kPersp, TextureFilter::Bilinear>(key);
+    } else {
+        switch (key.filter) {
+        case TextureFilter::Nearest: return pickWrap<Prog, kDepth, kPersp, TextureFilter::Nearest>(key);
+        case TextureFilter::Bilinear: return pickWrap<Prog, kDepth, kPersp, TextureFilter::Bilinear>(key);
+        case TextureFilter::Trilinear: return pickWrap<Prog, kDepth, kPersp, TextureFilter::Trilinear>(key);
+        }
+        return nullptr;
+    }
+}
+
+template <class Prog, DepthMode kDepth>
+FillKernel<Prog> pickPerspective(const KernelKey& key) {
+    if constexpr (Prog::kVaryings == 0) {
+        return pickFilter<Prog, kDepth, PerspectiveMode::Exact>(key); // nothing to interpolate
+    } else {
+        switch (key.perspective) {
+        case PerspectiveMode::Exact: return pickFilter<Prog, kDepth, PerspectiveMode::Exact>(key);
+        case PerspectiveMode::Affine: return pickFilter<Prog, kDepth, PerspectiveMode::Affine>(key);
+        default: return nullptr; // span subdivision: the scalar reference
+        }
+    }
+}
+
+template <class Prog>
+FillKernel<Prog> fillKernel(const KernelKey& key) {
+    switch (key.depth) {
+    case DepthMode::Off: return pickPerspective<Prog, DepthMode::Off>(key);
+    case DepthMode::Test: return pickPerspective<Prog, DepthMode::Test>(key);
+    case DepthMode::TestWrite: return pickPerspective<Prog, DepthMode::TestWrite>(key);
+    }
+    return nullptr;
+}
+
+template FillKernel<programs::UnlitProgram<false>> fillKernel(const KernelKey&);
+template FillKernel<programs::UnlitProgram<true>> fillKernel(const KernelKey&);
+template FillKernel<programs::FlatProgram<false>> fillKernel(const KernelKey&);
+template FillKernel<programs::FlatProgram<true>> fillKernel(const KernelKey&);
+template FillKernel<programs::GouraudProgram<false>> fillKernel(const KernelKey&);
+template FillKernel<programs::GouraudProgram<true>> fillKernel(const KernelKey&);
+template FillKernel<programs::PhongProgram<false>> fillKernel(const KernelKey&);
+template FillKernel<programs::PhongProgram<true>> fillKernel(const KernelKey&);

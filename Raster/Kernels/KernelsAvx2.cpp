@@ -1,0 +1,17 @@
+// The span kernels compiled for AVX2 (Kernels.inl instantiated in namespace sr::kernels_avx2).
+#include <algorithm>
+#include <cassert>
+#include <cstdint>
+
+#include "Raster/Kernels/KernelTable.hpp"
+#include "Raster/Kernels/SimdAvx2.hpp"
+#include "Raster/MeshPrograms.hpp"
+
+#if SR_KERNELS_X86
+SR_BEGIN_TARGET(SR_TARGET_STRING_AVX2)
+namespace sr::kernels_avx2 {
+using namespace sr::simd_avx2;
+#include "Raster/Kernels/Kernels.inl"
+} // namespace sr::kernels_avx2
+SR_END_TARGET
+#endif

@@ -1,0 +1,179 @@
+// The scalar mesh programs (unlit, flat, Gouraud, Phong x textured): the reference twins of the kernels.
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "Raster/Mesh.hpp"
+#include "Raster/RenderSettings.hpp"
+#include "Raster/ScanlineFill.hpp"
+#include "Raster/TextureLod.hpp"
+
+// drawProgram's Programs for drawMesh (MeshRenderer.cpp): vertex(), triangle() and the per-pixel
+// fragment(), the readable reference that every SIMD kernel (Raster/Kernels/Kernels.inl) is
+// tested bit-identical against. The kernels read a program's per-draw and per-triangle state
+// (d, setup, terms, flat) and call fragment() for the rare lanes they do not handle.
+namespace sr::programs {
+
+// Face normal of triangle (p0, p1, p2): normalize((p1 - p0) x (p2 - p0)) in double, as the
+// reference renderer computes it; not flipped toward the viewer. Zero area -> (0, 0, 1).
+inline Vec3 faceNormal(Vec3 p0, Vec3 p1, Vec3 p2) {
+    const double ax = double(p1.x) - p0.x, ay = double(p1.y) - p0.y, az = double(p1.z) - p0.z;
+    const double bx = double(p2.x) - p0.x, by = double(p2.y) - p0.y, bz = double(p2.z) - p0.z;
+    const double nx = ay * bz - az * by, ny = az * bx - ax * bz, nz = ax * by - ay * bx;
+    const double len = std::sqrt(nx * nx + ny * ny + nz * nz);
+    if (!(len > 0.0) || !std::isfinite(len)) return {0.0f, 0.0f, 1.0f};
+    return {float(nx / len), float(ny / len), float(nz / len)};
+}
+
+// The state every specialised pipeline shares; one instance per drawMesh call.
+struct DrawContext {
+    const FrameView& view;
+    const RenderSettings& settings;
+    const Mesh& mesh;
+    const std::uint32_t* indices;
+    const Texture* texture; // non-null only when the draw is textured
+    Color kd;
+};
+
+// Diffuse colour at a fragment whose varyings 0 and 1 are (u, v). Trilinear filtering needs the
+// screen-space uv derivatives, taken analytically from the triangle's planes (no quad shading).
+template <int kVaryings>
+inline Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
+    const Vec2 uv{f.varyings[0], f.varyings[1]};
+    float lod = 0.0f;
+    if (d.settings.filter == TextureFilter::Trilinear) {
+        constexpr int kU = kPlaneVarying0, kV = kPlaneVarying0 + 1;
+        const UvDerivatives g = d.settings.perspective == PerspectiveMode::Affine
+                                    ? UvDerivatives{float(setup->ddx[kU]), float(setup->ddx[kV]), float(setup->ddy[kU]),
+                                                    float(setup->ddy[kV])}
+                                    : uvDerivatives(*setup, kU, kV, f.invW, uv.x, uv.y);
+        lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, d.texture->width(), d.texture->height());
+    }
+    return d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
+}
+
+inline DrawState drawStateFor(const DrawContext& d) {
+    DrawState s;
+    s.cull = d.settings.cull;
+    s.clipFar = d.view.finiteFar;
+    s.wireframe = d.settings.wireframe;
+    s.stopAfter = d.settings.stopAfter;
+    s.perspective = d.settings.perspective;
+    return s;
+}
+
+// Writes the clip position and, when textured, the uv into varyings 0-1.
+template <bool kTextured>
+inline void transformVertex(const DrawContext& d, std::size_t i, ClipVertex& out) {
+    out.position = d.view.viewProj * Vec4(d.mesh.positions[i], 1.0f);
+    if constexpr (kTextured) {
+        out.varyings[0] = d.mesh.uvs[i].x;
+        out.varyings[1] = d.mesh.uvs[i].y;
+    }
+}
+
+// The four shading programs (drawProgram's Program: vertex, triangle, fragment). Each render
+// thread works on its own copy, so the per-triangle state (setup, terms) lives in the object.
+template <bool kTextured>
+struct UnlitProgram {
+    static constexpr ShadingMode kMode = ShadingMode::Unlit;
+    static constexpr bool kIsTextured = kTextured;
+    static constexpr int kVaryings = kTextured ? 2 : 0;
+    const DrawContext* d;
+    Pixel flat;
+    const TriangleSetup* setup = nullptr;
+    UnlitProgram(const DrawContext* dc, Pixel colour) : d(dc), flat(colour) {}
+    void vertex(std::size_t i, ClipVertex& out) const { transformVertex<kTextured>(*d, i, out); }
+    void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        if constexpr (kTextured) return packBgra8(sampleKd(*d, setup, f));
+        else return flat;
+    }
+};
+
+// Flat: lit ONCE per triangle (face normal, view vector at the centroid) in triangle().
+template <bool kTextured>
+struct FlatProgram {
+    static constexpr ShadingMode kMode = ShadingMode::Flat;
+    static constexpr bool kIsTextured = kTextured;
+    static constexpr int kVaryings = kTextured ? 2 : 0;
+    const DrawContext* d;
+    const TriangleSetup* setup = nullptr;
+    LightTerms terms;
+    Pixel flat = 0;
+    explicit FlatProgram(const DrawContext* dc) : d(dc) {}
+    void vertex(std::size_t i, ClipVertex& out) const { transformVertex<kTextured>(*d, i, out); }
+    void triangle(std::size_t t, const TriangleSetup& s) {
+        setup = &s;
+        const Vec3 p0 = d->mesh.positions[d->indices[3 * t]], p1 = d->mesh.positions[d->indices[3 * t + 1]],
+                   p2 = d->mesh.positions[d->indices[3 * t + 2]];
+        const Vec3 centroid = (p0 + p1 + p2) / 3.0f;
+        terms = blinnPhong(d->view.lighting, faceNormal(p0, p1, p2), normalize(d->view.eye - centroid));
+        if constexpr (!kTextured) flat = packBgra8(applyTerms(d->kd, terms));
+    }
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), terms));
+        else return flat;
+    }
+};
+
+// Gouraud: Blinn-Phong per vertex; the diffuse and specular terms are interpolated
+// (perspective-correct) and combined per pixel, so a texture still modulates per pixel.
+template <bool kTextured>
+struct GouraudProgram {
+    static constexpr ShadingMode kMode = ShadingMode::Gouraud;
+    static constexpr bool kIsTextured = kTextured;
+    static constexpr int kT = kTextured ? 2 : 0; // first varying of the lighting terms
+    static constexpr int kVaryings = kT + 2;
+    const DrawContext* d;
+    const TriangleSetup* setup = nullptr;
+    explicit GouraudProgram(const DrawContext* dc) : d(dc) {}
+    void vertex(std::size_t i, ClipVertex& out) const {
+        transformVertex<kTextured>(*d, i, out);
+        const Vec3 p = d->mesh.positions[i];
+        const LightTerms t = blinnPhong(d->view.lighting, normalize(d->mesh.normals[i]), normalize(d->view.eye - p));
+        out.varyings[kT] = t.diffuse;
+        out.varyings[kT + 1] = t.specular;
+    }
+    void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        const LightTerms t{f.varyings[kT], f.varyings[kT + 1]};
+        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), t));
+        else return packBgra8(applyTerms(d->kd, t));
+    }
+};
+
+// Phong shading: world position and normal interpolated (perspective-correct), the normal
+// renormalised and Blinn-Phong evaluated per pixel.
+template <bool kTextured>
+struct PhongProgram {
+    static constexpr ShadingMode kMode = ShadingMode::Phong;
+    static constexpr bool kIsTextured = kTextured;
+    static constexpr int kP = kTextured ? 2 : 0; // position varyings kP..kP+2, normal kP+3..kP+5
+    static constexpr int kVaryings = kP + 6;
+    const DrawContext* d;
+    const TriangleSetup* setup = nullptr;
+    explicit PhongProgram(const DrawContext* dc) : d(dc) {}
+    void vertex(std::size_t i, ClipVertex& out) const {
+        transformVertex<kTextured>(*d, i, out);
+        const Vec3 p = d->mesh.positions[i], n = d->mesh.normals[i];
+        out.varyings[kP] = p.x;
+        out.varyings[kP + 1] = p.y;
+        out.varyings[kP + 2] = p.z;
+        out.varyings[kP + 3] = n.x;
+        out.varyings[kP + 4] = n.y;
+        out.varyings[kP + 5] = n.z;
+    }
+    void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
+        const Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
+        const LightTerms t = blinnPhong(d->view.lighting, n, normalize(d->view.eye - p));
+        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), t));
+        else return packBgra8(applyTerms(d->kd, t));
+    }
+};
+
+} // namespace sr::programs

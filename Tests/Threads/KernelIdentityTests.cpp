@@ -1,0 +1,197 @@
+// Every span kernel x every ISA the CPU has against the scalar reference (fillTriangle + fragment()), bit for bit.
+#include "TestFramework.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "Raster/Kernels/KernelTable.hpp"
+#include "Raster/MeshPrograms.hpp"
+
+using namespace sr;
+
+namespace {
+
+using namespace sr::programs;
+
+// Random texels, RGBA8 top row first.
+Texture randomTexture(std::mt19937& rng, int w, int h) {
+    std::vector<std::uint8_t> rgba(std::size_t(w) * std::size_t(h) * 4);
+    for (auto& b : rgba) b = std::uint8_t(rng() & 0xFFu);
+    return Texture::fromRgba8(w, h, rgba.data());
+}
+
+// A varying value for the test triangles: mostly ordinary, sometimes far from 0, exactly 0,
+// huge, or non-finite (NaN/Inf uvs take the samplers' scalar lanes; a zero normal takes the
+// robust normalize), so every fallback of the kernels runs too.
+float randomVarying(std::mt19937& rng, bool wild) {
+    std::uniform_real_distribution<float> u(-3.0f, 3.0f);
+    if (!wild) return u(rng);
+    switch (rng() % 24u) {
+    case 0: return 0.0f;
+    case 1: return std::numeric_limits<float>::quiet_NaN();
+    case 2: return std::numeric_limits<float>::infinity();
+    case 3: return 3.0e9f;                     // |u| >= 2^31: a scalar lane
+    case 4: return 1.0e6f + 0.375f;            // far from 0, exact fraction
+    case 5: return -1.0e-30f;                  // tiny negative
+    default: return u(rng);
+    }
+}
+
+// The reference: ScanlineFill.hpp's loop with the program's fragment(), counting like the pipeline.
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp>
+void referenceFill(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) {
+    fillTriangle<kDepth, Prog::kVaryings, kPersp>(t, fb, s, [&](const Fragment<Prog::kVaryings>& f) {
+        ++shaded;
+        return p.fragment(f);
+    });
+}
+template <class Prog>
+void referenceFill(const Prog& p, const KernelKey& key, const TriangleSetup& t, FrameBuffer& fb, const Scissor& s,
+                   std::uint64_t& shaded) {
+    auto persp = [&](auto depthTag) {
+        constexpr DepthMode kDepth = decltype(depthTag)::value;
+        if (key.perspective == PerspectiveMode::Affine) referenceFill<Prog, kDepth, PerspectiveMode::Affine>(p, t, fb, s, shaded);
+        else referenceFill<Prog, kDepth, PerspectiveMode::Exact>(p, t, fb, s, shaded);
+    };
+    switch (key.depth) {
+    case DepthMode::Off: persp(std::integral_constant<DepthMode, DepthMode::Off>{}); break;
+    case DepthMode::Test: persp(std::integral_constant<DepthMode, DepthMode::Test>{}); break;
+    case DepthMode::TestWrite: persp(std::integral_constant<DepthMode, DepthMode::TestWrite>{}); break;
+    }
+}
+
+struct Totals {
+    long combinations = 0, pixels = 0;
+};
+
+// One program type, one key, one ISA: random triangles (tiny ones for the tail lanes and the
+// queue, flat-depth ones for exact depth ties, random scissors) into two identical buffers.
+template <class Prog, class Make>
+void compareKernel(Isa isa, const KernelKey& key, Make&& make, std::mt19937& rng, Totals& totals) {
+    const FillKernel<Prog> kernel = selectFillKernel<Prog>(isa, key);
+    INFO("isa " << isaName(isa) << ", shading " << shadingModeName(Prog::kMode) << (Prog::kIsTextured ? " textured" : "")
+                << ", depth " << int(key.depth) << ", " << perspectiveModeName(key.perspective) << ", "
+                << filterName(key.filter) << ", " << wrapName(key.wrap));
+    REQUIRE(kernel != nullptr);
+    constexpr int kV = Prog::kVaryings;
+    const int w = 61, h = 37; // odd sizes: groups that end past the row
+    FrameBuffer ref(w, h), simd(w, h);
+    std::uniform_real_distribution<float> pos(-12.0f, 72.0f), small(0.0f, 5.0f), unit(0.0f, 1.0f);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            const std::uint32_t r = rng() % 4u;
+            ref.depthRow(y)[x] = simd.depthRow(y)[x] = r == 0 ? 0.0f : r == 1 ? 0.5f : unit(rng);
+            ref.colorRow(y)[x] = simd.colorRow(y)[x] = 0x12345678u;
+        }
+    for (int tri = 0; tri < 12; ++tri) {
+        ScreenVertex v[3];
+        const bool tiny = rng() % 3u == 0, flatDepth = rng() % 6u == 0, wild = rng() % 3u == 0;
+        const float cx = pos(rng), cy = pos(rng);
+        for (auto& s : v) {
+            s.x = tiny ? cx + small(rng) : pos(rng);
+            s.y = tiny ? cy + small(rng) : pos(rng);
+            s.z = flatDepth ? 0.5f : unit(rng);
+            s.invW = std::exp2(std::uniform_real_distribution<float>(-6.0f, 2.0f)(rng));
+            for (int k = 0; k < kV; ++k) s.varyings[std::size_t(k)] = randomVarying(rng, wild);
+        }
+        const auto setup = setupTriangle(v[0], v[1], v[2], kV, key.perspective != PerspectiveMode::Affine);
+        if (!setup) continue;
+        const Scissor sc = rng() % 2u ? Scissor{0, 0, w, h}
+                                      : Scissor{int(rng() % 20u), int(rng() % 20u), 30 + int(rng() % 31u), 20 + int(rng() % 17u)};
+        Prog p = make();
+        p.triangle(0, *setup);
+        std::uint64_t shadedRef = 0, shadedSimd = 0;
+        referenceFill(p, key, *setup, ref, sc, shadedRef);
+        kernel(p, *setup, simd, sc, shadedSimd);
+        REQUIRE(shadedSimd == shadedRef);
+        totals.pixels += long(shadedRef);
+    }
+    for (int y = 0; y < h; ++y) {
+        INFO("row " << y);
+        REQUIRE(std::memcmp(ref.colorRow(y), simd.colorRow(y), sizeof(Pixel) * std::size_t(w)) == 0);
+        REQUIRE(std::memcmp(ref.depthRow(y), simd.depthRow(y), sizeof(float) * std::size_t(w)) == 0);
+    }
+    ++totals.combinations;
+}
+
+} // namespace
+
+TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the scalar reference", "[threads][simd][kernels]") {
+    std::mt19937 rng(18u);
+    // A scene the programs read: two lights, an eye, a material, a triangle for flat's face normal.
+    Mesh mesh;
+    mesh.positions = {{-1.0f, -0.5f, 0.2f}, {1.2f, -0.4f, -0.3f}, {0.1f, 1.1f, 0.4f}};
+    mesh.normals = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};
+    mesh.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    mesh.indices = {0, 1, 2};
+    FrameView view;
+    view.eye = {0.3f, 0.4f, 3.0f};
+    view.lighting.toLight = {normalize(Vec3(1, 1, 1)), normalize(Vec3(-0.3f, 0.2f, 1.0f))};
+    const Texture textures[] = {randomTexture(rng, 13, 7), randomTexture(rng, 32, 16)}; // non-power-of-two, power-of-two
+    std::vector<std::string> ran, skipped;
+    Totals totals;
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+        if (!isaAvailable(isa)) {
+            skipped.push_back(isaName(isa));
+            continue;
+        }
+        ran.push_back(isaName(isa));
+        for (DepthMode depth : {DepthMode::Off, DepthMode::Test, DepthMode::TestWrite})
+            for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
+                for (TextureFilter filter : {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear})
+                    for (WrapMode wrap : {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror}) {
+                        RenderSettings settings;
+                        settings.filter = filter;
+                        settings.wrap = wrap;
+                        settings.perspective = persp;
+                        const KernelKey key{depth, persp, filter, wrap};
+                        for (const Texture& texture : textures) {
+                            const DrawContext d{view, settings, mesh, mesh.indices.data(), &texture, Color{0.7f, 0.4f, 0.2f, 1.0f}};
+                            compareKernel<UnlitProgram<true>>(isa, key, [&] { return UnlitProgram<true>(&d, 0); }, rng, totals);
+                            compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
+                            compareKernel<GouraudProgram<true>>(isa, key, [&] { return GouraudProgram<true>(&d); }, rng, totals);
+                            compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&d); }, rng, totals);
+                        }
+                        // Untextured programs read neither filter nor wrap: once per depth and perspective.
+                        if (filter != TextureFilter::Nearest || wrap != WrapMode::Repeat) continue;
+                        const DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}};
+                        compareKernel<UnlitProgram<false>>(isa, key, [&] { return UnlitProgram<false>(&d, packBgra8(d.kd)); }, rng, totals);
+                        compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&d); }, rng, totals);
+                        compareKernel<GouraudProgram<false>>(isa, key, [&] { return GouraudProgram<false>(&d); }, rng, totals);
+                        compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&d); }, rng, totals);
+                    }
+    }
+    std::string ranList, skippedList;
+    for (const auto& n : ran) ranList += " " + n;
+    for (const auto& n : skipped) skippedList += " " + n;
+    // The log names the ISAs that ran and those this CPU lacks (skipped by name).
+    WARN("kernel ISAs tested:" << ranList << "; skipped (not on this CPU):" << (skippedList.empty() ? " none" : skippedList)
+                               << "; " << totals.combinations << " kernel/key/texture combinations, " << totals.pixels
+                               << " shaded pixels");
+    REQUIRE(!ran.empty());
+    CHECK(totals.pixels > 100000 * long(ran.size()));
+}
+
+TEST_CASE("the scalar ISA and span modes have no kernel: the reference loop fills", "[threads][simd][kernels]") {
+    const KernelKey span8{DepthMode::TestWrite, PerspectiveMode::Span8, TextureFilter::Bilinear, WrapMode::Repeat};
+    const KernelKey exact{DepthMode::TestWrite, PerspectiveMode::Exact, TextureFilter::Bilinear, WrapMode::Repeat};
+    CHECK(selectFillKernel<PhongProgram<true>>(Isa::Scalar, exact) == nullptr);
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+        if (!isaAvailable(isa)) continue;
+        CHECK(selectFillKernel<PhongProgram<true>>(isa, span8) == nullptr);
+        CHECK(selectFillKernel<PhongProgram<true>>(isa, exact) != nullptr);
+    }
+}
+
+TEST_CASE("ISA names parse and print; auto is the best available one", "[threads][simd][kernels]") {
+    for (Isa isa : kAllIsas) CHECK(parseIsa(isaName(isa)) == isa);
+    CHECK(parseIsa("auto") == bestIsa());
+    CHECK(!parseIsa("AVX2").has_value());
+    CHECK(!parseIsa("neon").has_value());
+    CHECK(isaAvailable(bestIsa()));
+    CHECK(isaAvailable(Isa::Scalar));
+}
