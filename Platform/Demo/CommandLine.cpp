@@ -1,7 +1,9 @@
 // Command-line parsing of the demo program: strict, with messages that name the bad value.
 #include "Platform/Demo/CommandLine.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <thread>
 
 #include "Platform/Demo/Input.hpp"
 
@@ -54,7 +56,7 @@ std::optional<std::string> valueOf(const std::vector<std::string>& args, std::si
 ParseResult parseCommandLine(const std::vector<std::string>& args) {
     ParseResult result;
     DemoOptions& o = result.options;
-    bool modelGiven = false;
+    bool modelGiven = false, threadsGiven = false;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         if (arg == "--help" || arg == "-h" || arg == "/?") {
@@ -95,9 +97,11 @@ ParseResult parseCommandLine(const std::vector<std::string>& args) {
 
         std::string error;
         const bool sizeFlag = startsWith(arg, "--width") || startsWith(arg, "--height");
+        const bool threadsFlag = startsWith(arg, "--threads");
         switch (parseSceneFlag(args, i, o.scene, error)) {
         case FlagResult::Consumed:
             o.sizeGiven |= sizeFlag;
+            threadsGiven |= threadsFlag;
             continue;
         case FlagResult::Error: return failure(error);
         case FlagResult::NotMine: break;
@@ -106,8 +110,16 @@ ParseResult parseCommandLine(const std::vector<std::string>& args) {
     }
     if (const auto problem = validateSceneOptions(o.scene))
         return failure(*problem);
+    // The demo renders on every hardware thread unless --threads says otherwise (the headless
+    // command keeps 1, as the reference renderer does).
+    if (!threadsGiven) o.scene.threads = defaultDemoThreads();
     result.ok = true;
     return result;
+}
+
+int defaultDemoThreads() {
+    const unsigned hardware = std::thread::hardware_concurrency(); // 0 when unknown
+    return std::clamp(int(hardware), 1, kMaxThreads);
 }
 
 std::string usageText(const std::string& programName) {
@@ -119,7 +131,8 @@ std::string usageText(const std::string& programName) {
                        "  --frames N           exit with code 0 after N rendered frames (for scripts and tests)\n"
                        "  --screenshot PATH    save the last frame before exiting (or the first frame\n"
                        "                       without --frames) as PNG / BMP / PPM (by extension)\n"
-                       "  --help               show this text\n";
+                       "  --help               show this text\n"
+                       "  (the demo renders on every hardware thread by default: --threads N overrides)\n";
     text += sceneFlagsHelp();
     text += "keys:\n";
     for (const KeyHelp& k : kKeyHelp) {

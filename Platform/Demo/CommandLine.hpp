@@ -27,6 +27,9 @@ struct DemoOptions {
     bool help = false;
 };
 
+// The demo's render threads without --threads: every hardware thread (1 when unknown).
+int defaultDemoThreads();
+
 // Either options or a one-line message naming the offending argument.
 struct ParseResult {
     bool ok = false;

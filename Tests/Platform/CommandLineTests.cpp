@@ -2,6 +2,9 @@
 // errors) and key -> action map.
 #include "TestFramework.hpp"
 
+#include <algorithm>
+#include <thread>
+
 #include "Platform/Demo/CommandLine.hpp"
 #include "Platform/Demo/Input.hpp"
 
@@ -146,4 +149,29 @@ TEST_CASE("Escape quits, toggle keys map to their actions, movement keys have no
     CHECK(sr::demo::actionForKey(Key::F12) == Action::Screenshot);
     CHECK(sr::demo::actionForKey(Key::W) == Action::None);
     CHECK(sr::demo::actionForKey(Key::Shift) == Action::None);
+}
+
+TEST_CASE("the demo renders on every hardware thread unless --threads says otherwise", "[platform]") {
+    const int all = sr::demo::defaultDemoThreads();
+    CHECK(all >= 1);
+    CHECK(all == std::max(1, std::min(int(std::thread::hardware_concurrency()), sr::demo::kMaxThreads)));
+    CHECK(parseCommandLine({}).options.scene.threads == all);
+    CHECK(parseCommandLine({"--threads", "1"}).options.scene.threads == 1);
+    CHECK(parseCommandLine({"--threads=3"}).options.scene.threads == 3);
+    CHECK(parseCommandLine({"--threads", "0"}).options.scene.threads == 0);
+}
+
+TEST_CASE("--isa picks the span kernels; an unknown or unavailable one is refused", "[platform]") {
+    CHECK(parseCommandLine({}).options.scene.isa == sr::bestIsa());
+    const auto scalar = parseCommandLine({"--isa", "scalar"});
+    REQUIRE(scalar.ok);
+    CHECK(scalar.options.scene.isa == sr::Isa::Scalar);
+    const auto bad = parseCommandLine({"--isa", "neon"});
+    CHECK_FALSE(bad.ok);
+    CHECK(bad.error.find("--isa") != std::string::npos);
+    for (sr::Isa isa : sr::kAllIsas) {
+        const auto r = parseCommandLine({"--isa", sr::isaName(isa)});
+        CHECK(r.ok == sr::isaAvailable(isa));
+        if (!r.ok) CHECK(r.error.find("not available") != std::string::npos);
+    }
 }
