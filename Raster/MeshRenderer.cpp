@@ -28,7 +28,8 @@ struct KernelProgram : Base {
     }
 };
 
-// The vector kernels evaluate shininessPow's whole-number exponentiation only.
+// The vector kernels evaluate shininessPow's whole-number exponentiation only (per pixel, in
+// Phong; flat and Gouraud light per triangle / vertex in the scalar program).
 bool kernelsCoverLighting(const Lighting& l) {
     const float s = l.shininess;
     return s >= 0.0f && s <= 1024.0f && s == float(int(s));
@@ -38,8 +39,7 @@ template <class Program>
 void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, Program program) {
     const DrawState state = programs::drawStateFor(d);
     KernelProgram<Program> withKernel{program};
-    const bool lit = Program::kMode != ShadingMode::Unlit;
-    if (!lit || kernelsCoverLighting(d.view.lighting)) {
+    if (Program::kMode != ShadingMode::Phong || kernelsCoverLighting(d.view.lighting)) {
         const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
     }

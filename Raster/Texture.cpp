@@ -374,7 +374,7 @@ Texture::Level Texture::makeLevel(int width, int height) {
     l.maskX = isPowerOfTwo(width) ? std::uint32_t(width - 1) : 0u;
     l.maskY = isPowerOfTwo(height) ? std::uint32_t(height - 1) : 0u;
     // A size of 1 is a power of two with mask 0: the generic branch handles it (index 0 always).
-    l.texels.assign(std::size_t(width) * std::size_t(height) + 1, 0u); // + the padding texel (Level)
+    l.texels.assign(std::size_t(width) * std::size_t(height), 0u);
     return l;
 }
 

@@ -82,7 +82,7 @@ public:
     Color texelColor(int level, int x, int y) const;
 
     // One level's storage, for the SIMD samplers of Raster/Kernels: packed RGBA8 texels, bottom
-    // row first, followed by one padding texel; mask = size - 1 for a power-of-two size, else 0.
+    // row first; mask = size - 1 for a power-of-two size, else 0.
     struct LevelView {
         const std::uint32_t* texels = nullptr;
         int width = 0, height = 0;
@@ -124,8 +124,7 @@ private:
     struct Level {
         int width = 0, height = 0;
         std::uint32_t maskX = 0, maskY = 0; // width - 1 / height - 1 when a power of two, else 0
-        // Packed RGBA8, bottom row first, rows packed, then one zero texel of padding: the AVX2
-        // sampler loads texels x and x + 1 as one 64-bit value, also for the last texel.
+        // Packed RGBA8, bottom row first, rows packed.
         std::vector<std::uint32_t> texels;
     };
 

@@ -81,7 +81,7 @@ bool isaAvailable(Isa isa) {
     case Isa::Scalar: return true;
     case Isa::Sse2: return SR_KERNELS_X86 && features().sse2;
     case Isa::Avx2: return SR_KERNELS_X86 && features().avx2;
-    case Isa::Avx512: return SR_KERNELS_AVX512 && features().avx512;
+    case Isa::Avx512: return SR_KERNELS_X86 && features().avx512;
     }
     return false;
 }

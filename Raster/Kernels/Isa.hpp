@@ -15,8 +15,8 @@ inline constexpr Isa kAllIsas[] = {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx51
 
 // "scalar" | "sse2" | "avx2" | "avx512".
 const char* isaName(Isa isa);
-// The names above and "auto" (-> nullopt in *isAuto's sense: returns bestIsa()); anything else:
-// nullopt. Case-sensitive, as the other flag values.
+// The names above, and "auto" for bestIsa(); anything else: nullopt. Case-sensitive, as the
+// other flag values.
 std::optional<Isa> parseIsa(std::string_view name);
 
 // True when this build has kernels for `isa` AND the CPU and OS support it (checked once:

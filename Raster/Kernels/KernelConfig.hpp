@@ -8,13 +8,6 @@
 #define SR_KERNELS_X86 0
 #endif
 
-// AVX-512 needs a compiler that knows the intrinsics (GCC >= 8, Clang >= 8, MSVC 2019+).
-#if SR_KERNELS_X86
-#define SR_KERNELS_AVX512 1
-#else
-#define SR_KERNELS_AVX512 0
-#endif
-
 // A region of code compiled for one ISA, without compiler flags: everything declared between
 // SR_BEGIN_TARGET(...) and SR_END_TARGET gets target(...) (GCC: push_options + target pragma;
 // Clang: an attribute pushed onto every function; MSVC emits any intrinsic anywhere). Code outside

@@ -112,6 +112,26 @@ SR_SIMD_INLINE D reduceCoordinate(D d) {
     else return dmin(dmax(d, dset(-1.0)), dset(2.0));
 }
 
+// Wrap<kWrap>::one (Texture.cpp) for an unwrapped texel index i: Repeat i in [-size, size - 1]
+// (nearest) or [-size - 1, size] (linear, after the first fix-up below), Mirror and Clamp any
+// index the reduced coordinates produce.
+template <WrapMode kWrap>
+SR_SIMD_INLINE I wrapIndex(I i, int size, std::uint32_t mask) {
+    const I n = iset(size), zero = iset(0);
+    if constexpr (kWrap == WrapMode::Repeat) {
+        if (mask != 0) return i & iset(int(mask)); // power of two: two's complement & is the positive modulo
+        return i + select(i < zero, n, zero);
+    } else if constexpr (kWrap == WrapMode::Clamp) {
+        return imin(imax(i, zero), n - iset(1));
+    } else {
+        // Mirrored repeat is symmetric about -1/2 (j and -1 - j select the same texel), period 2 size.
+        const I twice = iset(2 * size);
+        I m = select(i < zero, iset(-1) - i, i);
+        m = select(m < twice, m, m - twice);
+        return select(m < n, m, (twice - iset(1)) - m);
+    }
+}
+
 // GL_LINEAR taps along one axis (linearTaps + Wrap<kWrap>::pair): wrapped texel indices a (i0)
 // and b (i0 + 1), and the 8-bit weight w of b.
 template <WrapMode kWrap>
@@ -124,31 +144,18 @@ SR_SIMD_INLINE void linearAxis(F u, int size, std::uint32_t mask, I& a, I& b, I&
     const I x = toInt(fixedX(lowHalf(u)), fixedX(highHalf(u)));
     const I i0 = shiftRightArith<8>(x);
     w = x & iset(255);
-    const I one = iset(1), n = iset(size);
-    if constexpr (kWrap == WrapMode::Repeat) {
-        if (mask != 0) {
-            a = i0 & iset(int(mask));
-            b = (i0 + one) & iset(int(mask));
-            return;
-        }
-        const I zero = iset(0);
-        a = i0 + (select(i0 < zero, n, zero)); // i0 >= -size - 1: twice
-        a = a + (select(a < zero, n, zero));
+    const I one = iset(1);
+    if (kWrap == WrapMode::Repeat && mask == 0) {
+        // Wrap<Repeat>::pair without a mask: i0 >= -size - 1, so size is added up to twice; b is
+        // a + 1 wrapped past the end.
+        const I n = iset(size), zero = iset(0);
+        a = wrapIndex<kWrap>(wrapIndex<kWrap>(i0, size, mask), size, mask);
         const I next = a + one;
         b = select(next == n, zero, next);
-    } else if constexpr (kWrap == WrapMode::Clamp) {
-        a = imin(imax(i0, iset(0)), n - one);
-        b = imin(imax(i0 + one, iset(0)), n - one);
-    } else {
-        auto mirror = [&](I i) SR_SIMD_LAMBDA {
-            const I twice = iset(2 * size);
-            I m = select(i < iset(0), iset(-1) - i, i);
-            m = select(m < twice, m, m - twice);
-            return select(m < n, m, (twice - one) - m);
-        };
-        a = mirror(i0);
-        b = mirror(i0 + one);
+        return;
     }
+    a = wrapIndex<kWrap>(i0, size, mask);
+    b = wrapIndex<kWrap>(i0 + one, size, mask);
 }
 
 // GL_NEAREST along one axis (nearestTap + Wrap<kWrap>::one).
@@ -156,19 +163,7 @@ template <WrapMode kWrap>
 SR_SIMD_INLINE I nearestAxis(F u, int size, std::uint32_t mask) {
     const D sizeD = dset(double(size));
     auto tap = [&](D d) SR_SIMD_LAMBDA { return dfloor(reduceCoordinate<kWrap>(d) * sizeD); };
-    const I i = toInt(tap(lowHalf(u)), tap(highHalf(u)));
-    const I n = iset(size), zero = iset(0);
-    if constexpr (kWrap == WrapMode::Repeat) {
-        if (mask != 0) return i & iset(int(mask));
-        return i + select(i < zero, n, zero);
-    } else if constexpr (kWrap == WrapMode::Clamp) {
-        return imin(imax(i, zero), n - iset(1));
-    } else {
-        const I twice = iset(2 * size);
-        I m = select(i < zero, iset(-1) - i, i);
-        m = select(m < twice, m, m - twice);
-        return select(m < n, m, (twice - iset(1)) - m);
-    }
+    return wrapIndex<kWrap>(toInt(tap(lowHalf(u)), tap(highHalf(u))), size, mask);
 }
 
 // Byte k of each texel as a float.
@@ -179,7 +174,7 @@ SR_SIMD_INLINE F channel(I texel) { return toFloat(shiftRightLogical<kShift>(tex
 // lanes off the vector path (NaN / Inf / huge uv) redone by the scalar sampler. Trilinear goes
 // lane by lane through the scalar program's sampleKd (it needs the per-pixel level of detail).
 template <TextureFilter kFilter, WrapMode kWrap, class Prog>
-SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, I xs, I ys) {
+SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW) {
     const Texture& texture = *p.d->texture;
     Rgb kd;
     if constexpr (kFilter == TextureFilter::Trilinear) {
@@ -196,8 +191,6 @@ SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, I xs, I ys) {
             g[i] = c.g;
             b[i] = c.b;
         }
-        (void)xs;
-        (void)ys;
         return {fload(r), fload(g), fload(b)};
     } else {
         const Texture::LevelView l = texture.levelView(0);
@@ -246,9 +239,7 @@ SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, I xs, I ys) {
             }
             kd = {fload(r), fload(g), fload(b)};
         }
-        (void)invW;
-        (void)xs;
-        (void)ys;
+        (void)invW; // only trilinear's level of detail reads it
     }
     return kd;
 }
@@ -263,7 +254,7 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys) {
     const DrawContext& d = *p.d;
     M ok = mAll();
     Rgb kd{fset(d.kd.r), fset(d.kd.g), fset(d.kd.b)};
-    if constexpr (Prog::kIsTextured) kd = sampleTexture<kFilter, kWrap>(p, v[0], v[1], invW, xs, ys);
+    if constexpr (Prog::kIsTextured) kd = sampleTexture<kFilter, kWrap>(p, v[0], v[1], invW);
     constexpr int kT = Prog::kIsTextured ? 2 : 0; // the first varying after the uv
     I out;
     if constexpr (Prog::kMode == ShadingMode::Unlit) {
@@ -302,7 +293,7 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys) {
 
 // --- The span loop ---------------------------------------------------------------------------
 // The fragments of one triangle that passed the depth test in partial groups, waiting to be
-// shaded kLanes at a time (left-packed: the lanes used stay high). Room for two groups: a
+// shaded kLanes at a time (left-packed: entries [0, count) are used). Room for two groups: a
 // whole vector is stored at `count` < kLanes.
 template <int kV>
 struct FragmentQueue {

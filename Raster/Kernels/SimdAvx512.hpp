@@ -5,7 +5,7 @@
 
 #include "Raster/Kernels/KernelConfig.hpp"
 
-#if SR_KERNELS_AVX512
+#if SR_KERNELS_X86
 #include <immintrin.h>
 
 SR_BEGIN_TARGET(SR_TARGET_STRING_AVX512)
