@@ -32,7 +32,7 @@ std::string withThousands(std::uint64_t value) {
     return out;
 }
 
-std::string windowTitle(const FrameStats& stats, std::uint64_t triangles, const std::string& modes,
+std::string windowTitle(const FrameStats& stats, int threads, std::uint64_t triangles, const std::string& modes,
                         const std::string& status) {
     static const char* const kDash = " \xE2\x80\x94 "; // U+2014 EM DASH, UTF-8
     char perf[64];
@@ -45,6 +45,8 @@ std::string windowTitle(const FrameStats& stats, std::uint64_t triangles, const 
     title += perf;
     title += kDash;
     title += "frame " + withThousands(stats.totalFrames());
+    title += kDash;
+    title += std::to_string(threads) + (threads == 1 ? " thread" : " threads");
     title += kDash;
     title += withThousands(triangles) + " tris";
     title += kDash;

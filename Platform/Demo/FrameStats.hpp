@@ -37,10 +37,11 @@ private:
 // 3212 -> "3,212".
 std::string withThousands(std::uint64_t value);
 
-// The window title (UTF-8): "SoftRaster — F fps M ms — frame N — T tris — modes" and, when not
-// empty, " — status". Without an average yet the FPS part reads "-- fps". N is
-// stats.totalFrames() with thousands separators.
-std::string windowTitle(const FrameStats& stats, std::uint64_t triangles, const std::string& modes,
+// The window title (UTF-8): "SoftRaster — F fps M ms — frame N — R threads — T tris — modes" and,
+// when not empty, " — status" ("1 thread" for one). Without an average yet the FPS part reads
+// "-- fps". N is stats.totalFrames() with thousands separators. The modes come right after
+// "tris — " (scripts read them there), so the thread count, which no key changes, stands before.
+std::string windowTitle(const FrameStats& stats, int threads, std::uint64_t triangles, const std::string& modes,
                         const std::string& status = {});
 
 } // namespace sr::demo

@@ -60,7 +60,7 @@ bool MainWindow::create(HINSTANCE instance, int showCommand, int clientWidth, in
     RECT r{0, 0, w, h};
     AdjustWindowRectEx(&r, kStyle, FALSE, kExStyle);
 
-    const std::wstring title = widen(demo::windowTitle(stats_, scene_.scene.triangleCount(), modesWithThreads()));
+    const std::wstring title = widen(demo::windowTitle(stats_, context_.threads(), scene_.scene.triangleCount(), controller_.modeSummary()));
     hwnd_ = CreateWindowExW(kExStyle, kClassName, title.c_str(), kStyle, CW_USEDEFAULT, CW_USEDEFAULT,
                             r.right - r.left, r.bottom - r.top, nullptr, nullptr, instance, this);
     if (!hwnd_)
@@ -146,7 +146,7 @@ void MainWindow::updateTitle() {
         status_.clear();
     if (!hwnd_)
         return;
-    const std::string title = demo::windowTitle(stats_, scene_.scene.triangleCount(), modesWithThreads(), status_);
+    const std::string title = demo::windowTitle(stats_, context_.threads(), scene_.scene.triangleCount(), controller_.modeSummary(), status_);
     SetWindowTextW(hwnd_, widen(title).c_str());
 }
 

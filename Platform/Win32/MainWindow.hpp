@@ -32,11 +32,6 @@ public:
     // Render threads (--threads; RenderContext::setThreads clamps, 0 or 1 = the UI thread only).
     // The picture is the same for any count.
     void setThreads(int threads) { context_.setThreads(threads); }
-    // The controller's mode summary plus the render thread count, for the title bar.
-    std::string modesWithThreads() const {
-        const int n = context_.threads();
-        return controller_.modeSummary() + " | " + std::to_string(n) + (n == 1 ? " thread" : " threads");
-    }
 
     // True while there is nothing to draw into (minimised, or a 0 x 0 client area).
     bool idle() const;

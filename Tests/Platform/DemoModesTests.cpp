@@ -99,16 +99,17 @@ TEST_CASE("frame statistics average over the period", "[platform]") {
     CHECK(s.totalFrames() == 101);
 }
 
-TEST_CASE("the title shows fps, ms, triangles with separators and the modes", "[platform]") {
+TEST_CASE("the title shows fps, ms, threads, triangles with separators and the modes", "[platform]") {
     FrameStats s(0.1);
-    CHECK(windowTitle(s, 12, "cull none").rfind("SoftRaster", 0) == 0);
-    CHECK(windowTitle(s, 12, "x").find("-- fps") != std::string::npos);
-    CHECK(windowTitle(s, 12, "x").find("frame 0 ") != std::string::npos);
+    CHECK(windowTitle(s, 1, 12, "cull none").rfind("SoftRaster", 0) == 0);
+    CHECK(windowTitle(s, 1, 12, "x").find("-- fps") != std::string::npos);
+    CHECK(windowTitle(s, 1, 12, "x").find("frame 0 ") != std::string::npos);
+    CHECK(windowTitle(s, 1, 12, "x").find("\xE2\x80\x94 1 thread \xE2\x80\x94 12 tris") != std::string::npos);
     s.addFrame(0.007);
     s.addFrame(0.007);
     for (int i = 0; i < 14; ++i) s.addFrame(0.007);
-    const std::string t = windowTitle(s, 3212, "cull none | phong | bilinear | exact", "saved a.png");
-    CHECK(t == "SoftRaster \xE2\x80\x94 143 fps 7.0 ms \xE2\x80\x94 frame 16 \xE2\x80\x94 3,212 tris \xE2\x80\x94 cull none | phong | "
+    const std::string t = windowTitle(s, 2, 3212, "cull none | phong | bilinear | exact", "saved a.png");
+    CHECK(t == "SoftRaster \xE2\x80\x94 143 fps 7.0 ms \xE2\x80\x94 frame 16 \xE2\x80\x94 2 threads \xE2\x80\x94 3,212 tris \xE2\x80\x94 cull none | phong | "
                "bilinear | exact \xE2\x80\x94 saved a.png");
     CHECK(withThousands(0) == "0");
     CHECK(withThousands(999) == "999");
