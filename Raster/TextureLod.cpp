@@ -3,23 +3,22 @@
 
 #include <algorithm>
 #include <cassert>
-#include <cmath>
 
 namespace sr {
 
 float mipLevel(float dudx, float dvdx, float dudy, float dvdy, int width, int height) {
     assert(width >= 1 && height >= 1);
-    if (std::isnan(dudx) || std::isnan(dvdx) || std::isnan(dudy) || std::isnan(dvdy)) return 0.0f;
-    const double w = width >= 1 ? double(width) : 1.0;
-    const double h = height >= 1 ? double(height) : 1.0;
-    // Squared footprints: |float| * 16384 squared stays far below double's range, so no overflow;
-    // log2(rho) = log2(rho^2) / 2 saves the square roots.
-    const double ax = double(dudx) * w, bx = double(dvdx) * h;
-    const double ay = double(dudy) * w, by = double(dvdy) * h;
-    const double rho2 = std::max(ax * ax + bx * bx, ay * ay + by * by); // +Inf for infinite input
-    if (!(rho2 > 0.0)) return -kMaxAbsLod;
-    const double lod = 0.5 * std::log2(rho2);
-    return float(std::clamp(lod, double(-kMaxAbsLod), double(kMaxAbsLod)));
+    const float w = width >= 1 ? float(width) : 1.0f;
+    const float h = height >= 1 ? float(height) : 1.0f;
+    // Squared footprints; an overflow to +Inf or an underflow to 0 lands beyond the clamp anyway
+    // (rho^2 >= 2^128 or < 2^-126 is far outside [2^-64, 2^64]). log2(rho) = log2(rho^2) / 2
+    // saves the square roots.
+    const float ax = dudx * w, bx = dvdx * h;
+    const float ay = dudy * w, by = dvdy * h;
+    const float rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    if (!(rx >= 0.0f) || !(ry >= 0.0f)) return 0.0f; // a NaN derivative (sums of squares are >= 0 else)
+    const float rho2 = std::min(std::max(std::max(rx, ry), kMinRho2), kMaxRho2);
+    return 0.5f * log2Positive(rho2);
 }
 
 } // namespace sr

@@ -170,76 +170,150 @@ SR_SIMD_INLINE I nearestAxis(F u, int size, std::uint32_t mask) {
 template <int kShift>
 SR_SIMD_INLINE F channel(I texel) { return toFloat(shiftRightLogical<kShift>(texel) & iset(0xFF)); }
 
+// GL_LINEAR in one level (TextureSampling::bilinear + blend2x2), before the final division:
+// per channel the integer blend ((t00 (256 - wx) + t10 wx) (256 - wy) + (t01 (256 - wx) + t11 wx) wy)
+// as a float. Bytes times 8-bit weights are integers below 2^24, so every product and sum is
+// exact and the float holds the integer. u and v must be on the vector path.
+template <WrapMode kWrap>
+SR_SIMD_INLINE Rgb bilinearRaw(const Texture::LevelView& l, F u, F v) {
+    I x0, x1, wx, y0, y1, wy;
+    linearAxis<kWrap>(u, l.width, l.maskX, x0, x1, wx);
+    linearAxis<kWrap>(v, l.height, l.maskY, y0, y1, wy);
+    const I width = iset(l.width);
+    const I row0 = mulLow(y0, width), row1 = mulLow(y1, width);
+    const I t00 = gather(l.texels, row0 + x0), t10 = gather(l.texels, row0 + x1);
+    const I t01 = gather(l.texels, row1 + x0), t11 = gather(l.texels, row1 + x1);
+    const I w256 = iset(256);
+    const F bx = toFloat(wx), ax = toFloat(w256 - wx), by = toFloat(wy), ay = toFloat(w256 - wy);
+    auto blend = [&](F c00, F c10, F c01, F c11) SR_SIMD_LAMBDA { return (c00 * ax + c10 * bx) * ay + (c01 * ax + c11 * bx) * by; };
+    return {blend(channel<0>(t00), channel<0>(t10), channel<0>(t01), channel<0>(t11)),
+            blend(channel<8>(t00), channel<8>(t10), channel<8>(t01), channel<8>(t11)),
+            blend(channel<16>(t00), channel<16>(t10), channel<16>(t01), channel<16>(t11))};
+}
+
+// log2Positive (TextureLod.hpp) per lane, for normal positive finite x: the same operations.
+SR_SIMD_INLINE F log2Lanes(F x) {
+    const I xBits = asInt(x);
+    F e = toFloat(shiftRightLogical<23>(xBits) - iset(127));
+    F m = asFloat((xBits & iset(0x007FFFFF)) | iset(0x3F800000));
+    const M big = m > fset(kSqrt2f);
+    m = select(big, m * fset(0.5f), m);
+    e = select(big, e + fset(1.0f), e);
+    const F one = fset(1.0f);
+    const F s = (m - one) / (m + one);
+    const F s2 = s * s;
+    const float* c = kLog2Series;
+    return e + s * (fset(c[0]) + s2 * (fset(c[1]) + s2 * (fset(c[2]) + s2 * (fset(c[3]) + s2 * fset(c[4])))));
+}
+
+// The lanes' mip level, as programs::sampleKd computes it per fragment: exact perspective takes
+// uvDerivatives (the quotient rule in double, rounded to float) at each lane, affine the
+// triangle's constant plane gradients; then mipLevel (TextureLod.cpp) lane by lane.
+template <class Prog>
+SR_SIMD_INLINE F mipLevels(const Prog& p, F u, F v, F invW) {
+    const TriangleSetup& t = *p.setup;
+    const Texture& texture = *p.d->texture;
+    constexpr int kU = kPlaneVarying0, kVp = kPlaneVarying0 + 1;
+    if (p.d->settings.perspective == PerspectiveMode::Affine)
+        return fset(mipLevel(float(t.ddx[kU]), float(t.ddx[kVp]), float(t.ddy[kU]), float(t.ddy[kVp]), texture.width(),
+                             texture.height()));
+    const D dqdx = dset(t.ddx[kPlaneInvW]), dqdy = dset(t.ddy[kPlaneInvW]);
+    const D dUdx = dset(t.ddx[kU]), dVdx = dset(t.ddx[kVp]), dUdy = dset(t.ddy[kU]), dVdy = dset(t.ddy[kVp]);
+    const D one = dset(1.0);
+    const D wLo = one / lowHalf(invW), wHi = one / highHalf(invW);
+    const D uLo = lowHalf(u), uHi = highHalf(u), vLo = lowHalf(v), vHi = highHalf(v);
+    const F dudx = toFloat((dUdx - uLo * dqdx) * wLo, (dUdx - uHi * dqdx) * wHi);
+    const F dvdx = toFloat((dVdx - vLo * dqdx) * wLo, (dVdx - vHi * dqdx) * wHi);
+    const F dudy = toFloat((dUdy - uLo * dqdy) * wLo, (dUdy - uHi * dqdy) * wHi);
+    const F dvdy = toFloat((dVdy - vLo * dqdy) * wLo, (dVdy - vHi * dqdy) * wHi);
+    const F w = fset(float(texture.width())), h = fset(float(texture.height()));
+    const F ax = dudx * w, bx = dvdx * h, ay = dudy * w, by = dvdy * h;
+    const F rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    const M ok = (rx >= fzero()) & (ry >= fzero()); // not NaN
+    const F rho2 = fmin(fmax(fmax(rx, ry), fset(kMinRho2)), fset(kMaxRho2));
+    return select(ok, fset(0.5f) * log2Lanes(rho2), fzero());
+}
+
+// GL_LINEAR_MIPMAP_LINEAR (TextureSampling::trilinear) for lanes on the vector path: both levels
+// fetched here, blended in 8-bit fixed point with the same integer arithmetic (the sum is below
+// 2^32: raw < 255 * 65536, times 256). The lanes of a group usually share their level; a group
+// that straddles a level boundary runs once per distinct level.
+template <WrapMode kWrap>
+SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
+    const int last = texture.levelCount() - 1;
+    lod = select(lod > fzero(), lod, fzero()); // magnification (and NaN) -> the base level
+    const M top = lod >= fset(float(last));
+    const I level = select(top, iset(last), truncToInt(select(top, fzero(), lod)));
+    const I wl = select(top, iset(0), truncToInt((lod - toFloat(level)) * fset(256.0f)));
+    const I keep = iset(256) - wl;
+    alignas(64) std::int32_t levels[kLanes];
+    istore(levels, level);
+    int lo = levels[0], hi = levels[0];
+    for (int i = 1; i < kLanes; ++i) {
+        lo = std::min(lo, levels[i]);
+        hi = std::max(hi, levels[i]);
+    }
+    I r = iset(0), g = iset(0), b = iset(0);
+    for (int k = lo; k <= hi; ++k) {
+        const M mine = level == iset(k);
+        if (bits(mine) == 0) continue;
+        const Rgb c0 = bilinearRaw<kWrap>(texture.levelView(k), u, v);
+        I r0 = truncToInt(c0.r), g0 = truncToInt(c0.g), b0 = truncToInt(c0.b);
+        if (k < last) {
+            const Rgb c1 = bilinearRaw<kWrap>(texture.levelView(k + 1), u, v);
+            const I half = iset(128);
+            r0 = shiftRightLogical<8>(mulLow(r0, keep) + mulLow(truncToInt(c1.r), wl) + half);
+            g0 = shiftRightLogical<8>(mulLow(g0, keep) + mulLow(truncToInt(c1.g), wl) + half);
+            b0 = shiftRightLogical<8>(mulLow(b0, keep) + mulLow(truncToInt(c1.b), wl) + half);
+        }
+        r = select(mine, r0, r);
+        g = select(mine, g0, g);
+        b = select(mine, b0, b);
+    }
+    const F scale = fset(255.0f * 65536.0f); // toColor: raw / kRawScale
+    return {toFloat(r) / scale, toFloat(g) / scale, toFloat(b) / scale};
+}
+
 // The diffuse colour of the lanes from the texture with the kernel's filter and wrap, the
-// lanes off the vector path (NaN / Inf / huge uv) redone by the scalar sampler. Trilinear goes
-// lane by lane through the scalar program's sampleKd (it needs the per-pixel level of detail).
+// lanes off the vector path (NaN / Inf / huge uv) redone by the scalar sampler.
 template <TextureFilter kFilter, WrapMode kWrap, class Prog>
 SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW) {
     const Texture& texture = *p.d->texture;
+    const M good = onVectorPath(u) & onVectorPath(v);
+    const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
     Rgb kd;
-    if constexpr (kFilter == TextureFilter::Trilinear) {
-        alignas(64) float us[kLanes], vs[kLanes], ws[kLanes], r[kLanes], g[kLanes], b[kLanes];
+    F lod = fzero();
+    if constexpr (kFilter == TextureFilter::Nearest) {
+        const Texture::LevelView l = texture.levelView(0);
+        const I x = nearestAxis<kWrap>(uSafe, l.width, l.maskX);
+        const I y = nearestAxis<kWrap>(vSafe, l.height, l.maskY);
+        const I t = gather(l.texels, mulLow(y, iset(l.width)) + x);
+        const F scale = fset(255.0f); // kUnorm8: byte / 255.0f, correctly rounded
+        kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
+    } else if constexpr (kFilter == TextureFilter::Bilinear) {
+        const Rgb raw = bilinearRaw<kWrap>(texture.levelView(0), uSafe, vSafe);
+        const F scale = fset(255.0f * 65536.0f); // then raw / (255 * 65536)
+        kd = {raw.r / scale, raw.g / scale, raw.b / scale};
+    } else {
+        lod = mipLevels(p, u, v, invW);
+        kd = trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
+    }
+    if (bits(good) != bits(mAll())) {
+        alignas(64) float us[kLanes], vs[kLanes], lods[kLanes], r[kLanes], g[kLanes], b[kLanes];
         fstore(us, u);
         fstore(vs, v);
-        fstore(ws, invW);
-        for (int i = 0; i < kLanes; ++i) {
-            Fragment<2> f;
-            f.invW = ws[i];
-            f.varyings = {us[i], vs[i]};
-            const Color c = programs::sampleKd(*p.d, p.setup, f);
+        fstore(lods, lod);
+        fstore(r, kd.r);
+        fstore(g, kd.g);
+        fstore(b, kd.b);
+        for (int i = 0, m = bits(good); i < kLanes; ++i) {
+            if (m & (1 << i)) continue;
+            const Color c = texture.sample({us[i], vs[i]}, lods[i], kFilter, kWrap);
             r[i] = c.r;
             g[i] = c.g;
             b[i] = c.b;
         }
-        return {fload(r), fload(g), fload(b)};
-    } else {
-        const Texture::LevelView l = texture.levelView(0);
-        const M good = onVectorPath(u) & onVectorPath(v);
-        const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
-        const I width = iset(l.width);
-        if constexpr (kFilter == TextureFilter::Nearest) {
-            const I x = nearestAxis<kWrap>(uSafe, l.width, l.maskX);
-            const I y = nearestAxis<kWrap>(vSafe, l.height, l.maskY);
-            const I t = gather(l.texels, mulLow(y, width) + x);
-            const F scale = fset(255.0f); // kUnorm8: byte / 255.0f, correctly rounded
-            kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
-        } else {
-            I x0, x1, wx, y0, y1, wy;
-            linearAxis<kWrap>(uSafe, l.width, l.maskX, x0, x1, wx);
-            linearAxis<kWrap>(vSafe, l.height, l.maskY, y0, y1, wy);
-            const I row0 = mulLow(y0, width), row1 = mulLow(y1, width);
-            const I t00 = gather(l.texels, row0 + x0), t10 = gather(l.texels, row0 + x1);
-            const I t01 = gather(l.texels, row1 + x0), t11 = gather(l.texels, row1 + x1);
-            // blend2x2 in float: bytes times 8-bit weights are integers below 2^24, every
-            // product and sum exact, so raw equals the integer blend; then raw / (255 * 65536).
-            const I w256 = iset(256);
-            const F bx = toFloat(wx), ax = toFloat(w256 - wx), by = toFloat(wy), ay = toFloat(w256 - wy);
-            const F scale = fset(255.0f * 65536.0f);
-            auto blend = [&](F c00, F c10, F c01, F c11) SR_SIMD_LAMBDA {
-                return ((c00 * ax + c10 * bx) * ay + (c01 * ax + c11 * bx) * by) / scale;
-            };
-            kd = {blend(channel<0>(t00), channel<0>(t10), channel<0>(t01), channel<0>(t11)),
-                  blend(channel<8>(t00), channel<8>(t10), channel<8>(t01), channel<8>(t11)),
-                  blend(channel<16>(t00), channel<16>(t10), channel<16>(t01), channel<16>(t11))};
-        }
-        if (bits(good) != bits(mAll())) {
-            alignas(64) float us[kLanes], vs[kLanes], r[kLanes], g[kLanes], b[kLanes];
-            fstore(us, u);
-            fstore(vs, v);
-            fstore(r, kd.r);
-            fstore(g, kd.g);
-            fstore(b, kd.b);
-            for (int i = 0, m = bits(good); i < kLanes; ++i) {
-                if (m & (1 << i)) continue;
-                const Color c = kFilter == TextureFilter::Nearest ? texture.sampleNearest({us[i], vs[i]}, kWrap)
-                                                                  : texture.sampleBilinear({us[i], vs[i]}, kWrap);
-                r[i] = c.r;
-                g[i] = c.g;
-                b[i] = c.b;
-            }
-            kd = {fload(r), fload(g), fload(b)};
-        }
-        (void)invW; // only trilinear's level of detail reads it
+        kd = {fload(r), fload(g), fload(b)};
     }
     return kd;
 }
@@ -450,8 +524,8 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
 // that does not read a setting gets the one instantiation that ignores it.
 template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
 FillKernel<Prog> pickWrap(const KernelKey& key) {
-    if constexpr (!Prog::kIsTextured || kFilter == TextureFilter::Trilinear) {
-        return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>; // wrap unused here / in sampleKd
+    if constexpr (!Prog::kIsTextured) {
+        return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>; // wrap unused
     } else {
         switch (key.wrap) {
         case WrapMode::Repeat: return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>;

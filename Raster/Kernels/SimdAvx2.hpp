@@ -86,6 +86,7 @@ SR_SIMD_INLINE D highHalf(F a) { return {_mm256_cvtps_pd(_mm256_extractf128_ps(a
 SR_SIMD_INLINE D operator+(D a, D b) { return {_mm256_add_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D operator-(D a, D b) { return {_mm256_sub_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D operator*(D a, D b) { return {_mm256_mul_pd(a.v, b.v)}; }
+SR_SIMD_INLINE D operator/(D a, D b) { return {_mm256_div_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D dmin(D a, D b) { return {_mm256_min_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D dmax(D a, D b) { return {_mm256_max_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D dabs(D a) { return {_mm256_and_pd(a.v, _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFFLL)))}; }
@@ -93,6 +94,7 @@ SR_SIMD_INLINE D dfloor(D a) { return {_mm256_floor_pd(a.v)}; } // exact (roundp
 SR_SIMD_INLINE I toInt(D low, D high) {
     return {_mm256_set_m128i(_mm256_cvttpd_epi32(high.v), _mm256_cvttpd_epi32(low.v))};
 }
+SR_SIMD_INLINE F toFloat(D low, D high) { return {_mm256_set_m128(_mm256_cvtpd_ps(high.v), _mm256_cvtpd_ps(low.v))}; }
 
 // --- left-packing ------------------------------------------------------------------------------
 // Entry m of the table lists the set bits of m in ascending order (then zeros): the

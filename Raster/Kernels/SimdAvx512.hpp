@@ -84,12 +84,17 @@ SR_SIMD_INLINE D highHalf(F a) {
 SR_SIMD_INLINE D operator+(D a, D b) { return {_mm512_add_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D operator-(D a, D b) { return {_mm512_sub_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D operator*(D a, D b) { return {_mm512_mul_pd(a.v, b.v)}; }
+SR_SIMD_INLINE D operator/(D a, D b) { return {_mm512_div_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D dmin(D a, D b) { return {_mm512_min_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D dmax(D a, D b) { return {_mm512_max_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D dabs(D a) { return {_mm512_abs_pd(a.v)}; }
 SR_SIMD_INLINE D dfloor(D a) { return {_mm512_roundscale_pd(a.v, _MM_FROUND_TO_NEG_INF | _MM_FROUND_NO_EXC)}; }
 SR_SIMD_INLINE I toInt(D low, D high) {
     return {_mm512_inserti64x4(_mm512_castsi256_si512(_mm512_cvttpd_epi32(low.v)), _mm512_cvttpd_epi32(high.v), 1)};
+}
+SR_SIMD_INLINE F toFloat(D low, D high) {
+    const __m512d lo = _mm512_castps_pd(_mm512_castps256_ps512(_mm512_cvtpd_ps(low.v)));
+    return {_mm512_castpd_ps(_mm512_insertf64x4(lo, _mm256_castps_pd(_mm512_cvtpd_ps(high.v)), 1))};
 }
 
 // --- left-packing (register compress, then a plain store: a compress straight to memory is

@@ -100,6 +100,7 @@ SR_SIMD_INLINE D highHalf(F a) { return {_mm_cvtps_pd(_mm_movehl_ps(a.v, a.v))};
 SR_SIMD_INLINE D operator+(D a, D b) { return {_mm_add_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D operator-(D a, D b) { return {_mm_sub_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D operator*(D a, D b) { return {_mm_mul_pd(a.v, b.v)}; }
+SR_SIMD_INLINE D operator/(D a, D b) { return {_mm_div_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D dmin(D a, D b) { return {_mm_min_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D dmax(D a, D b) { return {_mm_max_pd(a.v, b.v)}; }
 SR_SIMD_INLINE D dabs(D a) { return {_mm_and_pd(a.v, _mm_castsi128_pd(_mm_set1_epi64x(0x7FFFFFFFFFFFFFFFLL)))}; }
@@ -110,6 +111,8 @@ SR_SIMD_INLINE D dfloor(D a) {
 }
 // Whole-number doubles of the two halves (|value| < 2^31) as one I.
 SR_SIMD_INLINE I toInt(D low, D high) { return {_mm_unpacklo_epi64(_mm_cvttpd_epi32(low.v), _mm_cvttpd_epi32(high.v))}; }
+// The two halves rounded to float (to nearest, as float(double) does) as one F.
+SR_SIMD_INLINE F toFloat(D low, D high) { return {_mm_movelh_ps(_mm_cvtpd_ps(low.v), _mm_cvtpd_ps(high.v))}; }
 
 // --- left-packing ------------------------------------------------------------------------------
 // Stores the lanes of `a` selected by `m` to dst[0 .. popcount(m)), in lane order. dst must have

@@ -2,7 +2,10 @@
 #include "TestFramework.hpp"
 
 #include <cfloat>
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "Math/Transform.hpp"
@@ -38,12 +41,30 @@ TEST_CASE("mipLevel is defined for zero, NaN, infinite and extreme derivatives",
     REQUIRE(mipLevel(0, 0, -inf, 0, 64, 64) == kMaxAbsLod);
     REQUIRE(mipLevel(FLT_MAX, FLT_MAX, FLT_MAX, FLT_MAX, kMaxTextureSize, kMaxTextureSize) == kMaxAbsLod);
     REQUIRE(mipLevel(1e-45f, 0, 0, 0, 1, 1) == -kMaxAbsLod);
-    // Large: 1e9 texels per pixel is in range; 1e30 (whose square overflows float, not double)
-    // clamps.
+    // Large: 1e9 texels per pixel is in range; 1e30 (whose square overflows float) clamps.
     REQUIRE(mipLevel(1e9f, 0, 0, 0, 1, 1) == Approx(std::log2(1e9)).epsilon(1e-6));
     REQUIRE(mipLevel(1e30f, 1e30f, 0, 0, 1, 1) == kMaxAbsLod);
     REQUIRE(mipLevel(0, 1e-30f, 0, 0, 1, 1) == -kMaxAbsLod); // 2^-99.7: clamped
     REQUIRE(mipLevel(0, 1e-9f, 0, 0, 1, 1) == Approx(std::log2(1e-9)).epsilon(1e-6));
+}
+
+TEST_CASE("log2Positive: exact at powers of two, within 2^-23 (1 + |log2 x|) elsewhere", "[texture][lod]") {
+    for (int e = -126; e <= 127; ++e) REQUIRE(log2Positive(std::ldexp(1.0f, e)) == float(e));
+    // Exhaustive over the two binades around 1 (where the result is smallest and the absolute
+    // error matters most), then every 4099th float from 2^-64 to 2^64 (the range mipLevel feeds).
+    double worst = 0.0;
+    auto check = [&](float x) {
+        const double exact = std::log2(double(x));
+        const double err = std::fabs(double(log2Positive(x)) - exact);
+        worst = std::max(worst, err - 0x1p-23 * std::fabs(exact));
+        if (err > 0x1p-23 * (1.0 + std::fabs(exact))) FAIL("log2Positive(" << x << ") off by " << err);
+    };
+    std::uint32_t bits;
+    for (float x = 0.5f; x < 2.0f; x = std::nextafter(x, 4.0f)) check(x);
+    const float lo = 0x1p-64f, hi = 0x1p64f;
+    std::memcpy(&bits, &lo, sizeof bits);
+    for (float x = lo; x <= hi; bits += 4099u, std::memcpy(&x, &bits, sizeof x)) check(x);
+    WARN("log2Positive: worst error beyond 2^-23 |log2 x| is " << worst);
 }
 
 namespace {
