@@ -96,7 +96,7 @@ void Camera::setFovY(float radians) {
 
 void Camera::setNearFar(float nearZ, float farZ) {
     if (!std::isnan(nearZ))
-        near_ = clamp(nearZ, 1e-6f, kMaxCoordinate);
+        near_ = clamp(nearZ, kMinNear, kMaxCoordinate);
     far_ = (farZ > near_) ? farZ : kInfinity; // NaN compares false -> infinite
 }
 

@@ -23,6 +23,12 @@ class Camera {
 public:
     static constexpr float kMaxPitch = 89.5f * (kPi / 180.0f);
     static constexpr float kMaxCoordinate = 1e15f;
+    // The near-plane distances every camera path uses: the command line refuses a --near outside
+    // [kMinNear, kMaxCoordinate] (exit 2), setNearFar and the headless view builder clamp into it.
+    // With near >= 1e-6 the reversed-Z depth near / distance of any point within kMaxCoordinate is a
+    // normal float (>= 1e-21 > FLT_MIN); a near of 1e-40 would make it subnormal and 1e-46 zero
+    // (a blank image).
+    static constexpr float kMinNear = 1e-6f;
     static constexpr float kMinFovY = 1.0f * (kPi / 180.0f);
     static constexpr float kMaxFovY = 179.0f * (kPi / 180.0f);
     static constexpr float kInfinity = std::numeric_limits<float>::infinity();
@@ -54,7 +60,7 @@ public:
     void setPosition(Vec3 p);            // non-finite ignored; clamped to +-kMaxCoordinate
     void setYawPitch(float yaw, float pitch); // each ignored if non-finite; wrapped / clamped
     void setFovY(float radians);         // clamped to [kMinFovY, kMaxFovY]
-    // near > 0 (clamped up to 1e-6); far > near, or +infinity for an infinite projection.
+    // near clamped into [kMinNear, kMaxCoordinate]; far > near, or +infinity for an infinite projection.
     // A far <= near (or NaN) makes the projection infinite.
     void setNearFar(float nearZ, float farZ);
 

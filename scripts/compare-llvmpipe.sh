@@ -2,12 +2,14 @@
 # Side-by-side timing and image comparison of SoftRaster against Mesa llvmpipe (the reference
 # renderer in ../shared/tools/llvmpipe-ref, built into a temporary folder; it is a development
 # aid, not a dependency). Prints Markdown tables for docs/PERFORMANCE.md.
-# Usage: scripts/compare-llvmpipe.sh [frames=100] [reps=3] [threads="1 2"] [culls="none cw"] [sizes="800x600 1920x1080"]
+# Usage: scripts/compare-llvmpipe.sh [frames=100] [reps=5] [threads="1 2"] [culls="none cw"] [sizes="800x600 1920x1080"]
+# The reference runs with --materials fixed: the material rule SoftRaster renders today (kd 0.8 or
+# the texel, ks 0.5, shininess 32), so both do the same work and draw the same image.
 # Needs: a native build (build/native/bin/softraster, or $SOFTRASTER), g++ libosmesa6-dev libegl-dev.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
-FRAMES=${1:-100}; REPS=${2:-3}; THREADS=${3:-"1 2"}; CULLS=${4:-"none cw"}; SIZES=${5:-"800x600 1920x1080"}
+FRAMES=${1:-100}; REPS=${2:-5}; THREADS=${3:-"1 2"}; CULLS=${4:-"none cw"}; SIZES=${5:-"800x600 1920x1080"}
 ref_src="$root/../shared/tools/llvmpipe-ref"
 [[ -d "$ref_src" ]] || { echo "compare-llvmpipe: $ref_src not found" >&2; exit 1; }
 sr="${SOFTRASTER:-$root/build/native/bin/softraster}"
@@ -33,10 +35,11 @@ field() { sed -E "s/.*\"$1\":([0-9.]+).*/\1/" <<<"$2"; }
 median() { tr ' ' '\n' | grep -v '^$' | sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
 
 echo "Machine: $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(date -u +%Y-%m-%d)."
-echo "Each cell: median over $REPS interleaved runs of each renderer's median ms/frame ($FRAMES frames after 10 warm-up)."
+echo "Each row: $REPS interleaved runs (llvmpipe, then SoftRaster); each run gives a median ms/frame ($FRAMES frames after 10 warm-up)."
+echo "ms columns: the median over the runs; speed = llvmpipe ms / SoftRaster ms of the same run (> 1: SoftRaster faster), median [min, max] over the runs."
 echo "llvmpipe threads N = LP_NUM_THREADS=N (0 = its single-threaded case is used for N=1)."
 echo
-echo "| scene | size | cull | threads | llvmpipe ms | SoftRaster ms | SoftRaster / llvmpipe |"
+echo "| scene | size | cull | threads | llvmpipe ms | SoftRaster ms | speed vs llvmpipe, median [min, max] |"
 echo "|---|---|---|---|---|---|---|"
 for cfg in "bunny|$BUNNY|" "spider close-up|$SPIDER|--eye 60,60,60 --target 0,0,-10 --near 1 --far 500"; do
   IFS='|' read -r name obj cam <<<"$cfg"
@@ -45,16 +48,18 @@ for cfg in "bunny|$BUNNY|" "spider close-up|$SPIDER|--eye 60,60,60 --target 0,0,
     for cull in $CULLS; do
       for t in $THREADS; do
         lp_threads=$t; [[ $t == 1 ]] && lp_threads=0
-        g=(); s=()
+        g=(); s=(); r=()
         for _ in $(seq "$REPS"); do
           # shellcheck disable=SC2086
-          gl=$("$glref" --quiet --obj "$obj" $cam --width "$w" --height "$h" --cull "$cull" --threads "$lp_threads" --frames "$FRAMES" --warmup 10)
+          gl=$("$glref" --quiet --materials fixed --obj "$obj" $cam --width "$w" --height "$h" --cull "$cull" --threads "$lp_threads" --frames "$FRAMES" --warmup 10)
           # shellcheck disable=SC2086
           so=$("$sr" bench --quiet --obj "$obj" $cam --width "$w" --height "$h" --cull "$cull" --threads "$t" --frames "$FRAMES" --warmup 10)
           g+=("$(field ms_per_frame_median "$gl")"); s+=("$(field ms_per_frame_median "$so")")
+          r+=("$(awk -v a="${g[-1]}" -v b="${s[-1]}" 'BEGIN{printf "%.3f", a/b}')")
         done
         gm=$(echo "${g[*]}" | median); sm=$(echo "${s[*]}" | median)
-        echo "| $name | $size | $cull | $t | $gm | $sm | $(awk -v a="$sm" -v b="$gm" 'BEGIN{printf "%.2f", a/b}') |"
+        rs=$(echo "${r[*]}" | tr ' ' '\n' | sort -g | tr '\n' ' ')
+        echo "| $name | $size | $cull | $t | $gm | $sm | $(echo "$rs" | median | xargs printf '%.2f') [$(awk '{printf "%.2f, %.2f", $1, $NF}' <<<"$rs")] |"
       done
     done
   done
@@ -68,7 +73,7 @@ for cfg in "bunny|$BUNNY|--eye 0,0,2.69185406 --target 0,0,0 --near 1.33246776 -
            "spider close-up|$SPIDER|--eye 60,60,60 --target 0,0,-10 --near 1 --far 500"; do
   IFS='|' read -r name obj cam <<<"$cfg"
   # shellcheck disable=SC2086
-  "$glref" --quiet --obj "$obj" $cam --frames 1 --warmup 0 --out "$work/ref.ppm" >/dev/null
+  "$glref" --quiet --materials fixed --obj "$obj" $cam --frames 1 --warmup 0 --out "$work/ref.ppm" >/dev/null
   # shellcheck disable=SC2086
   "$sr" render --quiet --obj "$obj" $cam --out "$work/new.ppm" >/dev/null
   c=$("$imgcmp" "$work/ref.ppm" "$work/new.ppm")

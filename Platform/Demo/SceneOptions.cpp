@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "Raster/Camera.hpp"
 #include "Raster/FrameBuffer.hpp"
 
 namespace sr::demo {
@@ -112,10 +113,15 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         const auto v = parseNumber(value);
         if (!v || !(*v > 0.0 && *v < 180.0)) return bad("degrees in (0, 180)");
         o.fovDegrees = *v;
-    } else if (flag == "--near" || flag == "--far") {
+    } else if (flag == "--near") {
+        const auto v = parseNumber(value);
+        if (!v || !(*v >= double(Camera::kMinNear) && *v <= double(Camera::kMaxCoordinate)))
+            return bad("a distance from 1e-06 to 1e+15"); // Camera::kMinNear, kMaxCoordinate
+        o.nearZ = *v;
+    } else if (flag == "--far") {
         const auto v = parseNumber(value);
         if (!v || !(*v > 0.0)) return bad("a positive number");
-        (flag == "--near" ? o.nearZ : o.farZ) = *v;
+        o.farZ = *v;
     } else if (flag == "--shading") {
         const auto m = parseShadingMode(value);
         if (!m) return bad("unlit, flat, gouraud or phong");
@@ -167,7 +173,8 @@ std::string sceneFlagsHelp() {
            "  --target x,y,z        look-at point (default: the bounding box centre)\n"
            "  --up x,y,z            up vector (default 0,1,0)\n"
            "  --fov DEG             vertical field of view in degrees (default 60)\n"
-           "  --near Z --far Z      clip distances (default: auto-fitted, or 0.1 / 100 with --eye)\n"
+           "  --near Z --far Z      clip distances, near >= 1e-06 (default: auto-fitted, or 0.1 / 100\n"
+           "                        with --eye)\n"
            "  --light x,y,z         direction to the light (default 1,1,1)\n"
            "  --shading MODE        unlit | flat | gouraud | phong (default phong)\n"
            "  --texture PATH        texture for every material (overrides map_Kd)\n"

@@ -1,11 +1,13 @@
 // Scene loading (built-in or OBJ), the auto-fit camera and the per-frame view.
 #include "Platform/Demo/SceneSetup.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
+#include "Raster/Camera.hpp"
 #include "Resources/DefaultScene.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/ObjLoader.hpp"
@@ -105,6 +107,12 @@ std::string formatVec(Vec3 v) {
     return buf;
 }
 
+// Camera's near-plane rule (Camera::kMinNear): the command line refuses a --near outside it; an
+// auto-fitted or programmatic near (a tiny model, the flight's extreme poses) is clamped into it.
+double usableNear(double nearZ) {
+    return std::clamp(nearZ, double(Camera::kMinNear), double(Camera::kMaxCoordinate));
+}
+
 } // namespace
 
 Result<LoadedScene> loadScene(const SceneOptions& options) {
@@ -166,7 +174,7 @@ CameraSetup resolveCamera(const SceneOptions& o, const LoadedScene& s) {
     const double half = std::min(halfV, std::atan(std::tan(halfV) * aspect));
     const double dist = s.radius / std::sin(half);
     c.eye = c.target + Vec3(0.0f, 0.0f, float(dist));
-    c.nearZ = o.nearZ.value_or(std::max(dist - 1.01 * s.radius, 0.01 * s.radius));
+    c.nearZ = o.nearZ.value_or(usableNear(std::max(dist - 1.01 * s.radius, 0.01 * s.radius)));
     c.farZ = o.farZ.value_or(dist + 1.01 * s.radius);
     return c;
 }
@@ -179,12 +187,15 @@ std::string cameraFlags(const CameraSetup& c) {
 
 FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light) {
     const double aspect = (width > 0 && height > 0) ? double(width) / double(height) : 1.0;
-    const M4d mvp = mul(perspectiveD(c.fovDegrees, aspect, c.nearZ, c.farZ), lookAtD(c.eye, c.target, c.up));
+    // As Camera::setNearFar: near clamped into Camera's range, a far not beyond it is infinite.
+    const double nearZ = usableNear(c.nearZ);
+    const double farZ = c.farZ > nearZ ? c.farZ : std::numeric_limits<double>::infinity();
+    const M4d mvp = mul(perspectiveD(c.fovDegrees, aspect, nearZ, farZ), lookAtD(c.eye, c.target, c.up));
     FrameView v;
     for (int r = 0; r < 4; ++r)
         for (int col = 0; col < 4; ++col) v.viewProj(r, col) = float(mvp.m[r][col]);
     v.eye = c.eye;
-    v.finiteFar = !std::isinf(c.farZ);
+    v.finiteFar = !std::isinf(farZ);
     // The light direction is normalised in double, as the reference does.
     const double lx = light.x, ly = light.y, lz = light.z, l = std::sqrt(lx * lx + ly * ly + lz * lz);
     v.lighting.toLight = {l > 0 ? Vec3(float(lx / l), float(ly / l), float(lz / l)) : Vec3(0, 0, 1)};

@@ -77,6 +77,11 @@ TEST_CASE("every bad flag or value gives one clear line and exit code 2", "[head
         {{"render", "--fov", "180"}, "bad value for --fov: '180'"},
         {{"render", "--fov", "nan"}, "bad value for --fov: 'nan'"},
         {{"render", "--near", "-1"}, "bad value for --near: '-1'"},
+        // Below Camera::kMinNear the depths would be subnormal (1e-40) or zero (1e-46: a blank image).
+        {{"render", "--near", "1e-46"}, "bad value for --near: '1e-46' (expected a distance from 1e-06 to 1e+15)"},
+        {{"render", "--near", "1e-40"}, "bad value for --near: '1e-40'"},
+        {{"render", "--near", "9.9e-7"}, "bad value for --near: '9.9e-7'"},
+        {{"render", "--near", "2e15"}, "bad value for --near: '2e15'"},
         {{"render", "--near", "2", "--far", "1"}, "--far (1.000000) must be greater than --near (2.000000)"},
         {{"render", "--eye", "1,2"}, "bad value for --eye: '1,2'"},
         {{"render", "--eye", "1,2,1e39"}, "bad value for --eye: '1,2,1e39'"},

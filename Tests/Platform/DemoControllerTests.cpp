@@ -3,6 +3,7 @@
 #include "TestFramework.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include "Platform/Demo/DemoController.hpp"
 
@@ -73,6 +74,41 @@ TEST_CASE("the frame view matches makeFrameView for the starting camera", "[plat
     const FrameView empty = c.frameView(0, 0);
     for (int r = 0; r < 4; ++r)
         for (int col = 0; col < 4; ++col) CHECK(std::isfinite(empty.viewProj(r, col)));
+}
+
+TEST_CASE("an absurd near plane is clamped to Camera::kMinNear by the demo camera and the headless builder alike",
+          "[platform]") {
+    // 1e-46 is below the smallest float (zero depth everywhere: a blank image) and 1e-40 subnormal;
+    // both paths must build the projection of near = kMinNear, not of the absurd value.
+    for (double nearZ : {1e-46, 1e-40, 1e-9}) {
+        INFO("near " << nearZ);
+        CameraSetup setup;
+        setup.eye = {0.0f, 2.2f, 7.0f};
+        setup.target = {0.0f, 0.8f, 0.0f};
+        setup.up = {0.0f, 1.0f, 0.0f};
+        setup.farZ = std::numeric_limits<double>::infinity();
+        CameraSetup clamped = setup;
+        clamped.nearZ = double(Camera::kMinNear);
+        setup.nearZ = nearZ;
+        const FrameView headless = makeFrameView(setup, 640, 480, {1.0f, 1.0f, 1.0f});
+        const FrameView expected = makeFrameView(clamped, 640, 480, {1.0f, 1.0f, 1.0f});
+        const Camera camera = cameraFromSetup(setup);
+        CHECK(camera.nearZ() == Camera::kMinNear);
+        for (int r = 0; r < 4; ++r)
+            for (int col = 0; col < 4; ++col) CHECK(headless.viewProj(r, col) == expected.viewProj(r, col));
+        // The reversed-Z depth of a point 1e4 away is a normal float, not zero or subnormal.
+        const Vec4 p = headless.viewProj * Vec4(0.0f, 0.8f, 7.0f - 1e4f, 1.0f);
+        CHECK(std::fabs(p.z / p.w) >= std::numeric_limits<float>::min());
+    }
+    // A far plane the clamped near passes becomes infinite, as Camera::setNearFar does.
+    CameraSetup tiny;
+    tiny.eye = {0.0f, 0.0f, 1.0f};
+    tiny.target = {0.0f, 0.0f, 0.0f};
+    tiny.up = {0.0f, 1.0f, 0.0f};
+    tiny.nearZ = 1e-12;
+    tiny.farZ = 1e-7;
+    CHECK_FALSE(makeFrameView(tiny, 64, 64, {1.0f, 1.0f, 1.0f}).finiteFar);
+    CHECK(cameraFromSetup(tiny).farZ() == Camera::kInfinity);
 }
 
 TEST_CASE("movement is scaled by frame time: 30 fps and 300 fps fly the same distance", "[platform]") {
