@@ -379,8 +379,9 @@ struct FragmentQueue {
 };
 
 // fillTriangle (ScanlineFill.hpp) kLanes pixels per step. Per span: the plane values at the
-// first pixel in double (fillTriangle's very expression), then pixel k of the span gets
-// start + k * gradient in float, as one lane. Groups whose lanes all pass the depth test are
+// first pixel in double (fillTriangle's very expression), then pixel k of the span gets depth
+// and 1/w as start + k * ddx in double (rounded once) and the varyings as start + k * gradient
+// in float, as one lane. Groups whose lanes all pass the depth test are
 // shaded at once and stored with one vector store; the passing lanes of the other groups go to
 // the queue (so the shading runs on few wasted lanes for small triangles). A draw whose
 // colour is constant per triangle (no varyings) stores it without shading anything.
@@ -394,6 +395,12 @@ struct SpanKernel {
     std::uint64_t& shaded;
     FragmentQueue<kV>& queue;
     F gradient[kPlanes];
+
+    // fillTriangle's depth and 1/w: start + step * ddx in double, rounded once.
+    F planeInDouble(D startValue, int plane, F step) const {
+        const D g = dset(t.ddx[plane]);
+        return toFloat(startValue + g * lowHalf(step), startValue + g * highHalf(step));
+    }
 
     // Shades the queue's first kLanes fragments and stores the first `used` colours.
     void shadeQueued(int used) const {
@@ -420,7 +427,12 @@ struct SpanKernel {
         // Plane values at the centre of the span's first pixel (double, rounded once), as fillTriangle.
         const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
         F start[kPlanes];
-        for (int k = 0; k < kPlanes; ++k) start[k] = fset(float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy));
+        D startD[kPlaneVarying0]; // depth and 1/w, unrounded: evaluated per lane in double
+        for (int k = 0; k < kPlanes; ++k) {
+            const double value = t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy;
+            start[k] = fset(float(value));
+            if (k < kPlaneVarying0) startD[k] = dset(value);
+        }
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);
         const int rowWidth = fb.width();
@@ -437,7 +449,7 @@ struct SpanKernel {
             // span are read and written back unchanged (they belong to this row, i.e. this band).
             const bool inRow = x + kLanes <= rowWidth;
             const F step = fmin(fset(float(x - x0)) + fiota(), lastStep);
-            const F z = start[kPlaneZ] + gradient[kPlaneZ] * step;
+            const F z = planeInDouble(startD[kPlaneZ], kPlaneZ, step);
             M pass = inside;
             F stored = fzero();
             if constexpr (kDepth != DepthMode::Off) {
@@ -473,7 +485,7 @@ struct SpanKernel {
                 }
                 continue;
             } else {
-                const F invW = start[kPlaneInvW] + gradient[kPlaneInvW] * step;
+                const F invW = planeInDouble(startD[kPlaneInvW], kPlaneInvW, step);
                 F values[kV];
                 if constexpr (kPersp == PerspectiveMode::Exact) {
                     const F w = fset(1.0f) / invW;
