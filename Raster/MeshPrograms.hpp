@@ -6,6 +6,7 @@
 #include <cstdint>
 
 #include "Raster/Mesh.hpp"
+#include "Raster/Pipeline.hpp" // DrawState
 #include "Raster/RenderSettings.hpp"
 #include "Raster/ScanlineFill.hpp"
 #include "Raster/TextureLod.hpp"

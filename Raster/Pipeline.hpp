@@ -12,6 +12,7 @@
 #include "Raster/Clipper.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Line.hpp"
+#include "Raster/PipelineModes.hpp" // PipelineStop, DepthMode, PerspectiveMode
 #include "Raster/RenderContext.hpp"
 #include "Raster/ScanlineFill.hpp"
 #include "Raster/ThreadPool.hpp"
@@ -19,10 +20,6 @@
 #include "Raster/Viewport.hpp"
 
 namespace sr {
-
-// Where a draw stops: the bench command times partial pipelines to split a frame's time into
-// stages (geometry = vertex shader + clip + divide + cull; setup; fill = span loop + shading).
-enum class PipelineStop { Geometry, Setup, Fill };
 
 // Per-draw fixed-function state.
 struct DrawState {

@@ -4,7 +4,7 @@
 #include "Math/Mat4.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Kernels/Isa.hpp"
-#include "Raster/Pipeline.hpp"
+#include "Raster/PipelineModes.hpp" // PerspectiveMode, PipelineStop
 #include "Raster/Shading.hpp"
 #include "Raster/Texture.hpp"
 

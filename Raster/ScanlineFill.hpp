@@ -3,21 +3,16 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cstdint>
 
 #include "Raster/FixedPoint.hpp"
 #include "Raster/FrameBuffer.hpp"
-#include <cassert>
+#include "Raster/PipelineModes.hpp" // DepthMode, PerspectiveMode
+#include "Raster/Scissor.hpp"
 #include "Raster/TriangleSetup.hpp"
 
 namespace sr {
-
-// Pixel rectangle [x0, x1) x [y0, y1) the fill may touch. Clipping spans to it never changes
-// which pixels inside it are covered.
-struct Scissor {
-    int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-};
-inline Scissor fullScissor(const FrameBuffer& fb) { return {0, 0, fb.width(), fb.height()}; }
 
 // Walks one FixedEdge down the pixel rows, yielding at each row the index of the first pixel
 // whose centre is at or right of the edge. Exact DDA with an error term, after Hecker
@@ -99,17 +94,9 @@ struct Fragment {
     std::array<float, kVaryings> varyings; // the first kVaryings varyings of the setup
 };
 
-// Depth policy of a fill, chosen at compile time. Depth is reversed-Z float, test GREATER
-// (strict: on an exact tie the fragment already in the buffer stays).
-// Precision: z_ndc = near / distance (infinite far plane) is stored as float, whose relative
-// spacing is 2^-24 at every magnitude, so two depths are distinguishable whenever their
-// distances differ by more than ~2^-23 relatively, near or far alike (Reed, "Depth Precision
-// Visualized", 2015). The screen-linear plane evaluation adds a few ulps on top.
-enum class DepthMode { Off, Test, TestWrite };
-
 // The span loop: fills the covered pixels of `t` inside the scissor. Per pixel, in order:
 // depth test (if enabled), depth write (TestWrite), colour = shader(fragment). kVaryings
-// (<= t.varyingCount) varyings are interpolated as kPersp says (TriangleSetup.hpp; Affine needs a
+// (<= t.varyingCount) varyings are interpolated as kPersp says (PipelineModes.hpp; Affine needs a
 // setup made with perspectiveCorrect = false); with kVaryings == 0 no divide runs at all.
 // Attributes at a span start are evaluated from the plane equation in double (never accumulated
 // from row to row). Along the span, depth and 1/w of pixel k are start + k * ddx evaluated in

@@ -28,23 +28,6 @@ int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 
 } // namespace
 
-const char* perspectiveModeName(PerspectiveMode mode) {
-    switch (mode) {
-    case PerspectiveMode::Exact: return "exact";
-    case PerspectiveMode::Span16: return "span16";
-    case PerspectiveMode::Span8: return "span8";
-    case PerspectiveMode::Affine: return "affine";
-    }
-    return "?";
-}
-
-std::optional<PerspectiveMode> parsePerspectiveMode(std::string_view text) {
-    for (PerspectiveMode m : {PerspectiveMode::Exact, PerspectiveMode::Span16, PerspectiveMode::Span8,
-                              PerspectiveMode::Affine})
-        if (text == perspectiveModeName(m)) return m;
-    return std::nullopt;
-}
-
 SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const ScreenVertex& v1,
                                  const ScreenVertex& v2, CullMode cull, int varyingCount, bool perspectiveCorrect) {
     // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---

@@ -3,10 +3,10 @@
 
 #include <cstdint>
 #include <optional>
-#include <string_view>
 
 #include "Raster/Cull.hpp"
 #include "Raster/FixedPoint.hpp"
+#include "Raster/PipelineModes.hpp" // PerspectiveMode
 #include "Raster/Vertex.hpp"
 
 namespace sr {
@@ -63,16 +63,6 @@ struct TriangleSetup {
         return value[plane] + ddx[plane] * (x - originX) + ddy[plane] * (y - originY);
     }
 };
-
-// How varyings are interpolated across the screen (a quality knob, measured by the report):
-//  - Exact: (v/w) / (1/w) at every pixel centre (Hecker 1995): correct everywhere.
-//  - Span16 / Span8: exact every 16 / 8 pixels along a span and linear in between (Quake's
-//    span subdivision, Abrash 1997): one divide per 16 / 8 pixels.
-//  - Affine: v itself is linear in screen space (no divide at all; PlayStation-style warping).
-enum class PerspectiveMode { Exact, Span16, Span8, Affine };
-
-const char* perspectiveModeName(PerspectiveMode mode);
-std::optional<PerspectiveMode> parsePerspectiveMode(std::string_view text); // exact|span16|span8|affine
 
 // Snaps v0, v1, v2 (any winding) to the 1/256 grid and builds the record, or returns nullopt
 // for a triangle that can cover nothing: zero area after snapping (collinear or coincident

@@ -12,7 +12,7 @@
 #include "Raster/Cull.hpp"
 #include "Raster/Shading.hpp"
 #include "Raster/Texture.hpp"
-#include "Raster/TriangleSetup.hpp"
+#include "Raster/PipelineModes.hpp" // PerspectiveMode
 
 namespace sr::demo {
 

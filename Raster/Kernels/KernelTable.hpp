@@ -5,8 +5,11 @@
 
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/Kernels/KernelConfig.hpp"
-#include "Raster/RenderSettings.hpp"
-#include "Raster/ScanlineFill.hpp"
+#include "Raster/FrameBuffer.hpp"
+#include "Raster/PipelineModes.hpp" // DepthMode, PerspectiveMode
+#include "Raster/Scissor.hpp"
+#include "Raster/Texture.hpp"       // TextureFilter, WrapMode
+#include "Raster/TriangleSetup.hpp"
 
 namespace sr {
 

@@ -10,6 +10,7 @@
 
 #include "Raster/Kernels/KernelTable.hpp"
 #include "Raster/MeshPrograms.hpp"
+#include "Raster/ScanlineFill.hpp" // fillTriangle, the reference
 
 using namespace sr;
 

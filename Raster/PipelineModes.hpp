@@ -1,0 +1,31 @@
+// The pipeline's mode enums (perspective, depth, partial pipelines), apart from the loops that run them.
+#pragma once
+
+#include <optional>
+#include <string_view>
+
+namespace sr {
+
+// How varyings are interpolated across the screen (a quality knob, measured by the report):
+//  - Exact: (v/w) / (1/w) at every pixel centre (Hecker 1995): correct everywhere.
+//  - Span16 / Span8: exact every 16 / 8 pixels along a span and linear in between (Quake's
+//    span subdivision, Abrash 1997): one divide per 16 / 8 pixels.
+//  - Affine: v itself is linear in screen space (no divide at all; PlayStation-style warping).
+enum class PerspectiveMode { Exact, Span16, Span8, Affine };
+
+const char* perspectiveModeName(PerspectiveMode mode);
+std::optional<PerspectiveMode> parsePerspectiveMode(std::string_view text); // exact|span16|span8|affine
+
+// Depth policy of a fill, chosen at compile time. Depth is reversed-Z float, test GREATER
+// (strict: on an exact tie the fragment already in the buffer stays).
+// Precision: z_ndc = near / distance (infinite far plane) is stored as float, whose relative
+// spacing is 2^-24 at every magnitude, so two depths are distinguishable whenever their
+// distances differ by more than ~2^-23 relatively, near or far alike (Reed, "Depth Precision
+// Visualized", 2015). The screen-linear plane evaluation adds a few ulps on top.
+enum class DepthMode { Off, Test, TestWrite };
+
+// Where a draw stops: the bench command times partial pipelines to split a frame's time into
+// stages (geometry = vertex shader + clip + divide + cull; setup; fill = span loop + shading).
+enum class PipelineStop { Geometry, Setup, Fill };
+
+} // namespace sr
