@@ -160,8 +160,6 @@ bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands&
         } else {
             switch (state.perspective) {
             case PerspectiveMode::Exact: fillTriangle<kDepth, kVaryings, PerspectiveMode::Exact>(setup, fb, scissor, counted); break;
-            case PerspectiveMode::Span16: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span16>(setup, fb, scissor, counted); break;
-            case PerspectiveMode::Span8: fillTriangle<kDepth, kVaryings, PerspectiveMode::Span8>(setup, fb, scissor, counted); break;
             case PerspectiveMode::Affine: fillTriangle<kDepth, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, counted); break;
             }
         }

@@ -8,13 +8,16 @@ namespace sr {
 
 // How varyings are interpolated across the screen (a quality knob, measured by the report):
 //  - Exact: (v/w) / (1/w) at every pixel centre (Hecker 1995): correct everywhere.
-//  - Span16 / Span8: exact every 16 / 8 pixels along a span and linear in between (Quake's
-//    span subdivision, Abrash 1997): one divide per 16 / 8 pixels.
 //  - Affine: v itself is linear in screen space (no divide at all; PlayStation-style warping).
-enum class PerspectiveMode { Exact, Span16, Span8, Affine };
+// Quake's span subdivision (span16 / span8: exact every 16 / 8 pixels, linear in between) was
+// retired: with the vector kernels exact costs within a few percent of affine, so the middle
+// settings bought nothing (docs/PERFORMANCE.md has the measurement).
+enum class PerspectiveMode { Exact, Affine };
 
 const char* perspectiveModeName(PerspectiveMode mode);
-std::optional<PerspectiveMode> parsePerspectiveMode(std::string_view text); // exact|span16|span8|affine
+std::optional<PerspectiveMode> parsePerspectiveMode(std::string_view text); // exact|affine
+// True for the names of retired modes (span16, span8), so the command line can say so.
+bool isRetiredPerspectiveMode(std::string_view text);
 
 // Depth policy of a fill, chosen at compile time. Depth is reversed-Z float, test GREATER
 // (strict: on an exact tie the fragment already in the buffer stays).

@@ -111,7 +111,6 @@ void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Sha
     assert(kVaryings <= t.varyingCount);
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= fb.width() && s.y1 <= fb.height());
     constexpr int kPlanes = kVaryings > 0 ? kPlaneVarying0 + kVaryings : 1;
-    constexpr int kSpan = kPersp == PerspectiveMode::Span16 ? 16 : 8;
 
     forEachSpan(t, s, [&](int y, int x0, int x1) {
         // Plane values at the centre of the span's first pixel (double, once per span).
@@ -133,17 +132,6 @@ void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Sha
         float* depth = fb.depthRow(y);
         Fragment<kVaryings> f;
         f.y = y;
-        // Span subdivision (Span16/Span8): segments of kSpan pixels aligned to the span start;
-        // exact varyings at a segment's first pixel and at the next segment's first pixel (or the
-        // span's last pixel), linear in between: one divide per kSpan pixels.
-        [[maybe_unused]] float segValue[kVaryings > 0 ? kVaryings : 1] = {};
-        [[maybe_unused]] float segSlope[kVaryings > 0 ? kVaryings : 1] = {};
-        [[maybe_unused]] int segStart = x0, segEnd = x0;
-        [[maybe_unused]] auto exactAt = [&](int px, int k) {
-            const float at = float(px - x0);
-            const int p = kPlaneVarying0 + k;
-            return (start[p] + gradient[p] * at) / (start[kPlaneInvW] + gradient[kPlaneInvW] * at);
-        };
         float step = 0.0f; // pixel index along the span, exact in float
         for (int x = x0; x < x1; ++x, step += 1.0f) {
             f.z = float(startD[kPlaneZ] + t.ddx[kPlaneZ] * double(step));
@@ -160,24 +148,12 @@ void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Sha
                         const int p = kPlaneVarying0 + k;
                         f.varyings[std::size_t(k)] = (start[p] + gradient[p] * step) * w;
                     }
-                } else if constexpr (kPersp == PerspectiveMode::Affine) {
+                } else {
+                    static_assert(kPersp == PerspectiveMode::Affine);
                     for (int k = 0; k < kVaryings; ++k) {
                         const int p = kPlaneVarying0 + k;
                         f.varyings[std::size_t(k)] = start[p] + gradient[p] * step;
                     }
-                } else {
-                    static_assert(kPersp == PerspectiveMode::Span16 || kPersp == PerspectiveMode::Span8);
-                    if (x >= segEnd) { // first visited pixel of a new segment
-                        segStart = x0 + ((x - x0) / kSpan) * kSpan;
-                        segEnd = std::min(x1, segStart + kSpan);
-                        const int last = std::min(segStart + kSpan, x1 - 1);
-                        for (int k = 0; k < kVaryings; ++k) {
-                            segValue[k] = exactAt(segStart, k);
-                            segSlope[k] = last > segStart ? (exactAt(last, k) - segValue[k]) / float(last - segStart) : 0.0f;
-                        }
-                    }
-                    const float i = float(x - segStart);
-                    for (int k = 0; k < kVaryings; ++k) f.varyings[std::size_t(k)] = segValue[k] + segSlope[k] * i;
                 }
             }
             colour[x] = shader(static_cast<const Fragment<kVaryings>&>(f));

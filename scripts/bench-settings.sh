@@ -14,7 +14,7 @@ configs=(
   "spider|phong|--obj $S --shading phong"     "spider|gouraud|--obj $S --shading gouraud"
   "spider|flat|--obj $S --shading flat"       "spider|unlit|--obj $S --shading unlit"
   "spider|nearest|--obj $S --filter nearest"  "spider|trilinear|--obj $S --filter trilinear"
-  "spider|affine|--obj $S --persp affine"     "spider|span8|--obj $S --persp span8"
+  "spider|affine|--obj $S --persp affine"
   "spider|scalar|--obj $S --isa scalar"
   "bunny|phong|--obj $B --cull cw"            "bunny|gouraud|--obj $B --cull cw --shading gouraud"
   "bunny|flat|--obj $B --cull cw --shading flat" "bunny|unlit|--obj $B --cull cw --shading unlit"

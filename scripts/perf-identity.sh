@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Exact-mode image identity check for speed work: renders 28 reference scenes (colour PPM + depth PFM) and compares them byte for byte.
+# Exact-mode image identity check for speed work: renders 26 reference scenes (colour PPM + depth PFM) and compares them byte for byte.
 # Usage: scripts/perf-identity.sh SOFTRASTER OUTDIR [REFDIR] [extra flags, e.g. --threads 2]
 #   Without REFDIR (or with REFDIR = -) it only renders (make the reference with the code BEFORE a change);
 #   with REFDIR it renders into OUTDIR and `cmp`s every file against REFDIR. Exit 1 on any difference.
@@ -21,15 +21,13 @@ r bunny_close --obj $B --eye 0.3,0.2,0.4 --target 0,0.1,0 --near 0.01 --far 10
 r spider_close --obj $S "${SC[@]}"
 r spider_close_unlit --obj $S "${SC[@]}" --shading unlit
 r spider_close_gouraud --obj $S "${SC[@]}" --shading gouraud
-r spider_close_tri --obj $S "${SC[@]}" --filter trilinear --persp span16
+r spider_close_tri --obj $S "${SC[@]}" --filter trilinear
 r spider_auto --obj $S
 r spider_inside --obj $S --eye 0,0,0 --target 0,0,-10 --near 0.5 --far 500
 r builtin
 r builtin_gouraud --shading gouraud
 r builtin_flat --shading flat
 r builtin_unlit --shading unlit
-r builtin_span16 --persp span16
-r builtin_span8 --persp span8
 r builtin_affine --persp affine
 r builtin_tri --filter trilinear
 r builtin_wire --wireframe

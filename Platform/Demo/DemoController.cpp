@@ -65,7 +65,7 @@ Action DemoController::keyDown(Key key, bool repeat) {
     case Action::CycleCull: settings_.cull = next(settings_.cull, 3); break;
     case Action::CycleShading: settings_.shading = next(settings_.shading, 4); break;
     case Action::CycleFilter: settings_.filter = next(settings_.filter, 3); break;
-    case Action::CyclePerspective: settings_.perspective = next(settings_.perspective, 4); break;
+    case Action::CyclePerspective: settings_.perspective = next(settings_.perspective, 2); break;
     case Action::ToggleWireframe: settings_.wireframe = !settings_.wireframe; break;
     case Action::ToggleDepthView: depthView_ = !depthView_; break;
     case Action::ResetView: resetView(); break;

@@ -27,7 +27,7 @@ enum class Action {
     CycleCull,        // none -> cull CW -> cull CCW -> none
     CycleShading,     // unlit -> flat -> gouraud -> phong
     CycleFilter,      // nearest -> bilinear -> trilinear
-    CyclePerspective, // exact -> span16 -> span8 -> affine
+    CyclePerspective, // exact <-> affine
     ToggleWireframe,
     ToggleDepthView,  // show the depth buffer as grey
     ResetView,        // back to the starting camera
@@ -68,7 +68,7 @@ inline constexpr std::array<KeyHelp, 15> kKeyHelp{{
     {"C", "cull mode: none -> CW -> CCW"},
     {"M", "shading: unlit -> flat -> gouraud -> phong"},
     {"T", "texture filter: nearest -> bilinear -> trilinear"},
-    {"P", "perspective: exact -> span16 -> span8 -> affine"},
+    {"P", "perspective: exact <-> affine"},
     {"L", "wireframe overlay on / off"},
     {"Z", "depth view (near = white) on / off"},
     {"F1", "this help on / off"},

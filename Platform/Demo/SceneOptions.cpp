@@ -136,7 +136,13 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         o.filter = *m;
     } else if (flag == "--persp") {
         const auto m = parsePerspectiveMode(value);
-        if (!m) return bad("exact, span16, span8 or affine");
+        if (!m && isRetiredPerspectiveMode(value)) {
+            error = "--persp " + value +
+                    ": span subdivision was retired (exact perspective now costs what affine costs; "
+                    "docs/PERFORMANCE.md); the modes that remain: exact, affine";
+            return FlagResult::Error;
+        }
+        if (!m) return bad("exact or affine");
         o.perspective = *m;
     } else if (flag == "--isa") {
         const auto m = parseIsa(value);
@@ -183,7 +189,7 @@ std::string sceneFlagsHelp() {
            "quality:\n"
            "  --filter F            nearest | bilinear | trilinear (default bilinear)\n"
            "  --wrap W              repeat | clamp | mirror (default repeat)\n"
-           "  --persp P             exact | span16 | span8 | affine: perspective correction (default exact)\n"
+           "  --persp P             exact | affine: perspective correction (default exact)\n"
            "  --isa I               auto | scalar | sse2 | avx2 | avx512: span kernels (default auto, the\n"
            "                        widest this CPU has; scalar = the reference loop; same image for all)\n"
            "  --kd r,g,b            colour of untextured surfaces (default 0.8,0.8,0.8)\n"

@@ -35,7 +35,7 @@ std::vector<Setting> settingsToMeasure(RenderSettings base) {
     base.filter = TextureFilter::Trilinear;
     base.shading = ShadingMode::Phong;
     std::vector<Setting> out{{"reference", "exact+trilinear+phong", base}};
-    for (PerspectiveMode m : {PerspectiveMode::Span16, PerspectiveMode::Span8, PerspectiveMode::Affine}) {
+    for (PerspectiveMode m : {PerspectiveMode::Affine}) {
         Setting s{"persp", perspectiveModeName(m), base};
         s.settings.perspective = m;
         out.push_back(s);

@@ -30,7 +30,7 @@ template <class Prog>
 using FillKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, const Scissor&, std::uint64_t& shaded);
 
 // One table per ISA (Kernels*.cpp); nullptr where the ISA has no kernel for the key (the
-// scalar reference then fills: span modes, non-integer shininess).
+// scalar reference then fills: non-integer shininess).
 namespace kernels_sse2 {
 template <class Prog>
 FillKernel<Prog> fillKernel(const KernelKey& key);

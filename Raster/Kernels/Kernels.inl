@@ -570,8 +570,8 @@ FillKernel<Prog> pickPerspective(const KernelKey& key) {
         switch (key.perspective) {
         case PerspectiveMode::Exact: return pickFilter<Prog, kDepth, PerspectiveMode::Exact>(key);
         case PerspectiveMode::Affine: return pickFilter<Prog, kDepth, PerspectiveMode::Affine>(key);
-        default: return nullptr; // span subdivision: the scalar reference
         }
+        return nullptr;
     }
 }
 

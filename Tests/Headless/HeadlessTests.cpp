@@ -89,7 +89,10 @@ TEST_CASE("every bad flag or value gives one clear line and exit code 2", "[head
         {{"render", "--shading", "toon"}, "bad value for --shading: 'toon' (expected unlit, flat, gouraud or phong)"},
         {{"render", "--cull", "back"}, "bad value for --cull: 'back' (expected none, cw or ccw)"},
         {{"render", "--filter", "aniso"}, "bad value for --filter: 'aniso'"},
-        {{"render", "--persp", "span4"}, "bad value for --persp: 'span4'"},
+        {{"render", "--persp", "span4"}, "bad value for --persp: 'span4' (expected exact or affine)"},
+        // The retired span modes are named as such, with the modes that remain.
+        {{"render", "--persp", "span16"}, "--persp span16: span subdivision was retired"},
+        {{"bench", "--persp", "span8"}, "the modes that remain: exact, affine"},
         {{"render", "--threads", "-1"}, "bad value for --threads: '-1'"},
         {{"render", "--frames", "10"}, "unknown flag '--frames'"},
         {{"bench", "--frames", "0"}, "bad value for --frames: '0'"},
@@ -178,7 +181,7 @@ TEST_CASE("report writes report.csv, report.md and report.svg for a tiny scene",
     REQUIRE(csv.ok());
     const std::string text(csv.value().begin(), csv.value().end());
     CHECK(text.rfind("knob,value,ms_median,ms_min,psnr_db,max_abs,differing_share,pareto\n", 0) == 0);
-    CHECK(std::count(text.begin(), text.end(), '\n') == 1 + 8); // header + 8 settings
+    CHECK(std::count(text.begin(), text.end(), '\n') == 1 + 6); // header + 6 settings (span16/span8 retired)
     // Rows: "knob,value,ms,ms,psnr,maxabs,share,pareto". The reference against itself is identical;
     // the affine image is not.
     auto row = [&](const std::string& prefix) {

@@ -18,7 +18,7 @@ TEST_CASE("specialised pipelines render the default scene exactly like the gener
     const FrameView view =
         demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light);
     for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
-        for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Span8})
+        for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
             for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear}) {
                 INFO("mode " << shadingModeName(mode) << ", " << perspectiveModeName(persp) << ", " << filterName(filter));
                 RenderSettings settings = demo::makeRenderSettings(options);

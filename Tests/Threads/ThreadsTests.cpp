@@ -91,9 +91,9 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
     };
     const Case cases[] = {
         {160, 120, ShadingMode::Phong, CullMode::None, PerspectiveMode::Exact, TextureFilter::Bilinear},
-        {160, 120, ShadingMode::Gouraud, CullMode::CW, PerspectiveMode::Span16, TextureFilter::Trilinear},
+        {160, 120, ShadingMode::Gouraud, CullMode::CW, PerspectiveMode::Affine, TextureFilter::Trilinear},
         {160, 120, ShadingMode::Flat, CullMode::CCW, PerspectiveMode::Affine, TextureFilter::Nearest},
-        {160, 120, ShadingMode::Unlit, CullMode::None, PerspectiveMode::Span8, TextureFilter::Bilinear},
+        {160, 120, ShadingMode::Unlit, CullMode::None, PerspectiveMode::Affine, TextureFilter::Bilinear},
         {333, 77, ShadingMode::Phong, CullMode::CW, PerspectiveMode::Exact, TextureFilter::Bilinear},
         {17, 301, ShadingMode::Phong, CullMode::None, PerspectiveMode::Exact, TextureFilter::Trilinear},
         {1, 1, ShadingMode::Phong, CullMode::None, PerspectiveMode::Exact, TextureFilter::Bilinear},
