@@ -1,4 +1,5 @@
 // Texture: RGBA8 texel storage with its full mip chain, and GL-style nearest/bilinear/trilinear sampling.
+// Storage and the mip chain: Texture.cpp; the samplers: TextureSampling.cpp.
 #pragma once
 
 #include <cstdint>
@@ -51,7 +52,7 @@ inline constexpr int kMaxTextureSize = 16384;
 // (8-bit) level, as glGenerateMipmap does, per channel: exact integer sum / count, rounded to
 // nearest with ties to even. Alpha is filtered like the colour channels (not premultiplied).
 //
-// Coordinate policies (all sampling entry points, both the fast paths and sampleReference):
+// Coordinate policies (every sampling entry point below, and the tests' reference sampler):
 //  - Far-away uvs keep their precision: every float uv is handled exactly. For Repeat, |u| >= 1
 //    is first reduced to u - floor(u) (exact: the fraction bits of a float are representable); for
 //    Mirror, |u| >= 2 to u - 2 floor(u / 2); for Clamp, u is clamped into [-1, 2] (everything
@@ -116,9 +117,9 @@ public:
     // read one level only.
     Color sampleTrilinear(Vec2 uv, float lod, WrapMode wrap) const;
 
-    // The straightforward reference of sample(): generic per-texel wrap and fetch, no
-    // specialisation. The fast paths above are tested to be bit-identical to it.
-    Color sampleReference(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const;
+    // The fast paths above are tested bit-identical to a straightforward reference of sample()
+    // (generic per-texel wrap and fetch through this public API, no specialisation): the test-only
+    // sampleReference of Tests/Texture/TextureReference.hpp.
 
 private:
     struct Level {
@@ -130,8 +131,6 @@ private:
 
     static Level makeLevel(int width, int height);
     static Level downsample(const Level& src);
-    void bilinearReferenceRaw(const Level& level, Vec2 uv, WrapMode wrap, double raw[4]) const;
-    Color nearestReference(const Level& level, Vec2 uv, WrapMode wrap) const;
 
     std::vector<Level> levels_; // levels_[0] is the base level; never empty
 };

@@ -96,12 +96,12 @@ SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, const Terms& t) {
     return {kd.r * t.diffuse + t.specular, kd.g * t.diffuse + t.specular, kd.b * t.diffuse + t.specular};
 }
 
-// --- Texture sampling (Texture.cpp's fast paths, lane by lane) -------------------------------
+// --- Texture sampling (TextureSampling.cpp's fast paths, lane by lane) -----------------------
 // Lanes whose coordinate is NaN, infinite or |u| >= 2^31 are "off" the vector path: they are
 // computed with a harmless stand-in (u = 0) and redone by Texture::sample* afterwards.
 SR_SIMD_INLINE M onVectorPath(F u) { return fabs(u) < fset(2147483648.0f); }
 
-// reduceCoordinate (Texture.cpp), for finite |u| < 2^31, without branches:
+// reduceCoordinate (TextureSampling.cpp), for finite |u| < 2^31, without branches:
 //  Repeat: |d| >= 1 -> d - floor(d); Mirror: |d| >= 2 -> d - 2 floor(d / 2); Clamp: clamp(d, -1, 2).
 // The selection multiplies by min(floor(|d|), 1), which is 0 or 1 exactly.
 template <WrapMode kWrap>
@@ -112,7 +112,7 @@ SR_SIMD_INLINE D reduceCoordinate(D d) {
     else return dmin(dmax(d, dset(-1.0)), dset(2.0));
 }
 
-// Wrap<kWrap>::one (Texture.cpp) for an unwrapped texel index i: Repeat i in [-size, size - 1]
+// Wrap<kWrap>::one (TextureSampling.cpp) for an unwrapped texel index i: Repeat i in [-size, size - 1]
 // (nearest) or [-size - 1, size] (linear, after the first fix-up below), Mirror and Clamp any
 // index the reduced coordinates produce.
 template <WrapMode kWrap>

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "TextureReference.hpp"
 #include "TextureTestUtil.hpp"
 
 using namespace sr;
@@ -20,7 +21,7 @@ const TextureFilter kFilters[] = {TextureFilter::Nearest, TextureFilter::Bilinea
 std::vector<Color> allBaseSamples(const Texture& t, Vec2 uv, TextureFilter filter, WrapMode wrap) {
     std::vector<Color> out;
     out.push_back(t.sample(uv, 0.0f, filter, wrap));
-    out.push_back(t.sampleReference(uv, 0.0f, filter, wrap));
+    out.push_back(sampleReference(t, uv, 0.0f, filter, wrap));
     if (filter == TextureFilter::Nearest) out.push_back(t.sampleNearest(uv, wrap));
     if (filter == TextureFilter::Bilinear) out.push_back(t.sampleBilinear(uv, wrap));
     if (filter == TextureFilter::Trilinear) out.push_back(t.sampleTrilinear(uv, 0.0f, wrap));
@@ -217,7 +218,7 @@ TEST_CASE("NaN and infinite uvs give defined texels: NaN -> index 0, Inf clamps 
                 requireAll(t, {FLT_MAX, -FLT_MAX}, f, w, t.sample({0.0f, 0.0f}, 0.0f, f, w));
             // A NaN lod selects the base level.
             REQUIRE(bitEqual(t.sample({0.3f, 0.6f}, nan, f, w), t.sample({0.3f, 0.6f}, 0.0f, f, w)));
-            REQUIRE(bitEqual(t.sampleReference({0.3f, 0.6f}, nan, f, w), t.sample({0.3f, 0.6f}, 0.0f, f, w)));
+            REQUIRE(bitEqual(sampleReference(t, {0.3f, 0.6f}, nan, f, w), t.sample({0.3f, 0.6f}, 0.0f, f, w)));
         }
 }
 
@@ -234,7 +235,7 @@ TEST_CASE("a 1x1 texture returns its texel for every uv, lod, filter and wrap", 
                     requireAll(t, {u, v}, f, w, c);
                     for (float lod : {-1.0f, 0.5f, 3.0f, nan}) {
                         REQUIRE(bitEqual(t.sample({u, v}, lod, f, w), c));
-                        REQUIRE(bitEqual(t.sampleReference({u, v}, lod, f, w), c));
+                        REQUIRE(bitEqual(sampleReference(t, {u, v}, lod, f, w), c));
                     }
                 }
 }
