@@ -5,7 +5,7 @@
 // function here exists once per ISA, compiled for it, and no symbol is shared between ISAs.
 // The scalar twins are ScanlineFill.hpp's fillTriangle and the programs of MeshPrograms.hpp:
 // every operation below is theirs, in the same order, lane by lane (IEEE, no FMA), so the
-// pixels, depths and counters are bit-identical (Tests/Kernels proves it for every key).
+// pixels, depths and counters are bit-identical (Tests/Threads/KernelIdentityTests.cpp proves it for every key).
 
 using sr::programs::DrawContext;
 

@@ -1,4 +1,4 @@
-// The fast paths against their references: per-vertex clip codes vs classify, cull-in-setup vs isCulled, the inline normalize vs the robust one (the SIMD kernels: Tests/Kernels).
+// The fast paths against their references: per-vertex clip codes vs classify, cull-in-setup vs isCulled, the inline normalize vs the robust one (the SIMD kernels: KernelIdentityTests.cpp).
 #include "TestFramework.hpp"
 
 #include <cmath>
