@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <utility>
+
+#include "Raster/LineClip.hpp"
 
 namespace sr {
 
@@ -41,7 +44,8 @@ bool clipAxis(int axis, double a, double d, double lo, double hi, ClipEnd& t0, C
 }
 
 // The clipped point, computed ON the boundary that clipped it (x = bound exactly, y from the
-// slope), not as a + t d: with |a| ~ 1e38 the latter cancels catastrophically.
+// slope), not as a + t d. Only for endpoints inside the guard band, where double is far more
+// precise than the one-column margin the result is used with (beyond it, LineClip is exact).
 void clippedPoint(const ClipEnd& c, double ax, double ay, double dx, double dy, double& x, double& y) {
     if (c.axis == 0) {
         x = c.bound;
@@ -74,38 +78,58 @@ std::optional<LineSetup> setupLine(const LineVertex& inA, const LineVertex& inB,
     LineVertex a = swap ? inB : inA, b = swap ? inA : inB;
     l.reversed = swap;
 
-    // --- Clip in double to the scissor grown by one pixel (rule 5) ----------------------------
-    const double ax = a.x, ay = a.y, dx = double(b.x) - ax, dy = double(b.y) - ay;
-    ClipEnd t0{0.0}, t1{1.0};
-    if (!clipAxis(0, ax, dx, s.x0 - 1.0, s.x1 + 1.0, t0, t1)) return std::nullopt;
-    if (!clipAxis(1, ay, dy, s.y0 - 1.0, s.y1 + 1.0, t0, t1)) return std::nullopt;
-    double cx0, cy0, cx1, cy1; // the visible part, for narrowing (and clipping, below)
-    clippedPoint(t0, ax, ay, dx, dy, cx0, cy0);
-    clippedPoint(t1, ax, ay, dx, dy, cx1, cy1);
+    // --- Clip to the scissor grown by one pixel (rule 5) -------------------------------------
     float za = a.z, zb = b.z;
     unpack(a.colour, l.colourA);
     unpack(b.colour, l.colourB);
-    if (!inGuardBand(a) || !inGuardBand(b)) {
-        // Replace the endpoints by the clipped ones (attributes interpolated to match).
+    std::int64_t fxA = 0, fyA = 0, fxB = 0, fyB = 0; // snapped endpoints of the segment to step
+    // Columns the visible part can light, per axis (x, y): [narrow[k][0], narrow[k][1]].
+    constexpr std::int64_t kMin = std::numeric_limits<std::int64_t>::min();
+    constexpr std::int64_t kMax = std::numeric_limits<std::int64_t>::max();
+    std::int64_t narrow[2][2] = {{kMin, kMax}, {kMin, kMax}};
+    if (inGuardBand(a) && inGuardBand(b)) {
+        // Both endpoints snap as they are; the clip, in double (errors far below a pixel at
+        // this range), only narrows the columns visited, with one column to spare each side.
+        const double ax = a.x, ay = a.y, dx = double(b.x) - ax, dy = double(b.y) - ay;
+        ClipEnd t0{0.0}, t1{1.0};
+        if (!clipAxis(0, ax, dx, s.x0 - 1.0, s.x1 + 1.0, t0, t1)) return std::nullopt;
+        if (!clipAxis(1, ay, dy, s.y0 - 1.0, s.y1 + 1.0, t0, t1)) return std::nullopt;
+        double cx0, cy0, cx1, cy1;
+        clippedPoint(t0, ax, ay, dx, dy, cx0, cy0);
+        clippedPoint(t1, ax, ay, dx, dy, cx1, cy1);
+        fxA = snapToFixed(a.x);
+        fyA = snapToFixed(a.y);
+        fxB = snapToFixed(b.x);
+        fyB = snapToFixed(b.y);
+        narrow[0][0] = std::int64_t(std::floor(std::min(cx0, cx1))) - 1;
+        narrow[0][1] = std::int64_t(std::floor(std::max(cx0, cx1))) + 1;
+        narrow[1][0] = std::int64_t(std::floor(std::min(cy0, cy1))) - 1;
+        narrow[1][1] = std::int64_t(std::floor(std::max(cy0, cy1))) + 1;
+    } else {
+        // An endpoint beyond the guard band: the segment is replaced by its visible part, clipped
+        // and snapped exactly (any finite float, up to 3.4e38), attributes interpolated to match.
+        const ClipBox box{std::int64_t(s.x0) - 1, std::int64_t(s.y0) - 1, std::int64_t(s.x1) + 1,
+                          std::int64_t(s.y1) + 1};
+        const std::optional<ExactClip> c = clipSegmentExact(a.x, a.y, b.x, b.y, box);
+        if (!c) return std::nullopt;
+        fxA = c->x0;
+        fyA = c->y0;
+        fxB = c->x1;
+        fyB = c->y1;
         float ca[3], cb[3];
         for (int k = 0; k < 3; ++k) {
-            ca[k] = float(l.colourA[k] + t0.t * (l.colourB[k] - l.colourA[k]));
-            cb[k] = float(l.colourA[k] + t1.t * (l.colourB[k] - l.colourA[k]));
+            ca[k] = float(l.colourA[k] + c->t0 * (l.colourB[k] - l.colourA[k]));
+            cb[k] = float(l.colourA[k] + c->t1 * (l.colourB[k] - l.colourA[k]));
         }
         std::copy(ca, ca + 3, l.colourA);
         std::copy(cb, cb + 3, l.colourB);
-        const double z0 = za + t0.t * (double(zb) - za), z1 = za + t1.t * (double(zb) - za);
+        const double z0 = za + c->t0 * (double(zb) - za), z1 = za + c->t1 * (double(zb) - za);
         za = float(z0);
         zb = float(z1);
-        a.x = float(cx0);
-        a.y = float(cy0);
-        b.x = float(cx1);
-        b.y = float(cy1);
+        // The ends are the visible part's own: the end columns need no narrowing.
     }
 
-    // --- Snap, pick the major axis, order along it --------------------------------------------
-    const std::int64_t fxA = snapToFixed(a.x), fyA = snapToFixed(a.y);
-    const std::int64_t fxB = snapToFixed(b.x), fyB = snapToFixed(b.y);
+    // --- Pick the major axis, order along it ---------------------------------------------------
     l.yMajor = std::llabs(fyB - fyA) > std::llabs(fxB - fxA);
     l.majorA = l.yMajor ? fyA : fxA;
     l.minorA = l.yMajor ? fxA : fyA;
@@ -124,11 +148,9 @@ std::optional<LineSetup> setupLine(const LineVertex& inA, const LineVertex& inB,
     // --- Columns: the whole line's end columns, narrowed to the visible part and scissor -------
     l.columnA = floorDiv(l.majorA, kSubPixelScale);
     l.columnB = floorDiv(l.majorB, kSubPixelScale);
-    const double v0 = l.yMajor ? std::min(cy0, cy1) : std::min(cx0, cx1);
-    const double v1 = l.yMajor ? std::max(cy0, cy1) : std::max(cx0, cx1);
     const std::int64_t lo = l.yMajor ? s.y0 : s.x0, hi = (l.yMajor ? s.y1 : s.x1) - 1;
-    l.firstColumn = std::max({l.columnA, lo, std::int64_t(std::floor(v0)) - 1});
-    l.lastColumn = std::min({l.columnB, hi, std::int64_t(std::floor(v1)) + 1});
+    l.firstColumn = std::max({l.columnA, lo, narrow[l.yMajor][0]});
+    l.lastColumn = std::min({l.columnB, hi, narrow[l.yMajor][1]});
     if (l.firstColumn > l.lastColumn) return std::nullopt;
     return l;
 }

@@ -42,12 +42,17 @@ struct LineOptions {
 //  4. The rule depends only on the unordered pair {A, B} and is evaluated in exact integer
 //     arithmetic (an error-term DDA), so A->B and B->A draw the same pixels. The endpoints are
 //     put in a canonical order before anything else (clipping included) to keep it so.
-//  5. Clipping: the segment is clipped in double (Liang-Barsky) to the scissor grown by one
-//     pixel before stepping: fully outside draws nothing, and at most one scissor-width (or
-//     height) of columns is ever visited. When both endpoints are inside the guard band the
-//     clip only narrows the columns visited and the pixels are exactly those of rule 2-3
-//     restricted to the scissor. An endpoint beyond the guard band (e.g. +-1e9) is replaced by
-//     its clipped point, which is then snapped: the pixels are those of the clipped segment.
+//  5. Clipping: the segment is clipped (Liang-Barsky) to the scissor grown by one pixel before
+//     stepping: fully outside draws nothing, and at most one scissor-width (or height) of
+//     columns is ever visited. When both endpoints are inside the guard band the clip (in
+//     double) only narrows the columns visited and the pixels are exactly those of rule 2-3
+//     restricted to the scissor. When an endpoint is beyond the guard band (e.g. +-1e9, or up
+//     to +-3.4e38), the segment is replaced by its visible part: both ends of the exact clipped
+//     segment (a + t (b - a) for the exact t where it enters and leaves the grown scissor, an
+//     end inside it staying itself) are snapped as in rule 1, floor(256 v + 1/2) of their exact
+//     coordinates, and the pixels are those of rule 2-3 for that snapped segment, restricted to
+//     the scissor. Clipping and snapping are exact integer arithmetic on the floats' binary
+//     values (LineClip.hpp), so the result is the infinite-precision one for every finite input.
 //  6. Any NaN or infinite coordinate: nothing is drawn.
 
 // Setup record of a line: canonical snapped endpoints and the prestepped DDA (one per line).
