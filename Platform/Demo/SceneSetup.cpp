@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -16,32 +17,20 @@ namespace sr::demo {
 namespace {
 
 // Splits a model into one compact mesh per draw range, so each draw transforms only the
-// vertices it uses.
+// vertices it uses. One remap array serves every range (compactRange leaves it clear).
 Scene sceneFromModel(Model&& model, Color kd) {
     Scene scene;
     for (const Image& img : model.textures)
         scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
     const Mesh& src = model.mesh;
-    std::vector<std::uint32_t> remap(src.vertexCount(), UINT32_MAX);
+    std::vector<std::uint32_t> remap(src.vertexCount(), kNoVertex);
     for (const DrawRange& range : model.ranges) {
-        Mesh part;
-        std::fill(remap.begin(), remap.end(), UINT32_MAX);
-        for (std::uint32_t k = 0; k < range.indexCount; ++k) {
-            const std::uint32_t v = src.indices[range.firstIndex + k];
-            if (remap[v] == UINT32_MAX) {
-                remap[v] = std::uint32_t(part.positions.size());
-                part.positions.push_back(src.positions[v]);
-                if (src.hasNormals()) part.normals.push_back(src.normals[v]);
-                if (src.hasUvs()) part.uvs.push_back(src.uvs[v]);
-            }
-            part.indices.push_back(remap[v]);
-        }
         SceneDraw d;
         d.mesh = int(scene.meshes.size());
-        d.indexCount = std::uint32_t(part.indices.size());
+        d.indexCount = range.indexCount;
         d.texture = range.texture;
         d.kd = kd;
-        scene.meshes.push_back(std::move(part));
+        scene.meshes.push_back(compactRange(src, range.firstIndex, range.indexCount, remap));
         scene.draws.push_back(d);
     }
     scene.boundsMin = model.boundsMin;
@@ -114,6 +103,30 @@ double usableNear(double nearZ) {
 }
 
 } // namespace
+
+Mesh compactRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
+                  std::vector<std::uint32_t>& remap) {
+    assert(remap.size() == src.vertexCount());
+    assert(std::size_t(firstIndex) + indexCount <= src.indices.size());
+    const std::uint32_t* indices = src.indices.data() + firstIndex;
+    Mesh part;
+    part.indices.reserve(indexCount);
+    for (std::uint32_t k = 0; k < indexCount; ++k) {
+        const std::uint32_t v = indices[k];
+        assert(v < remap.size());
+        if (remap[v] == kNoVertex) {
+            remap[v] = std::uint32_t(part.positions.size());
+            part.positions.push_back(src.positions[v]);
+            if (src.hasNormals()) part.normals.push_back(src.normals[v]);
+            if (src.hasUvs()) part.uvs.push_back(src.uvs[v]);
+        }
+        part.indices.push_back(remap[v]);
+    }
+    // Clear only the entries this range set: the work is O(indexCount), not O(model) (a full
+    // reset per range made a model of R ranges cost R x its vertex count).
+    for (std::uint32_t k = 0; k < indexCount; ++k) remap[indices[k]] = kNoVertex;
+    return part;
+}
 
 Result<LoadedScene> loadScene(const SceneOptions& options) {
     LoadedScene out;

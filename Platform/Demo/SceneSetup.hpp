@@ -2,6 +2,7 @@
 // (the reference renderer's auto-fit rule), and build the frame view and render settings.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -25,6 +26,15 @@ struct LoadedScene {
 
 // Loads options.obj (or builds the default scene when empty). Errors name the file.
 Result<LoadedScene> loadScene(const SceneOptions& options);
+
+// The triangles indices[firstIndex .. firstIndex + indexCount) of `src` as a mesh of their own
+// (vertices in order of first use, with their normals and uvs). `remap` maps a vertex of src to
+// its index in the result: it holds src.vertexCount() entries, those of the range's vertices
+// kNoVertex on entry, and they are left so. No other entry is read or written: splitting a model
+// into ranges costs O(its indices) whatever the number of ranges (one remap serves them all).
+inline constexpr std::uint32_t kNoVertex = UINT32_MAX;
+Mesh compactRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
+                  std::vector<std::uint32_t>& remap);
 
 struct CameraSetup {
     Vec3 eye, target, up;
