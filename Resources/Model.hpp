@@ -19,10 +19,12 @@ struct Material {
     int texture = -1; // index into Model::textures, or -1 = untextured
 };
 
-// A run of consecutive triangles (file order) that share one texture: one draw call. As in the
-// reference renderer (glref), runs are split only where the TEXTURE changes, so `material` is the
-// material of the run's first triangle; every triangle in the run has a material whose texture
-// equals `texture` (faces without a material count as texture -1).
+// The triangles of one texture: one draw call. Ranges are keyed by TEXTURE (as glref splits its
+// runs), so `material` is the material of the range's first triangle in the file; every triangle
+// in the range has a material whose texture equals `texture` (faces without a material count as
+// texture -1). One range per texture, in the order of each texture's first face in the file,
+// the faces of a range in file order (ObjLoader.hpp: "Draw order"); together the ranges cover
+// Mesh::indices once, in order.
 struct DrawRange {
     std::uint32_t firstIndex = 0, indexCount = 0; // into Mesh::indices (3 per triangle)
     int material = -1;                            // index into Model::materials, or -1

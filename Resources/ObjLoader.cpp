@@ -1,6 +1,7 @@
-// ObjLoader: read + validate the OBJ, parse it with tinyobjloader from memory, then build the indexed Mesh and draw ranges as glref does.
+// ObjLoader: read + validate the OBJ, parse it with tinyobjloader from memory, then build the indexed Mesh (as glref does) and one draw range per texture.
 #include "Resources/ObjLoader.hpp"
 
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <istream>
@@ -188,37 +189,67 @@ Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, con
     auto overrideMaterial = assignMaterials(model, materials, path, options, anyFaceWithoutMaterial);
     if (!overrideMaterial) return R::failure(overrideMaterial.error());
 
-    // 7. Indexed vertices and draw ranges in file order.
+    // 7a. Draw ranges: one per texture (faces without one form the texture -1 range), ordered by
+    //     the texture's first face in the file (ObjLoader.hpp: "Draw order"). A counting pass
+    //     sizes the ranges, so every face is written straight into its range below: O(faces)
+    //     whatever the material order (issue 14, item 6: a range per texture SWITCH made a
+    //     checkerboard of two materials one draw per quad).
+    const auto textureOfFace = [&](const tinyobj::shape_t& sh, std::size_t f, int& material) {
+        int mid = f < sh.mesh.material_ids.size() ? sh.mesh.material_ids[f] : -1;
+        if (mid < 0 || std::size_t(mid) >= materials.size()) mid = overrideMaterial.value();
+        material = mid;
+        const int tex = model.hasUvs && mid >= 0 ? model.materials[std::size_t(mid)].texture : -1;
+        assert(tex >= -1 && tex < int(model.textures.size()));
+        return tex;
+    };
+    std::vector<int> rangeOfTexture(model.textures.size() + 1, -1); // [texture + 1] -> range
+    for (const auto& sh : shapes) {
+        const std::size_t nf = sh.mesh.indices.size() / 3;
+        for (std::size_t f = 0; f < nf; ++f) {
+            int mid = -1;
+            const int tex = textureOfFace(sh, f, mid);
+            int& range = rangeOfTexture[std::size_t(tex + 1)];
+            if (range < 0) {
+                range = int(model.ranges.size());
+                DrawRange r;
+                r.material = mid;
+                r.texture = tex;
+                model.ranges.push_back(r);
+            }
+            model.ranges[std::size_t(range)].indexCount += 3;
+        }
+    }
+    std::vector<std::uint32_t> cursor(model.ranges.size()); // next index to write in each range
+    for (std::size_t r = 0, first = 0; r < model.ranges.size(); first += model.ranges[r].indexCount, ++r) {
+        model.ranges[r].firstIndex = std::uint32_t(first);
+        cursor[r] = std::uint32_t(first);
+    }
+
+    // 7b. Indexed vertices, de-duplicated and numbered in file order (the first face-vertex that
+    //     uses a triple creates it); each face's three indices go to the end of its range so far.
     Mesh& mesh = model.mesh;
-    mesh.indices.reserve(triangles * 3);
+    mesh.indices.resize(triangles * 3);
     std::unordered_map<Key, std::uint32_t, KeyHash> dedup;
     dedup.reserve(std::min<std::size_t>(triangles * 3, nv * 2 + 16));
     for (const auto& sh : shapes) {
         const auto& idx = sh.mesh.indices;
         const std::size_t nf = idx.size() / 3;
         for (std::size_t f = 0; f < nf; ++f) {
-            int mid = f < sh.mesh.material_ids.size() ? sh.mesh.material_ids[f] : -1;
-            if (mid < 0 || std::size_t(mid) >= materials.size()) mid = overrideMaterial.value();
-            const int tex = model.hasUvs && mid >= 0 ? model.materials[std::size_t(mid)].texture : -1;
-            if (model.ranges.empty() || model.ranges.back().texture != tex) {
-                DrawRange r;
-                r.firstIndex = std::uint32_t(mesh.indices.size());
-                r.material = mid;
-                r.texture = tex;
-                model.ranges.push_back(r);
-            }
+            int mid = -1;
+            const int tex = textureOfFace(sh, f, mid);
+            std::uint32_t& out = cursor[std::size_t(rangeOfTexture[std::size_t(tex + 1)])];
             for (int k = 0; k < 3; ++k) {
                 const tinyobj::index_t& ix = idx[f * 3 + std::size_t(k)];
                 const Key key{ix.vertex_index, ix.normal_index >= 0 ? ix.normal_index : -1,
                               model.hasUvs ? ix.texcoord_index : -1};
                 const auto found = dedup.find(key);
                 if (found != dedup.end()) {
-                    mesh.indices.push_back(found->second);
+                    mesh.indices[out++] = found->second;
                     continue;
                 }
                 const auto vi = std::uint32_t(mesh.positions.size());
                 dedup.emplace(key, vi);
-                mesh.indices.push_back(vi);
+                mesh.indices[out++] = vi;
                 const D3 p = P(ix.vertex_index);
                 mesh.positions.emplace_back(float(p.x), float(p.y), float(p.z));
                 const D3 vnorm = accum[std::size_t(ix.vertex_index)];
@@ -237,7 +268,6 @@ Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, con
                     mesh.uvs.push_back(uv);
                 }
             }
-            model.ranges.back().indexCount += 3;
         }
     }
     return R(std::move(model));
