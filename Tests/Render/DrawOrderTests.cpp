@@ -1,32 +1,16 @@
 // The draw order of a loaded OBJ (one draw per texture, ObjLoader.hpp): what it means for exact depth ties.
 #include "TestFramework.hpp"
 
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "Platform/Demo/SceneSetup.hpp"
 #include "Resources/Image.hpp"
+#include "Resources/ObjTestUtil.hpp" // Tests/Resources: the OBJ tests' temporary files
 
 using namespace sr;
+using namespace sr::objtest;
 
 namespace {
-
-// A fresh directory <temp>/softraster-render-tests/<name> (UTF-8, '/' separators).
-std::string freshDir(const std::string& name) {
-    const auto dir = std::filesystem::temp_directory_path() / "softraster-render-tests" / std::filesystem::u8path(name);
-    std::error_code ec;
-    std::filesystem::remove_all(dir, ec);
-    std::filesystem::create_directories(dir);
-    std::string s = dir.u8string();
-    for (char& c : s)
-        if (c == '\\') c = '/';
-    return s;
-}
-
-void writeText(const std::string& path, const std::string& text) {
-    std::ofstream(std::filesystem::u8path(path), std::ios::binary) << text;
-}
 
 Image solid(std::uint8_t r, std::uint8_t g, std::uint8_t b) {
     Image img;
@@ -47,14 +31,14 @@ TEST_CASE("OBJ draw order: at an exact depth tie the face whose texture appears 
     const std::string dir = freshDir("draw-order-tie");
     REQUIRE(writeImage(dir + "/red.png", solid(255, 0, 0)).ok());
     REQUIRE(writeImage(dir + "/green.png", solid(0, 255, 0)).ok());
-    writeText(dir + "/tie.mtl", "newmtl red\nmap_Kd red.png\nnewmtl green\nmap_Kd green.png\n");
-    writeText(dir + "/tie.obj", "mtllib tie.mtl\n"
-                                "v -3 -1 0\nv -2 -1 0\nv -2.5 0 0\n"
-                                "v -1 -1 0\nv 1 -1 0\nv 0 1 0\n"
-                                "vt 0.5 0.5\n"
-                                "usemtl red\nf 1/1 2/1 3/1\n"
-                                "usemtl green\nf 4/1 5/1 6/1\n"
-                                "usemtl red\nf 4/1 5/1 6/1\n");
+    writeText(dir, "tie.mtl", "newmtl red\nmap_Kd red.png\nnewmtl green\nmap_Kd green.png\n");
+    writeText(dir, "tie.obj", "mtllib tie.mtl\n"
+                              "v -3 -1 0\nv -2 -1 0\nv -2.5 0 0\n"
+                              "v -1 -1 0\nv 1 -1 0\nv 0 1 0\n"
+                              "vt 0.5 0.5\n"
+                              "usemtl red\nf 1/1 2/1 3/1\n"
+                              "usemtl green\nf 4/1 5/1 6/1\n"
+                              "usemtl red\nf 4/1 5/1 6/1\n");
     demo::SceneOptions options;
     options.obj = dir + "/tie.obj";
     options.width = 64;
