@@ -259,7 +259,9 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
         if (bits(mine) == 0) continue;
         const Rgb c0 = bilinearRaw<kWrap>(texture.levelView(k), u, v);
         I r0 = truncToInt(c0.r), g0 = truncToInt(c0.g), b0 = truncToInt(c0.b);
-        if (k < last) {
+        // The next level only where a lane blends it in (wl > 0): magnified lanes (lod <= 0) and
+        // whole-number lods read one level, exactly what the blend with wl = 0 returns.
+        if (k < last && bits(mine & (wl > iset(0))) != 0) {
             const Rgb c1 = bilinearRaw<kWrap>(texture.levelView(k + 1), u, v);
             const I half = iset(128);
             r0 = shiftRightLogical<8>(mulLow(r0, keep) + mulLow(truncToInt(c1.r), wl) + half);
