@@ -86,6 +86,28 @@ Fighting measure(float farZ) {
     return r;
 }
 
+// Two walls drawn flat-coloured with the depth test (back first or front first): the front one
+// kGreen, the back one kRed.
+const Pixel kGreen = packBgra(0, 255, 0), kRed = packBgra(255, 0, 0);
+FrameBuffer drawFrontAndBack(int w, int h, const Mat4& proj, bool clipFar, const Mesh& front, const Mesh& back,
+                             bool backFirst) {
+    FrameBuffer fb(w, h);
+    fb.clear(packBgra(0, 0, 0));
+    RenderContext ctx(fb);
+    DrawState state;
+    state.clipFar = clipFar;
+    auto draw = [&](const Mesh& m, Pixel colour) {
+        drawIndexed<0>(
+            ctx, state, m.vertexCount(), m.indices.data(), m.indices.size(),
+            [&](std::size_t i, ClipVertex& out) { out.position = proj * Vec4(m.positions[i], 1.0f); },
+            [colour](const Fragment<0>&) { return colour; });
+    };
+    if (backFirst) draw(back, kRed);
+    draw(front, kGreen);
+    if (!backFirst) draw(back, kRed);
+    return fb;
+}
+
 } // namespace
 
 TEST_CASE("reversed-Z float32 resolves planes 1e-4 apart at 1e4 with near 1e-2; the alternatives fail",
@@ -111,28 +133,10 @@ TEST_CASE("the nearer wall wins in the depth buffer whatever the draw order", "[
     const Mat4 proj = perspectiveInfinite(radians(90.0f), aspectRatio(W, H), kNear);
     const Mesh nearWall = wall(kDistance), farWall = wall(kDistance + kGap);
     for (int order = 0; order < 2; ++order) {
-        FrameBuffer fb(W, H);
-        fb.clear(packBgra(0, 0, 0));
-        RenderContext ctx(fb);
-        DrawState state;
-        state.clipFar = false;
-        auto draw = [&](const Mesh& m, Pixel colour) {
-            drawIndexed<0>(
-                ctx, state, m.vertexCount(), m.indices.data(), m.indices.size(),
-                [&](std::size_t i, ClipVertex& out) { out.position = proj * Vec4(m.positions[i], 1.0f); },
-                [colour](const Fragment<0>&) { return colour; });
-        };
-        const Pixel green = packBgra(0, 255, 0), red = packBgra(255, 0, 0);
-        if (order == 0) {
-            draw(farWall, red);
-            draw(nearWall, green);
-        } else {
-            draw(nearWall, green);
-            draw(farWall, red);
-        }
+        const FrameBuffer fb = drawFrontAndBack(W, H, proj, false, nearWall, farWall, order == 0);
         int notGreen = 0;
         for (int y = 0; y < H; ++y)
-            for (int x = 0; x < W; ++x) notGreen += fb.pixel(x, y) != green;
+            for (int x = 0; x < W; ++x) notGreen += fb.pixel(x, y) != kGreen;
         CHECK(notGreen == 0);
     }
 }
@@ -199,29 +203,12 @@ TEST_CASE("a receding wall 1e-5 (relative) behind another never shows through, a
     Mesh back = front;
     for (Vec3& p : back.positions) p = p * 1.00001f;
     for (int order = 0; order < 2; ++order) {
-        FrameBuffer fb(kW, kH);
-        fb.clear(packBgra(0, 0, 0));
-        RenderContext ctx(fb);
-        DrawState state;
-        auto draw = [&](const Mesh& m, Pixel colour) {
-            drawIndexed<0>(
-                ctx, state, m.vertexCount(), m.indices.data(), m.indices.size(),
-                [&](std::size_t i, ClipVertex& out) { out.position = proj * Vec4(m.positions[i], 1.0f); },
-                [colour](const Fragment<0>&) { return colour; });
-        };
-        const Pixel green = packBgra(0, 255, 0), red = packBgra(255, 0, 0);
-        if (order == 0) {
-            draw(back, red);
-            draw(front, green);
-        } else {
-            draw(front, green);
-            draw(back, red);
-        }
+        const FrameBuffer fb = drawFrontAndBack(kW, kH, proj, true, front, back, order == 0);
         int greenPixels = 0, redPixels = 0;
         for (int y = 0; y < kH; ++y)
             for (int x = 0; x < kW; ++x) {
-                greenPixels += fb.pixel(x, y) == green;
-                redPixels += fb.pixel(x, y) == red;
+                greenPixels += fb.pixel(x, y) == kGreen;
+                redPixels += fb.pixel(x, y) == kRed;
             }
         INFO("draw order " << order << ": " << greenPixels << " front pixels");
         CHECK(greenPixels > kW * kH / 4); // the wall covers a good part of the view
