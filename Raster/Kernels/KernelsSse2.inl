@@ -1,4 +1,9 @@
-// The span kernels compiled for SSE2 (Kernels.inl instantiated in namespace sr::kernels_sse2).
+// The span kernels compiled for SSE2 (Kernels.inl in namespace sr::kernels_sse2), for the
+// shading model SR_KERNEL_PROGRAM that the including KernelsSse2<Model>.cpp defines.
+#ifndef SR_KERNEL_PROGRAM
+#error "define SR_KERNEL_PROGRAM (the program template to instantiate) before including this file"
+#endif
+
 #include <algorithm>
 #include <cassert>
 #include <cstdint>

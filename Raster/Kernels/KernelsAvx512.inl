@@ -1,4 +1,5 @@
-// The span kernels compiled for AVX512 (Kernels.inl instantiated in namespace sr::kernels_avx512).
+// The span kernels compiled for AVX512 (Kernels.inl in namespace sr::kernels_avx512), for the
+// shading model SR_KERNEL_PROGRAM that the including KernelsAvx512<Model>.cpp defines.
 // GCC 12's AVX-512 headers start many intrinsics from _mm512_undefined_*(), whose self-initialised
 // variable trips -Wuninitialized once inlined (GCC bug 105593, fixed in GCC 13). The diagnostic
 // state of a header line is the one in force when it was parsed, so the header is parsed here
@@ -9,6 +10,10 @@
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
 #pragma GCC diagnostic pop
+#endif
+
+#ifndef SR_KERNEL_PROGRAM
+#error "define SR_KERNEL_PROGRAM (the program template to instantiate) before including this file"
 #endif
 
 #include <algorithm>
