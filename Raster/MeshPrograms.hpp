@@ -62,6 +62,7 @@ inline DrawState drawStateFor(const DrawContext& d) {
     s.wireframe = d.settings.wireframe;
     s.stopAfter = d.settings.stopAfter;
     s.perspective = d.settings.perspective;
+    if (d.texture != nullptr) s.rebase = {2, wrapPeriod(d.settings.wrap)}; // varyings 0-1 are the uv
     return s;
 }
 

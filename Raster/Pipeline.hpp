@@ -29,10 +29,24 @@ struct DrawState {
     PipelineStop stopAfter = PipelineStop::Fill;
     PerspectiveMode perspective = PerspectiveMode::Exact; // how varyings are interpolated
     bool wireframe = false;                 // overlay the (clipped) triangle outlines
+    VaryingRebase rebase;                   // uv varyings shifted per triangle (textured draws)
     Pixel wireColour = packBgra(255, 255, 255);
 };
 
 namespace detail {
+
+// A clipped triangle's uv varyings rebased before clipping (VaryingRebase), so the clipper's
+// interpolation runs on small values too: for vertices offset by whole periods the shifted
+// values, and hence every clipped vertex, are the same floats.
+inline void rebaseVaryings(const VaryingRebase& rebase, ClipVertex& a, ClipVertex& b, ClipVertex& c) {
+    for (int k = 0; k < rebase.count; ++k) {
+        const std::size_t i = std::size_t(k);
+        const double offset = rebaseOffset(a.varyings[i], b.varyings[i], c.varyings[i], rebase.period);
+        a.varyings[i] = float(a.varyings[i] - offset);
+        b.varyings[i] = float(b.varyings[i] - offset);
+        c.varyings[i] = float(c.varyings[i] - offset);
+    }
+}
 
 // Wireframe depth bias: lines sample the edge itself while the fill samples pixel centres
 // inside it, so an unbiased edge would z-fight with its own triangle. Reversed-Z: nearer is
@@ -133,7 +147,7 @@ bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands&
     }
     const bool affine = kVaryings > 0 && state.perspective == PerspectiveMode::Affine;
     TriangleSetup& setup = lane.setup;
-    switch (setupTriangleCulled(setup, v0, v1, v2, state.cull, kVaryings, !affine)) {
+    switch (setupTriangleCulled(setup, v0, v1, v2, state.cull, kVaryings, !affine, state.rebase)) {
     case SetupOutcome::Culled: ++stats->culled; return false;
     case SetupOutcome::Empty: return true; // covers no pixel-centre row: nothing to do, but not culled
     case SetupOutcome::Ready: break;
@@ -238,9 +252,8 @@ void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipp
         }
         case ClipClass::Clip: {
             if (countsShared) ++lane.stats.clipped;
-            const ClipVertex& a = ctx.clipVertices[i0];
-            const ClipVertex& b = ctx.clipVertices[i1];
-            const ClipVertex& c = ctx.clipVertices[i2];
+            ClipVertex a = ctx.clipVertices[i0], b = ctx.clipVertices[i1], c = ctx.clipVertices[i2];
+            detail::rebaseVaryings(state.rebase, a, b, c); // before the clipper interpolates them
             const int n = clipper.clip(a, b, c, polygon);
             for (int k = 0; k < n; ++k) screen[k] = toScreen(polygon.vertices[std::size_t(k)], width, height, kVaryings);
             // The fan keeps the input winding, so every piece gets the same cull decision.

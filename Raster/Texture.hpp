@@ -21,6 +21,11 @@ enum class TextureFilter { Nearest, Bilinear, Trilinear };
 //  Repeat = GL_REPEAT, Clamp = GL_CLAMP_TO_EDGE, Mirror = GL_MIRRORED_REPEAT.
 enum class WrapMode { Repeat, Clamp, Mirror };
 
+// The uv period of a wrap mode: 1 for Repeat, 2 for Mirror, 0 for Clamp (not periodic).
+constexpr double wrapPeriod(WrapMode wrap) {
+    return wrap == WrapMode::Repeat ? 1.0 : wrap == WrapMode::Mirror ? 2.0 : 0.0;
+}
+
 // "nearest" | "bilinear" | "trilinear" and back; parse is exact and case-sensitive (nullopt else).
 const char* filterName(TextureFilter filter);
 std::optional<TextureFilter> parseFilter(std::string_view name);

@@ -29,7 +29,8 @@ int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 } // namespace
 
 SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const ScreenVertex& v1,
-                                 const ScreenVertex& v2, CullMode cull, int varyingCount, bool perspectiveCorrect) {
+                                 const ScreenVertex& v2, CullMode cull, int varyingCount, bool perspectiveCorrect,
+                                 const VaryingRebase& rebase) {
     // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
     const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
     if (!valid) return isCulled(cull, v0, v1, v2) ? SetupOutcome::Culled : SetupOutcome::Empty;
@@ -100,21 +101,29 @@ SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const
     const double w0 = perspectiveCorrect ? double(v0.invW) : 1.0;
     const double w1 = perspectiveCorrect ? double(v1.invW) : 1.0;
     const double w2 = perspectiveCorrect ? double(v2.invW) : 1.0;
+    // Rebased varyings: float inputs less a whole number of periods, exact in double.
     for (int k = 0; k < varyingCount; ++k) {
         const std::size_t i = std::size_t(k);
-        plane(kPlaneVarying0 + k, double(v0.varyings[i]) * w0, double(v1.varyings[i]) * w1,
-              double(v2.varyings[i]) * w2);
+        double a0 = v0.varyings[i], a1 = v1.varyings[i], a2 = v2.varyings[i];
+        if (k < rebase.count) {
+            const double offset = rebaseOffset(a0, a1, a2, rebase.period);
+            a0 -= offset;
+            a1 -= offset;
+            a2 -= offset;
+        }
+        plane(kPlaneVarying0 + k, a0 * w0, a1 * w1, a2 * w2);
     }
     return SetupOutcome::Ready;
 }
 
 std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenVertex& v1,
-                                           const ScreenVertex& v2, int varyingCount, bool perspectiveCorrect) {
+                                           const ScreenVertex& v2, int varyingCount, bool perspectiveCorrect,
+                                           const VaryingRebase& rebase) {
     [[maybe_unused]] const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
     assert(valid && "triangle setup: vertex outside the guard band or not finite");
     // Built in place in the returned optional (one named return value: no copy of the record).
     std::optional<TriangleSetup> result(std::in_place);
-    if (setupTriangleCulled(*result, v0, v1, v2, CullMode::None, varyingCount, perspectiveCorrect) !=
+    if (setupTriangleCulled(*result, v0, v1, v2, CullMode::None, varyingCount, perspectiveCorrect, rebase) !=
         SetupOutcome::Ready)
         result.reset();
     return result;

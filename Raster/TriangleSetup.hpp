@@ -1,6 +1,8 @@
 // Triangle setup: snaps a screen triangle to fixed point and builds the one record the fill reads.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 
@@ -27,6 +29,29 @@ inline constexpr int kPlaneZ = 0;
 inline constexpr int kPlaneInvW = 1;
 inline constexpr int kPlaneVarying0 = 2;
 inline constexpr int kMaxPlanes = kPlaneVarying0 + kMaxVaryings;
+
+// Texture coordinates rebased per triangle: the first `count` varyings (a uv pair) are shifted
+// by a whole number of periods before v/w is formed, so a triangle far from uv 0 interpolates
+// as finely as one near it (float u at 16,384 keeps only 9 bits of fraction), and a mesh whose
+// uvs are offset by whole periods renders bit-identically. The period is the texture's: 1 for
+// Repeat, 2 for Mirror (an odd shift would mirror the image); 0 (Clamp, untextured) rebases
+// nothing. The sampled colour is unchanged: the wrap is periodic.
+struct VaryingRebase {
+    int count = 0;
+    double period = 0.0;
+};
+
+// The shift for one varying of a triangle: the largest multiple of `period` at or below the
+// smallest of a0, a1, a2 (0 when period is 0 or a value is not finite).
+inline double rebaseOffset(double a0, double a1, double a2, double period) {
+    if (!(period > 0.0)) return 0.0;
+    const double lowest = std::min(std::min(a0, a1), a2);
+    const double offset = period * std::floor(lowest / period);
+    return std::isfinite(offset) && std::isfinite(a0 - offset) && std::isfinite(a1 - offset) &&
+                   std::isfinite(a2 - offset)
+               ? offset
+               : 0.0;
+}
 
 // The per-triangle record: everything the span loop needs, computed once.
 struct TriangleSetup {
@@ -70,10 +95,10 @@ struct TriangleSetup {
 // also rejected in release builds): finite coordinates within the guard band
 // (|x|, |y| <= kGuardBand) and 0 <= varyingCount <= kMaxVaryings. Only the first
 // varyingCount varyings are read. With perspectiveCorrect = false (PerspectiveMode::Affine) the
-// varying planes hold v instead of v/w.
+// varying planes hold v instead of v/w. `rebase` shifts the uv varyings (VaryingRebase).
 std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenVertex& v1,
                                            const ScreenVertex& v2, int varyingCount,
-                                           bool perspectiveCorrect = true);
+                                           bool perspectiveCorrect = true, const VaryingRebase& rebase = {});
 
 // What setupTriangleCulled decided.
 enum class SetupOutcome {
@@ -89,6 +114,6 @@ enum class SetupOutcome {
 // outside the guard band (the clipper never outputs them) are Culled or Empty as isCulled says.
 SetupOutcome setupTriangleCulled(TriangleSetup& out, const ScreenVertex& v0, const ScreenVertex& v1,
                                  const ScreenVertex& v2, CullMode cull, int varyingCount,
-                                 bool perspectiveCorrect = true);
+                                 bool perspectiveCorrect = true, const VaryingRebase& rebase = {});
 
 } // namespace sr

@@ -40,6 +40,7 @@ inline void drawMeshGeneral(RenderContext& ctx, const FrameView& view, const Ren
     state.clipFar = view.finiteFar;
     state.wireframe = settings.wireframe;
     state.perspective = settings.perspective;
+    if (textured) state.rebase = {2, wrapPeriod(settings.wrap)}; // varyings 0-1 are the uv
     const TriangleSetup* setup = nullptr;
     Vec3 faceN{0, 0, 1}, centroid{0, 0, 0};
     drawIndexed<kGeneralVaryings>(
