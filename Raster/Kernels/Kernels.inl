@@ -210,17 +210,24 @@ SR_SIMD_INLINE F log2Lanes(F x) {
     return e + s * (fset(c[0]) + s2 * (fset(c[1]) + s2 * (fset(c[2]) + s2 * (fset(c[3]) + s2 * fset(c[4])))));
 }
 
-// The lanes' mip level, as programs::sampleKd computes it per fragment: exact perspective takes
-// uvDerivatives (the quotient rule in double, rounded to float) at each lane, affine the
-// triangle's constant plane gradients; then mipLevel (TextureLod.cpp) lane by lane.
+// The mip level of an affine triangle, as programs::sampleKd computes it per fragment from the
+// triangle's constant plane gradients: one value per triangle (fillSpans computes it once).
+template <class Prog>
+float affineMipLevel(const Prog& p) {
+    const TriangleSetup& t = *p.setup;
+    constexpr int kU = kPlaneVarying0, kVp = kPlaneVarying0 + 1;
+    return mipLevel(float(t.ddx[kU]), float(t.ddx[kVp]), float(t.ddy[kU]), float(t.ddy[kVp]), p.d->texture->width(),
+                    p.d->texture->height());
+}
+
+// The lanes' mip level under exact perspective, as programs::sampleKd computes it per fragment:
+// uvDerivatives (the quotient rule in double, rounded to float) at each lane, then mipLevel
+// (TextureLod.cpp) lane by lane.
 template <class Prog>
 SR_SIMD_INLINE F mipLevels(const Prog& p, F u, F v, F invW) {
     const TriangleSetup& t = *p.setup;
     const Texture& texture = *p.d->texture;
     constexpr int kU = kPlaneVarying0, kVp = kPlaneVarying0 + 1;
-    if (p.d->settings.perspective == PerspectiveMode::Affine)
-        return fset(mipLevel(float(t.ddx[kU]), float(t.ddx[kVp]), float(t.ddy[kU]), float(t.ddy[kVp]), texture.width(),
-                             texture.height()));
     const D dqdx = dset(t.ddx[kPlaneInvW]), dqdy = dset(t.ddy[kPlaneInvW]);
     const D dUdx = dset(t.ddx[kU]), dVdx = dset(t.ddx[kVp]), dUdy = dset(t.ddy[kU]), dVdy = dset(t.ddy[kVp]);
     const D one = dset(1.0);
@@ -281,9 +288,10 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
 }
 
 // The diffuse colour of the lanes from the texture with the kernel's filter and wrap, the
-// lanes off the vector path (NaN / Inf / huge uv) redone by the scalar sampler.
-template <TextureFilter kFilter, WrapMode kWrap, class Prog>
-SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW) {
+// lanes off the vector path (NaN / Inf / huge uv) redone by the scalar sampler. `triangleLod`:
+// the affine triangle's mip level (trilinear only).
+template <PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap, class Prog>
+SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, F triangleLod) {
     const Texture& texture = *p.d->texture;
     const M good = onVectorPath(u) & onVectorPath(v);
     const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
@@ -301,7 +309,8 @@ SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW) {
         const F scale = fset(255.0f * 65536.0f); // then raw / (255 * 65536)
         kd = {raw.r / scale, raw.g / scale, raw.b / scale};
     } else {
-        lod = mipLevels(p, u, v, invW);
+        if constexpr (kPersp == PerspectiveMode::Affine) lod = triangleLod;
+        else lod = mipLevels(p, u, v, invW);
         kd = trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
     }
     if (bits(good) != bits(mAll())) {
@@ -328,13 +337,13 @@ SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW) {
 // Shades one group of fragments (pixel columns xs, rows ys, 1/w and the perspective-correct
 // varyings) and returns their packed colours. Lanes the vector code does not cover (a normal
 // or half vector off normalize's fast path) are redone by the scalar program.
-template <class Prog, TextureFilter kFilter, WrapMode kWrap>
-SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys) {
+template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F triangleLod) {
     constexpr int kV = Prog::kVaryings;
     const DrawContext& d = *p.d;
     M ok = mAll();
     Rgb kd{fset(d.kd.r), fset(d.kd.g), fset(d.kd.b)};
-    if constexpr (Prog::kIsTextured) kd = sampleTexture<kFilter, kWrap>(p, v[0], v[1], invW);
+    if constexpr (Prog::kIsTextured) kd = sampleTexture<kPersp, kFilter, kWrap>(p, v[0], v[1], invW, triangleLod);
     constexpr int kT = Prog::kIsTextured ? 2 : 0; // the first varying after the uv
     I out;
     if constexpr (Prog::kMode == ShadingMode::Unlit) {
@@ -401,6 +410,7 @@ struct SpanKernel {
     std::uint64_t& shaded;
     FragmentQueue<kV>& queue;
     F gradient[kPlanes];
+    F triangleLod; // affine trilinear: the triangle's mip level (else unused)
 
     // fillTriangle's depth and 1/w: start + step * ddx in double, rounded once.
     F planeInDouble(D startValue, int plane, F step) const {
@@ -413,7 +423,7 @@ struct SpanKernel {
         F values[kV > 0 ? kV : 1];
         for (int k = 0; k < kV; ++k) values[k] = fload(queue.v[k]);
         alignas(64) std::uint32_t out[kLanes];
-        istore(out, shadeGroup<Prog, kFilter, kWrap>(p, values, fload(queue.invW), iload(queue.x), iload(queue.y)));
+        istore(out, shadeGroup<Prog, kPersp, kFilter, kWrap>(p, values, fload(queue.invW), iload(queue.x), iload(queue.y), triangleLod));
         for (int i = 0; i < used; ++i) fb.colorRow(queue.y[i])[queue.x[i]] = out[i];
     }
 
@@ -501,7 +511,7 @@ struct SpanKernel {
                 }
                 const I columns = iset(x) + iiota();
                 if (passBits == bits(mAll())) {
-                    istore(colour + x, shadeGroup<Prog, kFilter, kWrap>(p, values, invW, columns, row));
+                    istore(colour + x, shadeGroup<Prog, kPersp, kFilter, kWrap>(p, values, invW, columns, row, triangleLod));
                     continue;
                 }
                 const int at = queue.count;
@@ -531,7 +541,9 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
     // written before it is read).
     static thread_local FragmentQueue<Prog::kVaryings> queue;
     queue.count = 0;
-    SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap> span{p, t, fb, shaded, queue, {}};
+    SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap> span{p, t, fb, shaded, queue, {}, fzero()};
+    if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
+        span.triangleLod = fset(affineMipLevel(p));
     for (int k = 0; k < SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap>::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
     forEachSpan(t, s, span);
     if constexpr (Prog::kVaryings > 0) span.flush();
