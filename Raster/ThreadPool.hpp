@@ -8,9 +8,6 @@
 #include <mutex>
 #include <thread>
 #include <vector>
-#if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)
-#include <immintrin.h> // _mm_pause
-#endif
 
 namespace sr {
 
@@ -93,13 +90,9 @@ private:
     std::condition_variable wake_, done_;
     void (*call_)(void*, int) = nullptr;
     void* context_ = nullptr;
-    static void pause() {
-#if defined(__x86_64__) || defined(__i386__) || defined(_M_X64) || defined(_M_IX86)
-        _mm_pause();
-#else
-        std::this_thread::yield();
-#endif
-    }
+    // One spin-wait hint (x86 PAUSE; elsewhere a yield). Out of line (ThreadPool.cpp), so this
+    // header, which Scene.hpp and the Platform files include, pulls in no intrinsics header.
+    static void pause();
     static constexpr int kSpins = 2000;
 
     std::atomic<int> pending_{0};
