@@ -42,7 +42,7 @@ struct VaryingRebase {
 };
 
 // The shift for one varying of a triangle: the largest multiple of `period` at or below the
-// smallest of a0, a1, a2 (0 when period is 0 or a value is not finite).
+// smallest of a0, a1, a2 (0 when period is 0, or a value or a shifted value is not finite).
 inline double rebaseOffset(double a0, double a1, double a2, double period) {
     if (!(period > 0.0)) return 0.0;
     const double lowest = std::min(std::min(a0, a1), a2);
