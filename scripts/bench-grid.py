@@ -13,10 +13,12 @@ Markdown table:
   peak RSS MiB  `/usr/bin/time -v softraster render`: Maximum resident set size
 Defaults: 800x600, 1 thread, Phong, bilinear (the commands' defaults). Extra flags after `--`
 go to both commands. A run over --timeout seconds is killed and reported as "> T s".
-Python 3 standard library only.
+--svg FILE also draws the cost per triangle (load, frame time, peak RSS) against the triangle
+count, one line per build and grid: flat lines are linear cost. Python 3 standard library only.
 """
 import argparse
 import json
+import math
 import os
 import re
 import signal
@@ -83,6 +85,51 @@ def run_bench(binary, obj, extra, frames, timeout):
     return json.loads(p.stdout.strip().splitlines()[-1])["ms_per_frame_median"]
 
 
+def write_svg(path, series):
+    """series: {(label, materials): [(triangles, load s, frame ms, rss MiB), ...]} -> three panels."""
+    panels = [("load, microseconds per triangle", lambda t, r: r[1] * 1e6 / t),
+              ("frame, nanoseconds per triangle", lambda t, r: r[2] * 1e6 / t),
+              ("peak RSS, bytes per triangle", lambda t, r: r[3] * 1048576.0 / t)]
+    colours = ["#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"]
+    pw, ph, m = 300, 220, 50
+    width, height = len(panels) * (pw + m) + m, ph + 2 * m + 20 * (len(series) + 1)
+    xs = sorted({row[0] for rows in series.values() for row in rows})
+    if not xs:
+        return
+    lx0, lx1 = math.log10(xs[0]), math.log10(xs[-1])
+    lx1 = lx1 if lx1 > lx0 else lx0 + 1.0
+    out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif" font-size="11">'
+           % (width, height), '<rect width="100%" height="100%" fill="white"/>']
+    for i, (title, f) in enumerate(panels):
+        x0, y0 = m + i * (pw + m), m
+        values = [f(row[0], row) for rows in series.values() for row in rows]
+        top = max(values) * 1.15 if values and max(values) > 0 else 1.0
+        out.append('<rect x="%d" y="%d" width="%d" height="%d" fill="none" stroke="#888"/>' % (x0, y0, pw, ph))
+        out.append('<text x="%d" y="%d">%s</text>' % (x0, y0 - 8, title))
+        for k in range(5):
+            v = top * k / 4
+            y = y0 + ph - ph * k / 4
+            out.append('<text x="%d" y="%.1f" text-anchor="end">%.3g</text>' % (x0 - 4, y + 4, v))
+        for x in xs:
+            px = x0 + pw * (math.log10(x) - lx0) / (lx1 - lx0)
+            out.append('<text x="%.1f" y="%d" text-anchor="middle">%s</text>' % (px, y0 + ph + 14, "{:,}".format(x)))
+        for c, (key, rows) in enumerate(sorted(series.items())):
+            pts = ["%.1f,%.1f" % (x0 + pw * (math.log10(row[0]) - lx0) / (lx1 - lx0),
+                                  y0 + ph - ph * f(row[0], row) / top) for row in sorted(rows)]
+            out.append('<polyline fill="none" stroke="%s" stroke-width="2" points="%s"/>'
+                       % (colours[c % len(colours)], " ".join(pts)))
+    for c, key in enumerate(sorted(series)):
+        y = m + ph + 40 + 20 * c
+        out.append('<rect x="%d" y="%d" width="14" height="4" fill="%s"/>' % (m, y - 4, colours[c % len(colours)]))
+        out.append('<text x="%d" y="%d">%s, %s</text>' % (m + 20, y, key[0], "alternating materials"
+                                                           if key[1] == "alternate" else "one material"))
+    out.append('<text x="%d" y="%d">x: triangles (log axis); 800x600, 1 thread, medians</text>'
+               % (m, m + ph + 40 + 20 * len(series)))
+    out.append("</svg>")
+    with open(path, "w") as fh:
+        fh.write("\n".join(out) + "\n")
+
+
 def main(argv):
     extra = []
     if "--" in argv:
@@ -95,6 +142,7 @@ def main(argv):
     ap.add_argument("--frames", type=int, default=10, help="bench frames per run")
     ap.add_argument("--grid-dir", default=os.path.join(tempfile.gettempdir(), "softraster-grids"))
     ap.add_argument("--timeout", type=float, default=600.0, help="seconds per command")
+    ap.add_argument("--svg", help="also write the per-triangle cost plot to this SVG file")
     ap.add_argument("--skip", action="append", default=[],
                     help="LABEL:alternate|one:SIZE combinations not to run (repeatable)")
     a = ap.parse_args(argv)
@@ -104,6 +152,7 @@ def main(argv):
     os.makedirs(a.grid_dir, exist_ok=True)
 
     rows = []
+    series = {}
     with tempfile.TemporaryDirectory() as out_dir:
         for size in [int(s) for s in a.sizes.split(",")]:
             for materials in ("alternate", "one"):
@@ -134,6 +183,8 @@ def main(argv):
                         cells = ["not run"] * 4
                     else:
                         med = {k: statistics.median(v) for k, v in res.items()}
+                        series.setdefault((label, materials), []).append(
+                            (triangles, med["load"], med["frame"], med["rss"]))
                         cells = ["%.2f" % med["load"], "%.2f" % med["total"], "%.1f" % med["frame"],
                                  "%.0f" % med["rss"]]
                     rows.append([label, "{:,}".format(triangles), materials] + cells)
@@ -143,6 +194,8 @@ def main(argv):
     print("|" + "|".join("---" if i < 3 else "---:" for i in range(len(head))) + "|")
     for r in rows:
         print("| " + " | ".join(r) + " |")
+    if a.svg:
+        write_svg(a.svg, series)
     print("\nmedian of %d runs; `softraster render` / `bench --frames %d --warmup 1`%s" %
           (a.runs, a.frames, (" " + " ".join(extra)) if extra else ""))
     return 0
