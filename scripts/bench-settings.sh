@@ -23,21 +23,10 @@ configs=(
   "builtin|nearest|--filter nearest"          "builtin|trilinear|--filter trilinear"
   "builtin|affine|--persp affine"
 )
-declare -A res
-for _ in $(seq "${ROUNDS:-5}"); do
-  for c in "${configs[@]}"; do
-    IFS='|' read -r scene name args <<<"$c"
-    # shellcheck disable=SC2086  # args is a flag list
-    ms=$("$BIN" bench $args --width "${W:-800}" --height "${H:-600}" --frames "${FRAMES:-40}" --warmup 5 --threads 1 \
-           "${EXTRA[@]}" 2>/dev/null | grep -oE '"ms_per_frame_median":[0-9.]+' | cut -d: -f2)
-    res["$scene|$name"]+="${ms:-nan} "
-  done
-done
+# The rounds, medians, min and max: scripts/bench-ab.sh, one "scene setting" label per configuration.
+runs=()
 for c in "${configs[@]}"; do
-  IFS='|' read -r scene name _ <<<"$c"
-  # shellcheck disable=SC2086
-  python3 -c 'import sys, statistics as st
-v = sorted(float(x) for x in sys.argv[3:])
-print("%-8s %-10s median %7.3f  min %7.3f  max %7.3f" % (sys.argv[1], sys.argv[2], st.median(v), v[0], v[-1]))' \
-    "$scene" "$name" ${res[$scene|$name]}
+  IFS='|' read -r scene name args <<<"$c"
+  runs+=("$scene $name|$BIN|$args --width ${W:-800} --height ${H:-600} ${EXTRA[*]}")
 done
+exec "$(dirname "$0")/bench-ab.sh" "${ROUNDS:-5}" "${runs[@]}"
