@@ -81,6 +81,23 @@ public:
         else fb.clear(colour, depth);
     }
 
+    // Supersampling's sample target (renderSceneFrame with ssaa > 1): factor x factor times the
+    // output's size while a supersampled frame is drawn, released by the next frame without SSAA
+    // (memory only while supersampling).
+    FrameBuffer samples;
+
+    // Runs job(rowBegin, rowEnd) over rows [0, height) split evenly over the render threads.
+    template <class Job>
+    void forRows(int height, Job&& job) {
+        const int lanes = threads();
+        auto run = [&](int lane) {
+            const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
+            if (y0 < y1) job(y0, y1);
+        };
+        if (pool_) pool_->run(run);
+        else run(0);
+    }
+
 private:
     FrameBuffer* target_;
     std::unique_ptr<ThreadPool> pool_;

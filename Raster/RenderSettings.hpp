@@ -19,6 +19,7 @@ struct RenderSettings {
     bool wireframe = false; // overlay triangle edges (DDA lines) on the shaded image
     PipelineStop stopAfter = PipelineStop::Fill; // partial pipelines, for per-stage timing only
     Isa isa = bestIsa(); // which span kernels fill (Raster/Kernels/Isa.hpp); Scalar = the reference loop
+    int ssaa = 1;        // supersampling: samples per pixel, 1 (off), 4 (2x2) or 16 (4x4) (Raster/Resolve.hpp)
 };
 
 // What every draw of one frame shares.

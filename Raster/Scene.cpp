@@ -3,6 +3,8 @@
 
 #include <cassert>
 
+#include "Raster/Resolve.hpp"
+
 namespace sr {
 
 std::size_t Scene::triangleCount() const {
@@ -23,6 +25,27 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
         drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
     }
+}
+
+bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
+                      const Texture* textureOverride, Pixel clearColour) {
+    const int factor = ssaaFactor(settings.ssaa);
+    assert(factor > 0 && "RenderSettings::ssaa must be 1, 4 or 16");
+    FrameBuffer& out = ctx.target();
+    const bool supersample = factor > 1 && !out.empty();
+    if (!supersample || !ctx.samples.resize(out.width() * factor, out.height() * factor)) {
+        if (!ctx.samples.empty()) ctx.samples = FrameBuffer{}; // no SSAA: give the sample memory back
+        ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
+        renderScene(ctx, scene, view, settings, textureOverride);
+        return factor <= 1 || out.empty();
+    }
+    // The same view: clip space does not depend on the target size, only the viewport does.
+    ctx.setTarget(ctx.samples);
+    ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
+    renderScene(ctx, scene, view, settings, textureOverride);
+    ctx.setTarget(out);
+    ctx.forRows(out.height(), [&](int y0, int y1) { resolveBoxRows(ctx.samples, factor, out, y0, y1); });
+    return true;
 }
 
 } // namespace sr

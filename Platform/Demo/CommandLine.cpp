@@ -113,6 +113,10 @@ ParseResult parseCommandLine(const std::vector<std::string>& args) {
     // The demo renders on every hardware thread unless --threads says otherwise (the headless
     // command keeps 1, as the reference renderer does).
     if (!threadsGiven) o.scene.threads = defaultDemoThreads();
+    // The demo starts at the balanced quality preset unless --quality names another (the headless
+    // command keeps the plain defaults: 1 sample, bilinear, phong, exact). A window too large
+    // for its sample target is drawn without supersampling (renderSceneFrame).
+    if (!o.scene.quality) applyQuality(o.scene, kDefaultDemoQuality);
     result.ok = true;
     return result;
 }
@@ -132,7 +136,8 @@ std::string usageText(const std::string& programName) {
                        "  --screenshot PATH    save the last frame before exiting (or the first frame\n"
                        "                       without --frames) as PNG / BMP / PPM (by extension)\n"
                        "  --help               show this text\n"
-                       "  (the demo renders on every hardware thread by default: --threads N overrides)\n";
+                       "  (the demo renders on every hardware thread by default: --threads N overrides;\n"
+                       "  it starts at --quality balanced: 4 samples per pixel, bilinear, phong, exact)\n";
     text += sceneFlagsHelp();
     text += "keys:\n";
     for (const KeyHelp& k : kKeyHelp) {

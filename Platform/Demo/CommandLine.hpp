@@ -27,6 +27,9 @@ struct DemoOptions {
     bool help = false;
 };
 
+// The demo's quality without --quality (docs/PERFORMANCE.md: interactive at 960 x 540 on 2 cores).
+inline constexpr Quality kDefaultDemoQuality = Quality::Balanced;
+
 // The demo's render threads without --threads: every hardware thread (1 when unknown).
 int defaultDemoThreads();
 

@@ -66,6 +66,7 @@ Action DemoController::keyDown(Key key, bool repeat) {
     case Action::CycleShading: settings_.shading = next(settings_.shading, 4); break;
     case Action::CycleFilter: settings_.filter = next(settings_.filter, 3); break;
     case Action::CyclePerspective: settings_.perspective = next(settings_.perspective, 2); break;
+    case Action::CycleAntialiasing: settings_.ssaa = settings_.ssaa == 1 ? 4 : settings_.ssaa == 4 ? 16 : 1; break;
     case Action::ToggleWireframe: settings_.wireframe = !settings_.wireframe; break;
     case Action::ToggleDepthView: depthView_ = !depthView_; break;
     case Action::ResetView: resetView(); break;
@@ -120,6 +121,8 @@ std::string DemoController::modeSummary() const {
     s += filterName(settings_.filter);
     s += " | ";
     s += perspectiveModeName(settings_.perspective);
+    s += " | ssaa ";
+    s += std::to_string(settings_.ssaa);
     if (settings_.wireframe)
         s += " | wireframe";
     if (depthView_)

@@ -66,7 +66,7 @@ public:
 
     FrameView frameView(int width, int height) const { return frameViewFor(camera_, width, height, toLight_); }
 
-    // "cull none | phong | bilinear | exact" (+ " | wireframe", " | depth view", " | help").
+    // "cull none | phong | bilinear | exact | ssaa 4" (+ " | wireframe", " | depth view", " | help").
     std::string modeSummary() const;
 
 private:

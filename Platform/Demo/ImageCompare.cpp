@@ -1,4 +1,4 @@
-// Image error metrics: MSE over the colour channels -> PSNR = 10 log10(255^2 / MSE).
+// Image error metrics: mean absolute error, and MSE over the colour channels -> PSNR = 10 log10(255^2 / MSE).
 #include "Platform/Demo/ImageCompare.hpp"
 
 #include <cassert>
@@ -11,7 +11,7 @@ namespace sr::demo {
 ImageError compareImages(const FrameBuffer& reference, const FrameBuffer& test) {
     assert(reference.width() == test.width() && reference.height() == test.height());
     ImageError e;
-    double sumSq = 0.0;
+    double sumSq = 0.0, sumAbs = 0.0;
     const std::int64_t n = std::int64_t(reference.width()) * reference.height();
     for (int y = 0; y < reference.height(); ++y) {
         const Pixel* a = reference.colorRow(y);
@@ -24,9 +24,11 @@ ImageError compareImages(const FrameBuffer& reference, const FrameBuffer& test) 
             e.maxAbs = std::max(e.maxAbs, m);
             e.differing += m > 0;
             sumSq += double(dr * dr + dg * dg + db * db);
+            sumAbs += double(dr + dg + db);
         }
     }
     e.differingShare = n > 0 ? double(e.differing) / double(n) : 0.0;
+    e.meanAbs = n > 0 ? sumAbs / (3.0 * double(n)) : 0.0;
     const double mse = n > 0 ? sumSq / (3.0 * double(n)) : 0.0;
     e.psnrDb = mse > 0.0 ? 10.0 * std::log10(255.0 * 255.0 / mse) : std::numeric_limits<double>::infinity();
     return e;

@@ -1,4 +1,4 @@
-// Error metrics between two framebuffers (PSNR, max abs error, share of differing pixels).
+// Error metrics between two framebuffers (mean abs error, PSNR, max abs error, share of differing pixels).
 #pragma once
 
 #include <cstdint>
@@ -8,6 +8,7 @@
 namespace sr::demo {
 
 struct ImageError {
+    double meanAbs = 0.0;       // mean absolute difference per R, G, B channel, in levels (0..255)
     double psnrDb = 0.0;        // over the R, G, B channels; +infinity when identical
     int maxAbs = 0;             // largest per-channel difference (0..255)
     double differingShare = 0;  // share of pixels where any channel differs (0..1)

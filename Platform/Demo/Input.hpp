@@ -13,7 +13,7 @@ enum class Key {
     W, A, S, D, Q, E,          // fly: forward / strafe left / back / strafe right / down / up
     Up, Down, Left, Right,     // turn
     Shift,                     // held: move faster
-    C, M, T, P, L, Z, R,       // toggles and reset (see actionForKey)
+    C, M, T, P, N, L, Z, R,    // toggles and reset (see actionForKey)
     F1, F12,
     Count
 };
@@ -28,6 +28,7 @@ enum class Action {
     CycleShading,     // unlit -> flat -> gouraud -> phong
     CycleFilter,      // nearest -> bilinear -> trilinear
     CyclePerspective, // exact <-> affine
+    CycleAntialiasing, // supersampling 1 -> 4 -> 16 samples per pixel -> 1
     ToggleWireframe,
     ToggleDepthView,  // show the depth buffer as grey
     ResetView,        // back to the starting camera
@@ -42,6 +43,7 @@ constexpr Action actionForKey(Key key) {
     case Key::M: return Action::CycleShading;
     case Key::T: return Action::CycleFilter;
     case Key::P: return Action::CyclePerspective;
+    case Key::N: return Action::CycleAntialiasing;
     case Key::L: return Action::ToggleWireframe;
     case Key::Z: return Action::ToggleDepthView;
     case Key::R: return Action::ResetView;
@@ -58,7 +60,7 @@ struct KeyHelp {
     const char* what;
 };
 
-inline constexpr std::array<KeyHelp, 15> kKeyHelp{{
+inline constexpr std::array<KeyHelp, 16> kKeyHelp{{
     {"W / S", "fly forward / back"},
     {"A / D", "strafe left / right"},
     {"Q / E", "fly down / up"},
@@ -69,6 +71,7 @@ inline constexpr std::array<KeyHelp, 15> kKeyHelp{{
     {"M", "shading: unlit -> flat -> gouraud -> phong"},
     {"T", "texture filter: nearest -> bilinear -> trilinear"},
     {"P", "perspective: exact <-> affine"},
+    {"N", "anti-aliasing: 1 -> 4 -> 16 samples per pixel (SSAA)"},
     {"L", "wireframe overlay on / off"},
     {"Z", "depth view (near = white) on / off"},
     {"F1", "this help on / off"},

@@ -7,6 +7,7 @@
 
 #include "Raster/Camera.hpp"
 #include "Raster/FrameBuffer.hpp"
+#include "Raster/Resolve.hpp"
 
 namespace sr::demo {
 namespace {
@@ -31,6 +32,30 @@ std::optional<int> parseInt(const std::string& text) {
 }
 
 } // namespace
+
+QualitySettings qualitySettings(Quality quality) {
+    switch (quality) {
+    case Quality::Fast: return {1, TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Affine};
+    case Quality::Balanced: return {4, TextureFilter::Bilinear, ShadingMode::Phong, PerspectiveMode::Exact};
+    case Quality::Accurate: return {16, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
+    }
+    return {};
+}
+
+const char* qualityName(Quality quality) {
+    switch (quality) {
+    case Quality::Fast: return "fast";
+    case Quality::Balanced: return "balanced";
+    case Quality::Accurate: return "accurate";
+    }
+    return "?";
+}
+
+std::optional<Quality> parseQuality(const std::string& text) {
+    for (Quality q : {Quality::Fast, Quality::Balanced, Quality::Accurate})
+        if (text == qualityName(q)) return q;
+    return std::nullopt;
+}
 
 std::optional<Vec3> parseVec3(const std::string& text) {
     double v[3];
@@ -58,7 +83,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     static const char* const kFlags[] = {"--obj",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
-                                         "--isa"};
+                                         "--isa",   "--ssaa",   "--quality"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
@@ -126,6 +151,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         const auto m = parseShadingMode(value);
         if (!m) return bad("unlit, flat, gouraud or phong");
         o.shading = *m;
+        o.explicitShading = true;
     } else if (flag == "--cull") {
         const auto m = parseCullMode(value);
         if (!m) return bad("none, cw or ccw");
@@ -134,6 +160,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         const auto m = parseFilter(value);
         if (!m) return bad("nearest, bilinear or trilinear");
         o.filter = *m;
+        o.explicitFilter = true;
     } else if (flag == "--persp") {
         const auto m = parsePerspectiveMode(value);
         if (!m && isRetiredPerspectiveMode(value)) {
@@ -144,6 +171,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         }
         if (!m) return bad("exact or affine");
         o.perspective = *m;
+        o.explicitPerspective = true;
     } else if (flag == "--isa") {
         const auto m = parseIsa(value);
         if (!m) return bad("auto, scalar, sse2, avx2 or avx512");
@@ -155,6 +183,15 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
             return FlagResult::Error;
         }
         o.isa = *m;
+    } else if (flag == "--ssaa") {
+        const auto v = parseInt(value);
+        if (!v || ssaaFactor(*v) == 0) return bad("1, 4 or 16 samples per pixel");
+        o.ssaa = *v;
+        o.explicitSsaa = true;
+    } else if (flag == "--quality") {
+        const auto q = parseQuality(value);
+        if (!q) return bad("fast, balanced or accurate");
+        applyQuality(o, *q);
     } else if (flag == "--wrap") {
         const auto m = parseWrap(value);
         if (!m) return bad("repeat, clamp or mirror");
@@ -163,11 +200,26 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     return FlagResult::Consumed;
 }
 
+void applyQuality(SceneOptions& o, Quality quality) {
+    o.quality = quality;
+    const QualitySettings p = qualitySettings(quality);
+    if (!o.explicitSsaa) o.ssaa = p.ssaa;
+    if (!o.explicitFilter) o.filter = p.filter;
+    if (!o.explicitShading) o.shading = p.shading;
+    if (!o.explicitPerspective) o.perspective = p.perspective;
+}
+
 std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
     if (o.nearZ && o.farZ && !(*o.farZ > *o.nearZ))
         return "--far (" + std::to_string(*o.farZ) + ") must be greater than --near (" + std::to_string(*o.nearZ) + ")";
     if (o.eye && o.target && *o.eye == *o.target) return "--eye and --target must differ";
     if (length(o.light) == 0.0f) return "--light must not be the zero vector";
+    if (const int f = ssaaFactor(o.ssaa); f > 1 && (o.width > FrameBuffer::kMaxDimension / f ||
+                                                   o.height > FrameBuffer::kMaxDimension / f))
+        return "--ssaa " + std::to_string(o.ssaa) + " renders " + std::to_string(o.width) + "x" +
+               std::to_string(o.height) + " at " + std::to_string(f) + "x" + std::to_string(f) +
+               " the size, above the " + std::to_string(FrameBuffer::kMaxDimension) +
+               "-pixel limit: at most " + std::to_string(FrameBuffer::kMaxDimension / f) + " per side";
     return std::nullopt;
 }
 
@@ -190,6 +242,12 @@ std::string sceneFlagsHelp() {
            "  --filter F            nearest | bilinear | trilinear (default bilinear)\n"
            "  --wrap W              repeat | clamp | mirror (default repeat)\n"
            "  --persp P             exact | affine: perspective correction (default exact)\n"
+           "  --quality Q           fast | balanced | accurate: a preset of --ssaa, --filter, --shading\n"
+           "                        and --persp (fast: 1, nearest, gouraud, affine; balanced: 4,\n"
+           "                        bilinear, phong, exact; accurate: 16, trilinear, phong, exact);\n"
+           "                        those flags, given too, win\n"
+           "  --ssaa N              supersampling: 1 (off, default), 4 (2x2) or 16 (4x4) samples per pixel,\n"
+           "                        each shaded, box-filtered; width and height at most 8192 / sqrt(N)\n"
            "  --isa I               auto | scalar | sse2 | avx2 | avx512: span kernels (default auto, the\n"
            "                        widest this CPU has; scalar = the reference loop; same image for all)\n"
            "  --kd r,g,b            colour of untextured surfaces (default 0.8,0.8,0.8)\n"

@@ -16,6 +16,24 @@
 
 namespace sr::demo {
 
+// Three points on the speed/accuracy front that `softraster report` measures (docs/reports),
+// selected by --quality on the command line and in the demo. Explicit --ssaa, --filter,
+// --shading and --persp flags override the preset's value, in any order.
+enum class Quality { Fast, Balanced, Accurate };
+
+struct QualitySettings {
+    int ssaa = 1;
+    TextureFilter filter = TextureFilter::Bilinear;
+    ShadingMode shading = ShadingMode::Phong;
+    PerspectiveMode perspective = PerspectiveMode::Exact;
+};
+
+// fast: 1 sample, nearest, Gouraud, affine. balanced: 4 samples (2x2), bilinear, Phong, exact.
+// accurate: 16 samples (4x4), trilinear, Phong, exact - the report's ground truth.
+QualitySettings qualitySettings(Quality quality);
+const char* qualityName(Quality quality);
+std::optional<Quality> parseQuality(const std::string& text);
+
 struct SceneOptions {
     std::string obj;                 // empty: the built-in default scene
     int width = 800, height = 600;
@@ -32,9 +50,13 @@ struct SceneOptions {
     TextureFilter filter = TextureFilter::Bilinear;
     WrapMode wrap = WrapMode::Repeat;
     PerspectiveMode perspective = PerspectiveMode::Exact;
+    int ssaa = 1;        // --ssaa: supersampling samples per pixel, 1, 4 or 16 (Raster/Resolve.hpp)
     Isa isa = bestIsa(); // --isa: which span kernels fill (auto = the widest this CPU has)
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
     bool wireframe = false;
+    std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
+    // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
+    bool explicitSsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
 };
 
 // Largest accepted --width / --height and --threads.
@@ -48,6 +70,9 @@ enum class FlagResult { Consumed, NotMine, Error };
 // Both "--flag value" and "--flag=value" are accepted.
 FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, SceneOptions& options,
                           std::string& error);
+
+// Sets the preset's knobs in `options`, except those a flag set explicitly; records the preset.
+void applyQuality(SceneOptions& options, Quality quality);
 
 // Checks the combination (e.g. width/height limits); returns an error line or nullopt.
 std::optional<std::string> validateSceneOptions(const SceneOptions& options);

@@ -224,12 +224,12 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.perspective = o.perspective;
     s.isa = o.isa;
     s.wireframe = o.wireframe;
+    s.ssaa = o.ssaa;
     return s;
 }
 
 void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& view, const RenderSettings& settings) {
-    ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
-    renderScene(ctx, scene.scene, view, settings, scene.textureOverride ? &*scene.textureOverride : nullptr);
+    renderSceneFrame(ctx, scene.scene, view, settings, scene.textureOverride ? &*scene.textureOverride : nullptr);
 }
 
 } // namespace sr::demo

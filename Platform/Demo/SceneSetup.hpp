@@ -59,7 +59,8 @@ FrameView makeFrameView(const CameraSetup& camera, int width, int height, Vec3 l
 
 RenderSettings makeRenderSettings(const SceneOptions& options);
 
-// Renders one frame of the scene into ctx's target: clear (black, far depth) then draw.
+// Renders one frame of the scene into ctx's target: clear (black, far depth) then draw, supersampled
+// when settings.ssaa > 1 (renderSceneFrame).
 void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& view, const RenderSettings& settings);
 
 } // namespace sr::demo

@@ -63,13 +63,17 @@ std::string usage(Subcommand c) {
                "shaded/covered, overdraw). Vertex data is prepared once, before the timed frames.\n" +
                demo::sceneFlagsHelp();
     case Subcommand::Report:
-        return "usage: softraster report --out-dir DIR [scene flags] [--frames N] [--warmup N] [--quiet]\n"
+        return "usage: softraster report --out-dir DIR [scene flags] [--frames N] [--warmup N] [--rounds N] [--quiet]\n"
                "  --out-dir DIR         where report.csv, report.md and report.svg go (created)\n"
-               "  --frames N            timed frames per setting (default 30)\n"
-               "Renders the scene under every quality setting (perspective mode, texture filter, shading\n"
-               "frequency, threads), each varied alone from the most accurate one, and records the median\n"
-               "time per frame and the error against the most accurate image (PSNR, max abs error, share\n"
-               "of differing pixels). The scene flags fix everything else.\n" +
+               "  --frames N            timed frames per setting and round (default 30)\n"
+               "  --warmup N            untimed frames before each setting's timed ones (default 5)\n"
+               "  --rounds N            interleaved timing rounds (default 3): median, min and max\n"
+               "Renders the ground truth (16 samples per pixel, trilinear, phong, exact) and every\n"
+               "combination of anti-aliasing (--ssaa 1 or 4) x texture filter x shading (flat, gouraud,\n"
+               "phong) x perspective (affine, exact); records the time per frame and the error against\n"
+               "the ground truth (mean abs error, PSNR, max abs error, share of differing pixels), the\n"
+               "Pareto front and the --quality presets. The scene flags fix everything else; width and\n"
+               "height at most 2048 (the ground truth renders 4x4 the size).\n" +
                demo::sceneFlagsHelp();
     }
     return "";
@@ -125,6 +129,13 @@ ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& 
                 return fail("bad value for " + flag + ": '" + *v + "' (expected an integer from " +
                             (flag == "--frames" ? "1" : "0") + " to " + std::to_string(kMaxFrames) + ")");
             (flag == "--frames" ? a.frames : a.warmup) = *n;
+        } else if (report && flag == "--rounds") {
+            const auto v = need();
+            if (!v) return fail("missing value for --rounds");
+            const auto n = parseCount(*v);
+            if (!n || *n < 1 || *n > 1000)
+                return fail("bad value for --rounds: '" + *v + "' (expected an integer from 1 to 1000)");
+            a.rounds = *n;
         } else if (bench && flag == "--flight") {
             const auto v = need();
             if (!v) return fail("missing value for --flight");

@@ -23,6 +23,7 @@ struct CommandArgs {
     std::string outDir;   // report
     int frames = 100;     // bench default; report uses its own default
     int warmup = 5;
+    int rounds = 3;       // report: interleaved timing rounds
     std::optional<std::uint32_t> flightSeed; // bench --flight SEED: the soak flight (Flight.hpp)
     bool quiet = false;
     bool help = false;

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <ostream>
 #include <sstream>
 #include <thread>
@@ -12,43 +13,58 @@
 #include "Platform/Headless/CommandArgs.hpp"
 #include "Platform/Headless/Commands.hpp"
 #include "Platform/Headless/Timing.hpp"
+#include "Raster/Resolve.hpp"
 #include "Resources/FileIO.hpp"
 
 namespace sr::headless {
 namespace {
 
 struct Setting {
-    std::string knob, value; // e.g. "persp", "span16"; the reference has knob "reference"
     RenderSettings settings;
+    bool truth = false;                   // the ground truth (SSAA 16 with the most accurate rest)
+    std::optional<demo::Quality> preset;  // the --quality preset this combination is, if any
 };
 
 struct Row {
     Setting setting;
-    TimingSummary time;
-    demo::ImageError error;
+    TimingSummary time;        // median / min over the rounds' per-round medians
+    double maxMs = 0.0;        // max over the rounds
+    demo::ImageError error;    // against the ground truth
 };
 
-// The most accurate settings (exact perspective, trilinear mipmaps, per-pixel lighting) and
-// every knob varied alone from them.
-std::vector<Setting> settingsToMeasure(RenderSettings base) {
+// The ground truth: 16 samples per pixel (4x4, each shaded), exact perspective, trilinear
+// mipmaps, per-pixel (Phong) lighting. Then every combination of anti-aliasing (1 or 4 samples)
+// x texture filter x shading frequency x perspective mode. A scene without textures skips the
+// filter (it changes nothing there); unlit is left out (it drops the lighting: another picture,
+// not an approximation of this one).
+std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured) {
     base.perspective = PerspectiveMode::Exact;
     base.filter = TextureFilter::Trilinear;
     base.shading = ShadingMode::Phong;
-    std::vector<Setting> out{{"reference", "exact+trilinear+phong", base}};
-    for (PerspectiveMode m : {PerspectiveMode::Affine}) {
-        Setting s{"persp", perspectiveModeName(m), base};
-        s.settings.perspective = m;
-        out.push_back(s);
-    }
-    for (TextureFilter f : {TextureFilter::Bilinear, TextureFilter::Nearest}) {
-        Setting s{"filter", filterName(f), base};
-        s.settings.filter = f;
-        out.push_back(s);
-    }
-    for (ShadingMode m : {ShadingMode::Gouraud, ShadingMode::Flat}) {
-        Setting s{"shading", shadingModeName(m), base};
-        s.settings.shading = m;
-        out.push_back(s);
+    base.ssaa = 16;
+    std::vector<Setting> out{{base, true, {}}};
+    std::vector<TextureFilter> filters{TextureFilter::Trilinear};
+    if (textured) filters = {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear};
+    for (int ssaa : {1, 4})
+        for (TextureFilter f : filters)
+            for (ShadingMode m : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
+                for (PerspectiveMode p : {PerspectiveMode::Affine, PerspectiveMode::Exact}) {
+                    Setting s{base, false, {}};
+                    s.settings.ssaa = ssaa;
+                    s.settings.filter = f;
+                    s.settings.shading = m;
+                    s.settings.perspective = p;
+                    out.push_back(s);
+                }
+    // Mark the presets (untextured scenes: the filter does not count).
+    for (demo::Quality q : {demo::Quality::Fast, demo::Quality::Balanced, demo::Quality::Accurate}) {
+        const demo::QualitySettings qs = demo::qualitySettings(q);
+        for (Setting& s : out)
+            if (s.settings.ssaa == qs.ssaa && s.settings.shading == qs.shading &&
+                s.settings.perspective == qs.perspective && (!textured || s.settings.filter == qs.filter)) {
+                s.preset = q;
+                break;
+            }
     }
     return out;
 }
@@ -60,43 +76,47 @@ std::string fmt(double v, int decimals = 3) {
     return buf;
 }
 
-std::string label(const Setting& s) { return s.knob == "reference" ? s.value : s.knob + "=" + s.value; }
+std::string label(const Setting& s, bool textured) {
+    const RenderSettings& r = s.settings;
+    std::string l = "ssaa" + std::to_string(r.ssaa);
+    if (textured) l += " " + std::string(filterName(r.filter));
+    l += " " + std::string(shadingModeName(r.shading)) + " " + perspectiveModeName(r.perspective);
+    return l;
+}
 
-// Points on the Pareto front: no other point is both faster and at least as accurate.
+// Points on the Pareto front: no other point is both faster and at least as accurate (mean
+// absolute error against the ground truth).
 std::vector<bool> paretoFront(const std::vector<Row>& rows) {
     std::vector<bool> front(rows.size(), true);
     for (std::size_t i = 0; i < rows.size(); ++i)
         for (std::size_t j = 0; j < rows.size(); ++j) {
             if (i == j) continue;
             const bool faster = rows[j].time.median <= rows[i].time.median;
-            const bool better = rows[j].error.psnrDb >= rows[i].error.psnrDb;
-            const bool strictly = rows[j].time.median < rows[i].time.median || rows[j].error.psnrDb > rows[i].error.psnrDb;
+            const bool better = rows[j].error.meanAbs <= rows[i].error.meanAbs;
+            const bool strictly = rows[j].time.median < rows[i].time.median || rows[j].error.meanAbs < rows[i].error.meanAbs;
             if (faster && better && strictly) front[i] = false;
         }
     return front;
 }
 
-// Error (PSNR, higher = better; identical images drawn at the top) against time per frame.
-std::string svgPlot(const std::vector<Row>& rows, const std::vector<bool>& front, const std::string& title) {
-    const double W = 760, H = 480, left = 70, right = 200, top = 40, bottom = 60;
-    double tMin = 1e300, tMax = 0, pMin = 1e300, pMax = 0;
+// Mean absolute error against the ground truth (0 at the top) against time per frame; the front
+// and the presets labelled, every other combination a grey dot.
+std::string svgPlot(const std::vector<Row>& rows, const std::vector<bool>& front, bool textured,
+                    const std::string& title) {
+    const double W = 860, H = 520, left = 70, right = 40, top = 40, bottom = 60;
+    double tMin = 1e300, tMax = 0, eMax = 0;
     for (const Row& r : rows) {
         tMin = std::min(tMin, r.time.median);
         tMax = std::max(tMax, r.time.median);
-        if (std::isfinite(r.error.psnrDb)) {
-            pMin = std::min(pMin, r.error.psnrDb);
-            pMax = std::max(pMax, r.error.psnrDb);
-        }
+        eMax = std::max(eMax, r.error.meanAbs);
     }
-    if (pMax < pMin) pMin = pMax = 40;
-    const double pTop = pMax + 6; // "identical" line
-    pMin = std::max(0.0, pMin - 3);
+    if (eMax <= 0) eMax = 1;
+    eMax *= 1.08;
     if (tMax <= tMin) tMax = tMin + 1;
-    const double tPad = 0.08 * (tMax - tMin);
-    tMin = std::max(0.0, tMin - tPad);
-    tMax += tPad;
-    auto X = [&](double t) { return left + (t - tMin) / (tMax - tMin) * (W - left - right); };
-    auto Y = [&](double p) { return top + (pTop - std::min(p, pTop)) / (pTop - pMin) * (H - top - bottom); };
+    // Time on a log axis: the ground truth costs an order of magnitude more than the rest.
+    const double lMin = std::log10(std::max(tMin, 1e-3) / 1.15), lMax = std::log10(tMax * 1.15);
+    auto X = [&](double t) { return left + (std::log10(std::max(t, 1e-3)) - lMin) / (lMax - lMin) * (W - left - right); };
+    auto Y = [&](double e) { return top + e / eMax * (H - top - bottom); };
     std::ostringstream s;
     s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H
       << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
@@ -105,28 +125,34 @@ std::string svgPlot(const std::vector<Row>& rows, const std::vector<bool>& front
       << "' stroke='black'/>\n<line x1='" << left << "' y1='" << top << "' x2='" << left << "' y2='" << H - bottom
       << "' stroke='black'/>\n";
     for (int k = 0; k <= 4; ++k) {
-        const double t = tMin + (tMax - tMin) * k / 4, p = pMin + (pMax + 6 - pMin) * k / 4;
+        const double t = std::pow(10.0, lMin + (lMax - lMin) * k / 4), e = eMax * k / 4;
         s << "<text x='" << X(t) << "' y='" << H - bottom + 18 << "' text-anchor='middle'>" << fmt(t, 2) << "</text>\n";
-        s << "<text x='" << left - 8 << "' y='" << Y(p) + 4 << "' text-anchor='end'>" << fmt(p, 1) << "</text>\n";
+        s << "<text x='" << left - 8 << "' y='" << Y(e) + 4 << "' text-anchor='end'>" << fmt(e, 2) << "</text>\n";
     }
-    s << "<text x='" << (left + W - right) / 2 << "' y='" << H - 15 << "' text-anchor='middle'>ms per frame (median)</text>\n";
+    s << "<text x='" << (left + W - right) / 2 << "' y='" << H - 15
+      << "' text-anchor='middle'>ms per frame (median of the rounds, log scale)</text>\n";
     s << "<text transform='translate(18," << (top + H - bottom) / 2 << ") rotate(-90)' text-anchor='middle'>"
-      << "PSNR vs most accurate (dB, top = identical)</text>\n";
-    // The Pareto front as a step line through its points, fastest first.
+      << "mean abs error vs SSAA 16 ground truth (levels, 0 at top)</text>\n";
+    // The Pareto front as a line through its points, fastest first.
     std::vector<std::size_t> idx;
     for (std::size_t i = 0; i < rows.size(); ++i)
         if (front[i]) idx.push_back(i);
     std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return rows[a].time.median < rows[b].time.median; });
     s << "<polyline fill='none' stroke='#2a7' stroke-width='2' points='";
-    for (std::size_t i : idx) s << X(rows[i].time.median) << "," << Y(rows[i].error.psnrDb) << " ";
+    for (std::size_t i : idx) s << X(rows[i].time.median) << "," << Y(rows[i].error.meanAbs) << " ";
     s << "'/>\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
-        const double x = X(rows[i].time.median), y = Y(rows[i].error.psnrDb);
-        s << "<circle cx='" << x << "' cy='" << y << "' r='5' fill='" << (front[i] ? "#2a7" : "#888") << "'/>\n";
-        s << "<text x='" << x + 8 << "' y='" << y - 6 << "'>" << label(rows[i].setting) << (front[i] ? " *" : "")
-          << "</text>\n";
+        const Row& r = rows[i];
+        const double x = X(r.time.median), y = Y(r.error.meanAbs);
+        const bool named = front[i] || r.setting.preset;
+        s << "<circle cx='" << x << "' cy='" << y << "' r='" << (named ? 5 : 3) << "' fill='"
+          << (r.setting.preset ? "#c33" : front[i] ? "#2a7" : "#aaa") << "'/>\n";
+        if (named)
+            s << "<text x='" << x + 7 << "' y='" << y - 6 << "'>" << label(r.setting, textured)
+              << (r.setting.preset ? std::string(" [") + demo::qualityName(*r.setting.preset) + "]" : "") << "</text>\n";
     }
-    s << "<text x='" << W - right + 10 << "' y='" << top + 10 << "'>green, *: Pareto front</text>\n</svg>\n";
+    s << "<text x='" << W - right - 10 << "' y='" << top + 10
+      << "' text-anchor='end'>green: Pareto front; red: --quality presets; grey: the other combinations</text>\n</svg>\n";
     return s.str();
 }
 
@@ -142,6 +168,11 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         io.out << usage(Subcommand::Report);
         return kExitOk;
     }
+    if (const int f = ssaaFactor(16); a.scene.width > FrameBuffer::kMaxDimension / f || a.scene.height > FrameBuffer::kMaxDimension / f) {
+        io.err << "softraster report: the ground truth renders 16 samples per pixel (4x4): width and height at most "
+               << FrameBuffer::kMaxDimension / f << "\n";
+        return kExitUsage;
+    }
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::u8path(a.outDir), ec);
     if (ec) {
@@ -151,56 +182,86 @@ int runReport(const std::vector<std::string>& args, Streams io) {
     auto prepared = prepareScene(a, io.err);
     if (!prepared) return kExitFailure;
     PreparedScene& p = *prepared;
+    const bool textured = p.textured;
 
-    const std::vector<Setting> settings = settingsToMeasure(p.settings);
-    FrameBuffer reference;
+    const std::vector<Setting> settings = settingsToMeasure(p.settings, textured);
+    // Images first (the error does not depend on timing), the ground truth first of all.
+    std::vector<demo::ImageError> errors(settings.size());
+    FrameBuffer truth;
+    for (std::size_t k = 0; k < settings.size(); ++k) {
+        demo::renderFrame(p.context, p.scene, p.view, settings[k].settings);
+        if (k == 0) truth = p.framebuffer;
+        errors[k] = demo::compareImages(truth, p.framebuffer);
+    }
+    // Timing: rounds, each timing every setting once in turn (interleaved, so a slow spell of a
+    // shared machine hits every setting alike); per setting the median, min and max of its
+    // per-round medians.
+    std::vector<std::vector<double>> perRound(settings.size());
+    for (int round = 0; round < a.rounds; ++round)
+        for (std::size_t k = 0; k < settings.size(); ++k) {
+            if (!a.quiet) {
+                io.err << (io.progress ? "\r" : "") << "softraster report: round " << (round + 1) << "/" << a.rounds
+                       << " [" << (k + 1) << "/" << settings.size() << "] " << label(settings[k], textured)
+                       << (io.progress ? "          " : "\n");
+                io.err.flush();
+            }
+            auto frame = [&] { demo::renderFrame(p.context, p.scene, p.view, settings[k].settings); };
+            perRound[k].push_back(summarise(timeFrames(a.warmup, a.frames, frame)).median);
+        }
+    if (!a.quiet && io.progress) io.err << "\n";
     std::vector<Row> rows;
     for (std::size_t k = 0; k < settings.size(); ++k) {
-        const Setting& s = settings[k];
-        if (!a.quiet) {
-            io.err << (io.progress ? "\r" : "") << "softraster report: [" << (k + 1) << "/" << settings.size() << "] "
-                   << label(s) << (io.progress ? "                    " : "\n");
-            io.err.flush();
-        }
-        auto frame = [&] { demo::renderFrame(p.context, p.scene, p.view, s.settings); };
-        Row row{s, summarise(timeFrames(a.warmup, a.frames, frame)), {}};
-        frame();
-        if (k == 0) reference = p.framebuffer;
-        row.error = demo::compareImages(reference, p.framebuffer);
+        Row row{settings[k], summarise(perRound[k]), 0.0, errors[k]};
+        row.maxMs = *std::max_element(perRound[k].begin(), perRound[k].end());
         rows.push_back(row);
     }
-    if (!a.quiet && io.progress) io.err << "\n";
 
     const std::vector<bool> front = paretoFront(rows);
     const std::string scene = a.scene.obj.empty() ? std::string("built-in scene") : a.scene.obj;
     const std::string machine = std::to_string(std::thread::hardware_concurrency()) + " hardware threads, " +
-                                std::to_string(p.threadsUsed) + " render thread";
+                                std::to_string(p.threadsUsed) + " render thread" + (p.threadsUsed == 1 ? "" : "s") +
+                                ", span kernels " + isaName(p.settings.isa);
     std::ostringstream csv, md;
-    csv << "knob,value,ms_median,ms_min,psnr_db,max_abs,differing_share,pareto\n";
+    csv << "ssaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,max_abs,differing_share,pareto,preset,"
+           "truth\n";
     md << "# SoftRaster quality report\n\n"
        << "Scene: " << scene << ", " << a.scene.width << "x" << a.scene.height << ", "
-       << p.scene.scene.triangleCount() << " triangles, cull " << cullModeName(p.settings.cull) << ". "
-       << "Machine: " << machine << ". Median of " << a.frames << " frames after " << a.warmup
-       << " warm-up frames per setting.\n\n"
-       << "Each knob is varied alone from the most accurate setting (exact perspective, trilinear "
-          "filtering, Phong shading); errors are against that image.\n\n"
-       << "| setting | ms/frame (median) | ms/frame (min) | PSNR dB | max abs | differing pixels | Pareto |\n"
-       << "|---|---|---|---|---|---|---|\n";
+       << p.scene.scene.triangleCount() << " triangles, cull " << cullModeName(p.settings.cull)
+       << (textured ? ", textured" : ", untextured (the texture filter changes nothing and is not varied)") << ". "
+       << "Machine: " << machine << ". Time: " << a.rounds << " interleaved rounds, each the median of " << a.frames
+       << " frames after " << a.warmup << " warm-up frames per setting; the table gives the median of the rounds "
+       << "and their min and max.\n\n"
+       << "**Error is measured against the ground truth**: the image with 16 samples per pixel (4x4 supersampling, "
+          "each sample shaded) and the most accurate other settings (trilinear filtering, Phong shading, exact "
+          "perspective). Mean abs error is per colour channel in levels (0-255); PSNR over R, G, B. Every "
+          "combination of anti-aliasing (1 or 4 samples) x texture filter x shading x perspective is measured; "
+          "the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
+          "`--quality` presets.\n\n"
+       << "| ssaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | max abs | "
+          "differing pixels | Pareto | preset |\n"
+       << "|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
-        csv << r.setting.knob << "," << r.setting.value << "," << fmt(r.time.median) << "," << fmt(r.time.min) << ","
-            << fmt(r.error.psnrDb, 2) << "," << r.error.maxAbs << "," << fmt(r.error.differingShare, 5) << ","
-            << (front[i] ? 1 : 0) << "\n";
-        md << "| " << label(r.setting) << " | " << fmt(r.time.median) << " | " << fmt(r.time.min) << " | "
+        const RenderSettings& st = r.setting.settings;
+        const std::string filter = textured ? filterName(st.filter) : "-";
+        const std::string preset = r.setting.preset ? demo::qualityName(*r.setting.preset) : "";
+        csv << st.ssaa << "," << filter << "," << shadingModeName(st.shading) << "," << perspectiveModeName(st.perspective)
+            << "," << fmt(r.time.median) << "," << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
+            << "," << fmt(r.error.psnrDb, 2) << "," << r.error.maxAbs << "," << fmt(r.error.differingShare, 5) << ","
+            << (front[i] ? 1 : 0) << "," << preset << "," << (r.setting.truth ? 1 : 0) << "\n";
+        md << "| " << st.ssaa << (r.setting.truth ? " (ground truth)" : "") << " | " << filter << " | "
+           << shadingModeName(st.shading) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
+           << " [" << fmt(r.time.min) << ", " << fmt(r.maxMs) << "] | " << fmt(r.error.meanAbs, 4) << " | "
            << fmt(r.error.psnrDb, 2) << " | " << r.error.maxAbs << " | " << fmt(100.0 * r.error.differingShare, 2)
-           << "% | " << (front[i] ? "yes" : "") << " |\n";
+           << "% | " << (front[i] ? "yes" : "") << " | " << preset << " |\n";
     }
-    md << "\nPlot: `report.svg` (error against time, the Pareto front labelled). Depth format (reversed-Z float32) and "
-          "sub-pixel precision (8 bits) are fixed by design and have no setting.\n";
+    md << "\nPlot: `report.svg` (mean abs error against time, the Pareto front and the presets labelled). Depth format "
+          "(reversed-Z float32) and sub-pixel precision (8 bits) are fixed by design and have no setting.\n";
     const std::string base = a.outDir + "/report";
-    for (const auto& [path, text] : {std::pair<std::string, std::string>{base + ".csv", csv.str()},
-                                     {base + ".md", md.str()},
-                                     {base + ".svg", svgPlot(rows, front, "SoftRaster: error vs time, " + scene)}}) {
+    for (const auto& [path, text] :
+         {std::pair<std::string, std::string>{base + ".csv", csv.str()},
+          {base + ".md", md.str()},
+          {base + ".svg", svgPlot(rows, front, textured, "SoftRaster: error vs the SSAA 16 ground truth, " + scene)}}) {
         const Status s = writeText(path, text);
         if (!s) {
             io.err << "softraster report: " << s.error() << "\n";

@@ -192,6 +192,7 @@ demo::Key MainWindow::translateKey(WPARAM vk) {
     case 'M': return Key::M;
     case 'T': return Key::T;
     case 'P': return Key::P;
+    case 'N': return Key::N;
     case 'L': return Key::L;
     case 'Z': return Key::Z;
     case 'R': return Key::R;

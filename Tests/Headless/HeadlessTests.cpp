@@ -94,6 +94,11 @@ TEST_CASE("every bad flag or value gives one clear line and exit code 2", "[head
         {{"render", "--persp", "span16"}, "--persp span16: span subdivision was retired"},
         {{"bench", "--persp", "span8"}, "the modes that remain: exact, affine"},
         {{"render", "--threads", "-1"}, "bad value for --threads: '-1'"},
+        {{"render", "--ssaa", "2"}, "bad value for --ssaa: '2' (expected 1, 4 or 16 samples per pixel)"},
+        {{"bench", "--ssaa", "0"}, "bad value for --ssaa: '0'"},
+        // The sample target must fit FrameBuffer::kMaxDimension (8192) per side.
+        {{"render", "--ssaa", "16", "--width", "2049"}, "--ssaa 16 renders 2049x600 at 4x4 the size"},
+        {{"report", "--out-dir", "d", "--ssaa", "4", "--height", "4097"}, "at most 4096 per side"},
         {{"render", "--frames", "10"}, "unknown flag '--frames'"},
         {{"bench", "--frames", "0"}, "bad value for --frames: '0'"},
         {{"bench", "--warmup", "x"}, "bad value for --warmup: 'x'"},
@@ -141,6 +146,50 @@ TEST_CASE("render writes the image at the requested size and prints its path", "
     CHECK(std::unique(colours.begin(), colours.end()) - colours.begin() > 50);
 }
 
+TEST_CASE("--ssaa 1 is today's image; --ssaa 4 and 16 change only edge pixels, a little", "[headless][ssaa]") {
+    const std::string dir = tempDir("ssaa");
+    auto render = [&](const std::vector<std::string>& extra, const std::string& name) {
+        std::vector<std::string> args{"render", "--width", "96", "--height", "64", "--quiet", "--out", dir + "/" + name};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const Run r = run(args);
+        REQUIRE(r.rc == kExitOk);
+        auto img = loadImage(dir + "/" + name);
+        REQUIRE(img.ok());
+        return img.value().rgba;
+    };
+    const auto plain = render({}, "plain.png");
+    CHECK(render({"--ssaa", "1"}, "ssaa1.png") == plain);
+    const auto aa4 = render({"--ssaa", "4"}, "ssaa4.png");
+    const auto aa16 = render({"--ssaa", "16"}, "ssaa16.png");
+    REQUIRE(aa4.size() == plain.size());
+    REQUIRE(aa16.size() == plain.size());
+    // Mean absolute difference per channel, and the pixels that differ at all.
+    auto distance = [](const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, std::size_t& differing) {
+        double sum = 0;
+        differing = 0;
+        for (std::size_t i = 0; i < a.size(); i += 4) {
+            int d = 0;
+            for (std::size_t c = 0; c < 3; ++c) {
+                d = std::max(d, std::abs(int(a[i + c]) - int(b[i + c])));
+                sum += std::abs(int(a[i + c]) - int(b[i + c]));
+            }
+            differing += d > 0;
+        }
+        return sum / double(a.size() / 4 * 3);
+    };
+    std::size_t differing = 0;
+    const std::size_t pixels = plain.size() / 4;
+    const double plainTo16 = distance(plain, aa16, differing);
+    CHECK(differing > pixels / 50); // edges and texture detail are smoothed
+    const double fourTo16 = distance(aa4, aa16, differing);
+    CHECK(fourTo16 < 0.75 * plainTo16); // more samples: closer to the 16-sample image
+    CHECK(distance(plain, aa4, differing) > 0.0);
+    const Run b = run({"bench", "--width", "64", "--height", "48", "--frames", "1", "--warmup", "0", "--quiet", "--ssaa", "4"});
+    REQUIRE(b.rc == kExitOk);
+    CHECK(numberOf(b.out, "ssaa") == 4);
+    CHECK(numberOf(b.out, "pixels_covered") <= 64 * 48);
+}
+
 TEST_CASE("bench prints one JSON line with the documented fields", "[headless]") {
     const Run r = run({"bench", "--width", "64", "--height", "48", "--frames", "3", "--warmup", "1", "--quiet"});
     REQUIRE(r.rc == kExitOk);
@@ -171,37 +220,99 @@ TEST_CASE("bench counters follow the cull mode", "[headless]") {
     CHECK(numberOf(cw.out, "rasterized") < numberOf(none.out, "rasterized"));
 }
 
-TEST_CASE("report writes report.csv, report.md and report.svg for a tiny scene", "[headless]") {
+TEST_CASE("report: every combination against the SSAA 16 ground truth, the front and the presets", "[headless][report]") {
     const std::string dir = tempDir("report");
     for (const char* f : {"report.csv", "report.md", "report.svg"}) std::filesystem::remove(dir + "/" + f);
     const Run r = run({"report", "--out-dir", dir, "--width", "48", "--height", "32", "--frames", "2", "--warmup",
-                       "0", "--quiet"});
+                       "0", "--rounds", "2", "--quiet"});
     REQUIRE(r.rc == kExitOk);
     auto csv = readFileBytes(dir + "/report.csv");
     REQUIRE(csv.ok());
     const std::string text(csv.value().begin(), csv.value().end());
-    CHECK(text.rfind("knob,value,ms_median,ms_min,psnr_db,max_abs,differing_share,pareto\n", 0) == 0);
-    CHECK(std::count(text.begin(), text.end(), '\n') == 1 + 6); // header + 6 settings (span16/span8 retired)
-    // Rows: "knob,value,ms,ms,psnr,maxabs,share,pareto". The reference against itself is identical;
-    // the affine image is not.
+    CHECK(text.rfind("ssaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,max_abs,differing_share,"
+                     "pareto,preset,truth\n", 0) == 0);
+    // The built-in scene is textured: the truth + ssaa {1, 4} x 3 filters x 3 shadings x 2 perspectives.
+    CHECK(std::count(text.begin(), text.end(), '\n') == 1 + 1 + 2 * 3 * 3 * 2);
     auto row = [&](const std::string& prefix) {
         const auto at = text.find("\n" + prefix);
         REQUIRE(at != std::string::npos);
         return text.substr(at + 1, text.find('\n', at + 1) - at - 1);
     };
-    const std::string ref = row("reference,exact+trilinear+phong,");
-    CHECK(ref.find(",inf,0,0.00000,") != std::string::npos);
-    const std::string affine = row("persp,affine,");
-    CHECK(affine.find(",inf,") == std::string::npos);
+    auto field = [](const std::string& line, int k) {
+        std::size_t at = 0;
+        for (int i = 0; i < k; ++i) at = line.find(',', at) + 1;
+        return line.substr(at, line.find(',', at) - at);
+    };
+    // The truth against itself: no error; it is the accurate preset.
+    const std::string truth = row("16,trilinear,phong,exact,");
+    CHECK(field(truth, 7) == "0.0000");
+    CHECK(field(truth, 8) == "inf");
+    CHECK(field(truth, 12) == "accurate");
+    CHECK(field(truth, 13) == "1");
+    // One sample per pixel is not the truth; four samples are closer to it than one.
+    const double mae1 = std::stod(field(row("1,trilinear,phong,exact,"), 7));
+    const double mae4 = std::stod(field(row("4,trilinear,phong,exact,"), 7));
+    CHECK(mae1 > 0.0);
+    CHECK(mae4 < mae1);
+    CHECK(std::stod(field(row("1,trilinear,phong,exact,"), 5)) <= std::stod(field(row("1,trilinear,phong,exact,"), 4)));
+    CHECK(field(row("4,bilinear,phong,exact,"), 12) == "balanced");
+    CHECK(field(row("1,nearest,gouraud,affine,"), 12) == "fast");
+    // The fastest combination is always on the Pareto front, and so is the truth (no error).
+    CHECK(field(truth, 11) == "1");
     auto md = readFileBytes(dir + "/report.md");
     REQUIRE(md.ok());
-    CHECK(std::string(md.value().begin(), md.value().end()).find("| setting | ms/frame (median)") != std::string::npos);
+    const std::string mdText(md.value().begin(), md.value().end());
+    CHECK(mdText.find("measured against the ground truth") != std::string::npos);
+    CHECK(mdText.find("| ssaa | filter | shading | persp | ms/frame median [min, max] | mean abs") != std::string::npos);
+    CHECK(mdText.find("2 interleaved rounds") != std::string::npos);
     auto svg = readFileBytes(dir + "/report.svg");
     REQUIRE(svg.ok());
     const std::string s(svg.value().begin(), svg.value().end());
     CHECK(s.rfind("<svg", 0) == 0);
     CHECK(s.find("Pareto") != std::string::npos);
-    CHECK(std::count(s.begin(), s.end(), '\n') > 20);
+    CHECK(s.find("[balanced]") != std::string::npos);
+    CHECK(std::count(s.begin(), s.end(), '\n') > 40);
+}
+
+TEST_CASE("--quality selects a preset; explicit flags win in any order", "[headless][quality]") {
+    auto bench = [](std::vector<std::string> extra) {
+        std::vector<std::string> args{"bench", "--width", "32", "--height", "24", "--frames", "1", "--warmup", "0", "--quiet"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const Run r = run(args);
+        REQUIRE(r.rc == kExitOk);
+        return r.out;
+    };
+    auto str = [](const std::string& json, const std::string& key) {
+        const auto at = json.find("\"" + key + "\":\"");
+        REQUIRE(at != std::string::npos);
+        const auto from = at + key.size() + 4;
+        return json.substr(from, json.find('"', from) - from);
+    };
+    const std::string fast = bench({"--quality", "fast"});
+    CHECK(numberOf(fast, "ssaa") == 1);
+    CHECK(str(fast, "filter") == "nearest");
+    CHECK(str(fast, "shading") == "gouraud");
+    CHECK(str(fast, "persp") == "affine");
+    const std::string balanced = bench({"--quality", "balanced"});
+    CHECK(numberOf(balanced, "ssaa") == 4);
+    CHECK(str(balanced, "filter") == "bilinear");
+    CHECK(str(balanced, "shading") == "phong");
+    CHECK(str(balanced, "persp") == "exact");
+    const std::string accurate = bench({"--quality=accurate"});
+    CHECK(numberOf(accurate, "ssaa") == 16);
+    CHECK(str(accurate, "filter") == "trilinear");
+    for (const auto& order : {std::vector<std::string>{"--shading", "flat", "--quality", "accurate", "--ssaa", "1"},
+                              std::vector<std::string>{"--ssaa", "1", "--quality", "accurate", "--shading", "flat"}}) {
+        CAPTURE(order);
+        const std::string mixed = bench(order);
+        CHECK(numberOf(mixed, "ssaa") == 1);
+        CHECK(str(mixed, "shading") == "flat");
+        CHECK(str(mixed, "filter") == "trilinear");
+        CHECK(str(mixed, "persp") == "exact");
+    }
+    const Run bad = run({"render", "--quality", "ultra"});
+    CHECK(bad.rc == kExitUsage);
+    CHECK(bad.err.find("bad value for --quality: 'ultra' (expected fast, balanced or accurate)") != std::string::npos);
 }
 
 TEST_CASE("render of the default scene matches its golden image", "[headless][golden]") {

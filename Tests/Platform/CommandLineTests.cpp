@@ -161,6 +161,31 @@ TEST_CASE("the demo renders on every hardware thread unless --threads says other
     CHECK(parseCommandLine({"--threads", "0"}).options.scene.threads == 0);
 }
 
+TEST_CASE("the demo starts at the balanced quality preset; --quality and explicit flags change it", "[platform]") {
+    using sr::demo::Quality;
+    const auto plain = parseCommandLine({});
+    REQUIRE(plain.ok);
+    CHECK(plain.options.scene.quality == Quality::Balanced);
+    CHECK(plain.options.scene.ssaa == sr::demo::qualitySettings(Quality::Balanced).ssaa);
+    CHECK(plain.options.scene.ssaa == 4);
+    const auto fast = parseCommandLine({"--quality", "fast"});
+    REQUIRE(fast.ok);
+    CHECK(fast.options.scene.ssaa == 1);
+    CHECK(fast.options.scene.filter == sr::TextureFilter::Nearest);
+    CHECK(fast.options.scene.shading == sr::ShadingMode::Gouraud);
+    CHECK(fast.options.scene.perspective == sr::PerspectiveMode::Affine);
+    // An explicit knob without --quality keeps the balanced preset for the others.
+    const auto one = parseCommandLine({"--ssaa", "1", "--filter", "trilinear"});
+    REQUIRE(one.ok);
+    CHECK(one.options.scene.ssaa == 1);
+    CHECK(one.options.scene.filter == sr::TextureFilter::Trilinear);
+    CHECK(one.options.scene.shading == sr::ShadingMode::Phong);
+    // A window too large for its sample target is not an error (it renders without SSAA).
+    CHECK(parseCommandLine({"--width", "8000"}).ok);
+    CHECK_FALSE(parseCommandLine({"--width", "8000", "--ssaa", "4"}).ok);
+    CHECK(sr::demo::actionForKey(sr::demo::Key::N) == sr::demo::Action::CycleAntialiasing);
+}
+
 TEST_CASE("--isa picks the span kernels; an unknown or unavailable one is refused", "[platform]") {
     CHECK(parseCommandLine({}).options.scene.isa == sr::bestIsa());
     const auto scalar = parseCommandLine({"--isa", "scalar"});

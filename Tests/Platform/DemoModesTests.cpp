@@ -21,7 +21,7 @@ DemoController makeController() { return DemoController(Camera{}, RenderSettings
 TEST_CASE("C cycles the cull mode none -> CW -> CCW -> none and the summary shows it", "[platform]") {
     DemoController c = makeController();
     CHECK(c.settings().cull == CullMode::None);
-    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact");
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 1");
     CHECK(c.keyDown(Key::C) == Action::CycleCull);
     CHECK(c.settings().cull == CullMode::CW);
     CHECK(c.modeSummary().rfind("cull CW |", 0) == 0);
@@ -41,7 +41,7 @@ TEST_CASE("auto-repeat does not flip a toggle again", "[platform]") {
     CHECK(c.settings().cull == CullMode::CW);
 }
 
-TEST_CASE("shading, filter and perspective cycle through every mode", "[platform]") {
+TEST_CASE("shading, filter, perspective and anti-aliasing cycle through every mode", "[platform]") {
     DemoController c = makeController();
     const ShadingMode shading[] = {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong};
     for (const ShadingMode m : shading) {
@@ -58,9 +58,17 @@ TEST_CASE("shading, filter and perspective cycle through every mode", "[platform
         c.keyDown(Key::P);
         CHECK(c.settings().perspective == p);
     }
+    for (const int samples : {4, 16, 1}) {
+        CHECK(c.keyDown(Key::N) == Action::CycleAntialiasing);
+        CHECK(c.settings().ssaa == samples);
+    }
+    c.keyDown(Key::N);
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 4");
+    c.keyDown(Key::N);
+    c.keyDown(Key::N);
     c.keyDown(Key::M);
     c.keyDown(Key::P);
-    CHECK(c.modeSummary() == "cull none | unlit | bilinear | affine");
+    CHECK(c.modeSummary() == "cull none | unlit | bilinear | affine | ssaa 1");
 }
 
 TEST_CASE("wireframe, depth view and help toggle; Quit and Screenshot are left to the platform", "[platform]") {
@@ -69,7 +77,7 @@ TEST_CASE("wireframe, depth view and help toggle; Quit and Screenshot are left t
     CHECK(c.settings().wireframe);
     c.keyDown(Key::Z);
     CHECK(c.depthView());
-    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | wireframe | depth view");
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 1 | wireframe | depth view");
     c.keyDown(Key::L);
     c.keyDown(Key::Z);
     CHECK_FALSE(c.settings().wireframe);
@@ -77,7 +85,7 @@ TEST_CASE("wireframe, depth view and help toggle; Quit and Screenshot are left t
     CHECK_FALSE(c.helpVisible());
     CHECK(c.keyDown(Key::F1) == Action::ToggleHelp);
     CHECK(c.helpVisible());
-    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | help");
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 1 | help");
     CHECK(c.keyDown(Key::Escape) == Action::Quit);
     CHECK(c.keyDown(Key::F12) == Action::Screenshot);
     CHECK(c.keyDown(Key::Unknown) == Action::None);
