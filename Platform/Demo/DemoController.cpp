@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace sr::demo {
 
@@ -31,16 +32,26 @@ Camera cameraFromSetup(const CameraSetup& setup) {
     return camera;
 }
 
-FrameView frameViewFor(const Camera& camera, int width, int height, Vec3 toLight) {
-    const float aspect = (width > 0 && height > 0) ? float(width) / float(height) : 1.0f;
-    FrameView v;
-    v.viewProj = camera.projection(aspect) * camera.view();
-    v.eye = camera.position();
-    v.finiteFar = !camera.infiniteFar();
-    const Vec3 l = normalize(toLight);
-    v.lighting.toLight = {isFinite(l) && length(l) > 0.5f ? l : Vec3(0.0f, 0.0f, 1.0f)};
-    return v;
+CameraSetup setupFromCamera(const Camera& camera) {
+    CameraSetup c;
+    c.eye = camera.position();
+    c.target = camera.position() + camera.forward();
+    c.up = {0.0f, 1.0f, 0.0f};
+    c.fovDegrees = double(camera.fovY()) * (180.0 / 3.14159265358979323846);
+    c.nearZ = camera.nearZ();
+    c.farZ = camera.infiniteFar() ? std::numeric_limits<double>::infinity() : double(camera.farZ());
+    return c;
 }
+
+namespace {
+
+// Same position, orientation, field of view and planes: the camera has not moved.
+bool samePose(const Camera& a, const Camera& b) {
+    return a.position() == b.position() && a.yaw() == b.yaw() && a.pitch() == b.pitch() && a.fovY() == b.fovY() &&
+           a.nearZ() == b.nearZ() && a.farZ() == b.farZ();
+}
+
+} // namespace
 
 const char* cullLabel(CullMode mode) {
     switch (mode) {
@@ -53,6 +64,16 @@ const char* cullLabel(CullMode mode) {
 
 DemoController::DemoController(const Camera& home, const RenderSettings& settings, Vec3 toLight, MotionTuning tuning)
     : home_(home), camera_(home), settings_(settings), toLight_(toLight), tuning_(tuning) {}
+
+DemoController::DemoController(const CameraSetup& home, const RenderSettings& settings, Vec3 toLight, MotionTuning tuning)
+    : DemoController(cameraFromSetup(home), settings, toLight, tuning) {
+    homeSetup_ = home;
+}
+
+CameraSetup DemoController::cameraSetup() const {
+    if (homeSetup_ && samePose(camera_, home_)) return *homeSetup_;
+    return setupFromCamera(camera_);
+}
 
 Action DemoController::keyDown(Key key, bool repeat) {
     if (key == Key::Unknown || key == Key::Count)

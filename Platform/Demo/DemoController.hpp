@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 
 #include "Platform/Demo/Input.hpp"
@@ -28,10 +29,10 @@ struct MotionTuning {
 // the fly camera's up is world +Y), with its field of view and near/far planes.
 Camera cameraFromSetup(const CameraSetup& setup);
 
-// The frame view of a camera for a width x height target: viewProj = projection(aspect) * view,
-// the eye, whether there is a far plane, and one directional light (direction TO the light,
-// normalised; the zero vector gives the default +Z light).
-FrameView frameViewFor(const Camera& camera, int width, int height, Vec3 toLight);
+// The fly camera as a setup for makeFrameView, the one view builder of the demo and the headless
+// command: eye = position, target = position + forward, up = world +Y, its field of view in
+// degrees and its near/far planes (+infinity without a far plane).
+CameraSetup setupFromCamera(const Camera& camera);
 
 // Short name of the cull mode, as the title bar shows it (perspective modes: perspectiveModeName).
 const char* cullLabel(CullMode mode); // "cull none", "cull CW", "cull CCW"
@@ -39,6 +40,10 @@ const char* cullLabel(CullMode mode); // "cull none", "cull CW", "cull CCW"
 class DemoController {
 public:
     DemoController(const Camera& home, const RenderSettings& settings, Vec3 toLight, MotionTuning tuning = {});
+    // Starts at the camera the flags resolve to (resolveCamera): until the camera moves, every
+    // frame's view is makeFrameView of exactly this setup, so the demo's first frames are the
+    // headless command's image of the same flags, bit for bit.
+    DemoController(const CameraSetup& home, const RenderSettings& settings, Vec3 toLight, MotionTuning tuning = {});
 
     // --- Input (already translated by the platform layer) -----------------------------------
     // A key went down (repeat = auto-repeat of a held key) or up. Returns the press's action;
@@ -64,13 +69,17 @@ public:
     const MotionTuning& tuning() const { return tuning_; }
     void resetView() { camera_ = home_; }
 
-    FrameView frameView(int width, int height) const { return frameViewFor(camera_, width, height, toLight_); }
+    // The camera as a setup for the one view builder (makeFrameView): the starting setup while
+    // the camera is where it started, else eye = position, target = position + forward, up = +Y.
+    CameraSetup cameraSetup() const;
+    FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_); }
 
     // "cull none | phong | bilinear | exact | ssaa 4" (+ " | wireframe", " | depth view", " | help").
     std::string modeSummary() const;
 
 private:
     Camera home_;
+    std::optional<CameraSetup> homeSetup_; // the exact starting setup, when constructed from one
     Camera camera_;
     RenderSettings settings_;
     Vec3 toLight_;

@@ -105,7 +105,7 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
     demo::MotionTuning tuning;
     if (!scene.builtIn)
         tuning.moveSpeed = float(std::max(scene.radius * 0.5, 1e-3));
-    demo::DemoController controller(demo::cameraFromSetup(setup), demo::makeRenderSettings(options.scene),
+    demo::DemoController controller(setup, demo::makeRenderSettings(options.scene),
                                     options.scene.light, tuning);
 
     win32::enableDpiAwareness(); // before any window exists

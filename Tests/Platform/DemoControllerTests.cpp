@@ -191,3 +191,36 @@ TEST_CASE("R resets the view", "[platform]") {
     CHECK(c.keyDown(Key::R) == Action::ResetView);
     CHECK(distance(c.camera().position(), start) == 0.0f);
 }
+
+TEST_CASE("one view builder: the demo's starting view is makeFrameView of the flags' camera, bit for bit",
+          "[platform]") {
+    // A camera the fly camera's yaw/pitch cannot represent exactly (an arbitrary direction).
+    CameraSetup setup;
+    setup.eye = {0.4f, 0.3f, 2.2f};
+    setup.target = {0.0f, 0.05f, 0.0f};
+    setup.up = {0.0f, 1.0f, 0.0f};
+    setup.fovDegrees = 60.0;
+    setup.nearZ = 0.5;
+    setup.farZ = 5.0;
+    const Vec3 light{1.0f, 1.0f, 1.0f};
+    DemoController c(setup, RenderSettings{}, light);
+    const FrameView ref = makeFrameView(setup, 960, 540, light);
+    const FrameView start = c.frameView(960, 540);
+    CHECK(start.viewProj == ref.viewProj);
+    CHECK(start.eye == ref.eye);
+    CHECK(start.finiteFar == ref.finiteFar);
+    REQUIRE(start.lighting.toLight.size() == 1);
+    CHECK(start.lighting.toLight[0] == ref.lighting.toLight[0]);
+    // The float yaw/pitch camera alone would not give these bits.
+    const FrameView viaYawPitch = makeFrameView(setupFromCamera(cameraFromSetup(setup)), 960, 540, light);
+    CHECK_FALSE(viaYawPitch.viewProj == ref.viewProj);
+    // Once it moves, the view follows the fly camera through the same builder; R brings the
+    // starting view back exactly.
+    c.keyDown(Key::W);
+    c.update(0.1);
+    c.keyUp(Key::W);
+    CHECK_FALSE(c.frameView(960, 540).viewProj == ref.viewProj);
+    CHECK(c.frameView(960, 540).viewProj == makeFrameView(setupFromCamera(c.camera()), 960, 540, light).viewProj);
+    c.keyDown(Key::R);
+    CHECK(c.frameView(960, 540).viewProj == ref.viewProj);
+}
