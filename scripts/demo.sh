@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # SoftRaster's demo command: installs what it needs, builds the Windows exe (MinGW) and starts it
-# under Wine in a window when a display is available. Without a display it renders the scene with
-# the headless command (softraster.exe render) and prints the image's path.
+# under Wine in a window when a display is available. Without a display it runs the same exe in
+# its real window on a private Xvfb display for 60 frames, saves a screenshot and prints its path.
 # Usage: scripts/demo.sh [SoftRaster.exe arguments...]
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -26,16 +26,18 @@ if [[ -n "${DISPLAY:-}" ]] && xdpyinfo >/dev/null 2>&1; then
   exec wine "$exe" "$@"
 fi
 
-# No display: render the same scene with the headless command (the Windows build, under Wine)
-# and print the image's path.
+# No display: the real window on a private Xvfb (Tests/EndToEnd/xsession.sh starts it and stops
+# it on exit), 60 frames, then the demo's own --screenshot of its last frame.
 out_dir="$root/build/artifacts"
 mkdir -p "$out_dir"
 shot="$out_dir/demo.png"
-echo "demo: no display found; rendering the scene headless with softraster.exe render"
-headless_args=()
-for a in "$@"; do
-  case "$a" in *.obj|*.OBJ) headless_args+=(--obj "$a") ;; *) headless_args+=("$a") ;; esac
-done
-wine "$root/build/mingw/bin/softraster.exe" render "${headless_args[@]}" --out "$(winepath -w "$shot" 2>/dev/null || echo "$shot")" >/dev/null
-[[ -s "$shot" ]] || { echo "demo: the headless render wrote no image" >&2; exit 1; }
-echo "demo: image of the scene: $shot"
+rm -f "$shot"
+e2e_name=demo
+# shellcheck source=../Tests/EndToEnd/xsession.sh
+source "$root/Tests/EndToEnd/xsession.sh"
+start_xvfb 80 89
+echo "demo: no display found; running $exe on a private Xvfb display ($DISPLAY) for 60 frames"
+wine "$exe" --frames 60 --screenshot "$(winepath -w "$shot" 2>/dev/null || echo "$shot")" "$@" || {
+  rc=$?; echo "demo: SoftRaster.exe exited with code $rc" >&2; exit "$rc"; }
+[[ -s "$shot" ]] || { echo "demo: SoftRaster.exe saved no screenshot" >&2; exit 1; }
+echo "demo: screenshot of the demo window: $shot"

@@ -2,17 +2,21 @@
 # SoftRaster's test command: installs what it needs, builds every preset that can be built on
 # Linux (native, native-asan, mingw) and runs every test (the mingw binaries under Wine), then
 # builds the fuzz preset and runs each libFuzzer target for 60 s (SR_FUZZ_SECONDS).
-# Usage: scripts/test.sh [preset...]     (default: native native-asan mingw)
+# Usage: scripts/test.sh [preset...]     (default: native native-asan mingw, then fuzz; named
+#        presets run alone, and the fuzz stage only when 'fuzz' is one of them)
 # Exit code 0 only if every build and every test passed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 
 if [[ "${1:-}" == "-h" || "${1:-}" == "--help" ]]; then
-  sed -n '2,6p' "$0" | sed 's/^# \{0,1\}//'; exit 0
+  sed -n '2,7p' "$0" | sed 's/^# \{0,1\}//'; exit 0
 fi
-presets=("$@")
-[[ ${#presets[@]} -gt 0 ]] || presets=(native native-asan mingw)
+presets=() run_fuzz=0
+for p in "$@"; do
+  if [[ "$p" == fuzz ]]; then run_fuzz=1; else presets+=("$p"); fi
+done
+[[ $# -gt 0 ]] || { presets=(native native-asan mingw); run_fuzz=1; }
 
 scripts/install-deps.sh test || exit 1
 
@@ -47,7 +51,9 @@ for preset in "${presets[@]}"; do
     result[$preset]="warnings"; continue
   fi
   echo "=== [$preset] test"
-  ctest --preset "$preset" 2>&1 | tee "build/$preset/ctest.log"
+  # In parallel: every Wine end-to-end test runs in a Wine prefix of its own (xsession.sh), and
+  # they share one resource lock among themselves (they time window events).
+  ctest --preset "$preset" -j "$jobs" 2>&1 | tee "build/$preset/ctest.log"
   rc=${PIPESTATUS[0]}
   # Catch2 prints its own count per binary; show them so the log proves which suites ran.
   if [[ -f "build/$preset/Testing/Temporary/LastTest.log" ]]; then
@@ -72,6 +78,7 @@ done
 # much faster machine, so SR_FUZZ_STRICT=0 reports findings without failing (e.g. to finish a
 # run while triaging one). A fuzz build failure always fails.
 fuzz_seconds=${SR_FUZZ_SECONDS:-60}
+if [[ $run_fuzz -eq 1 ]]; then
 echo "=== [fuzz] configure + build"
 t0=$SECONDS
 fuzz_pass=0; fuzz_fail=0
@@ -112,6 +119,7 @@ else
   fi
 fi
 presets+=(fuzz)
+fi
 
 echo
 echo "=== summary ($((SECONDS - start_all)) s)"

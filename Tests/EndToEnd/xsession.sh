@@ -18,14 +18,29 @@ fail() {
   exit 1
 }
 
-xvfb_pid="" wm_pid="" app_pid="" win=""
+xvfb_pid="" wm_pid="" app_pid="" win="" private_prefix=""
 e2e_cleanup() {
-  # Only the processes this script started: the app (if still running), the WM and Xvfb.
+  # Only the processes this script started: the app (if still running), the WM and Xvfb, and
+  # the wineserver of our private prefix.
   if [[ -n "$app_pid" ]] && kill -0 "$app_pid" 2>/dev/null; then kill "$app_pid" 2>/dev/null || true; fi
+  if [[ -n "$private_prefix" ]]; then WINEPREFIX=$private_prefix wineserver -k 2>/dev/null || true; fi
   if [[ -n "$wm_pid" ]]; then kill "$wm_pid" 2>/dev/null || true; wait "$wm_pid" 2>/dev/null || true; fi
   if [[ -n "$xvfb_pid" ]]; then kill "$xvfb_pid" 2>/dev/null || true; wait "$xvfb_pid" 2>/dev/null || true; fi
+  if [[ -n "$private_prefix" ]]; then rm -rf "$private_prefix"; fi
 }
 trap e2e_cleanup EXIT
+
+# A Wine prefix of this test's own, so that its wineserver and desktop are started here, with
+# this test's DISPLAY. In a shared prefix a console test (ctest -j) or an earlier run may have
+# started the wineserver without a display, and a window then cannot be created (error 1400).
+# The wineserver is per prefix directory, so a hard-linked copy of $WINEPREFIX (fast, no disk)
+# gets its own; Wine replaces the registry files it saves (rename), never writes through the links.
+if [[ -n "${WINEPREFIX:-}" && -f "$WINEPREFIX/system.reg" ]]; then
+  private_prefix="${WINEPREFIX%/}-$e2e_name-$$"
+  rm -rf "$private_prefix"
+  cp -al "$WINEPREFIX" "$private_prefix" 2>/dev/null || cp -a "$WINEPREFIX" "$private_prefix"
+  export WINEPREFIX=$private_prefix
+fi
 
 # start_xvfb FIRST LAST: a 1280x800 Xvfb on the first free display number in FIRST..LAST, exported
 # as DISPLAY. Each test has its own range; another run on the same machine may still take the
