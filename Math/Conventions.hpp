@@ -64,7 +64,9 @@ static_assert(FLT_EVAL_METHOD == 0, "SoftRaster needs float/double evaluated at 
 
 namespace sr {
 
-inline constexpr float kPi = 3.14159265358979323846f;
+// Pi, written out once: kPiD in double, kPi its float rounding.
+inline constexpr double kPiD = 3.14159265358979323846;
+inline constexpr float kPi = float(kPiD);
 
 constexpr float radians(float degrees) { return degrees * (kPi / 180.0f); }
 constexpr float degrees(float radians) { return radians * (180.0f / kPi); }

@@ -6,22 +6,14 @@
 #include <cmath>
 #include <limits>
 
+#include "Math/Conventions.hpp"
+#include "Math/DoubleMath.hpp"
+
 namespace sr {
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
-
-// Double-precision 3-vector for the internal computations of lookAt and rotate.
-struct D3 {
-    double x, y, z;
-};
-D3 toD3(Vec3 v) { return {v.x, v.y, v.z}; }
-D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-// Float inputs squared cannot overflow or underflow double (|x| <= 3.4e38, >= 1.4e-45).
-double norm(D3 a) { return std::sqrt(dot(a, a)); }
+// lookAt and rotate compute in double (Math/DoubleMath.hpp's Vec3d).
+double norm(Vec3d a) { return length(a); }
 
 // double -> float, with values beyond the float range becoming +-Inf explicitly (the plain
 // conversion is undefined behaviour there) and NaN staying NaN.
@@ -116,10 +108,10 @@ Mat4 scale(Vec3 s) {
 }
 
 Mat4 rotate(float radians, Vec3 axis) {
-    const D3 a = toD3(axis);
+    const Vec3d a = Vec3d(axis);
     const double len = norm(a);
     if (len == 0.0) return Mat4::identity();
-    const D3 k = a * (1.0 / len); // NaN for a non-finite axis: propagates into the matrix
+    const Vec3d k = a * (1.0 / len); // NaN for a non-finite axis: propagates into the matrix
     const double theta = radians;
     const double c = std::cos(theta), s = std::sin(theta);
     const double h = std::sin(theta / 2.0);
@@ -148,14 +140,14 @@ Mat4 lookAt(Vec3 eye, Vec3 target, Vec3 up) {
     constexpr double kParallelSine = 1e-6; // |f x up| / |up| at or below this: up is unusable
 
     // Forward direction; eye == target falls back to the default -Z.
-    const D3 e = toD3(eye);
-    D3 f = toD3(target) - e;
+    const Vec3d e = Vec3d(eye);
+    Vec3d f = Vec3d(target) - e;
     const double fLen = norm(f);
-    f = fLen > 0.0 ? f * (1.0 / fLen) : D3{0.0, 0.0, -1.0};
+    f = fLen > 0.0 ? f * (1.0 / fLen) : Vec3d{0.0, 0.0, -1.0};
 
     // Side = forward x up, with the documented fallbacks for a zero or parallel up.
-    D3 u0 = toD3(up);
-    D3 s = cross(f, u0);
+    Vec3d u0 = Vec3d(up);
+    Vec3d s = cross(f, u0);
     const double upLen = norm(u0);
     if (!(upLen > 0.0) || norm(s) <= kParallelSine * upLen) {
         u0 = {0.0, 1.0, 0.0};
@@ -168,10 +160,10 @@ Mat4 lookAt(Vec3 eye, Vec3 target, Vec3 up) {
     // With sin(f, up) > 1e-6 the double cross product is orthogonal to f to ~1e-16 / 1e-6 = 1e-10,
     // far below float's rounding, so no Gram-Schmidt pass is needed.
     s = s * (1.0 / norm(s));
-    const D3 u = cross(s, f); // unit and orthogonal to both, up to double rounding
+    const Vec3d u = cross(s, f); // unit and orthogonal to both, up to double rounding
 
     Mat4 m = Mat4::identity();
-    const D3 rows[3] = {s, u, f * -1.0};
+    const Vec3d rows[3] = {s, u, f * -1.0};
     for (int r = 0; r < 3; ++r) {
         m(r, 0) = roundToFloat(rows[r].x);
         m(r, 1) = roundToFloat(rows[r].y);

@@ -9,7 +9,6 @@ namespace sr {
 
 namespace {
 
-constexpr double kPiD = 3.14159265358979323846;
 
 float clampCoordinate(double v) {
     const double m = Camera::kMaxCoordinate;

@@ -7,6 +7,7 @@
 #include <istream>
 #include <unordered_map>
 
+#include "Math/DoubleMath.hpp"
 #include "Resources/FileIO.hpp"
 #include "Resources/ObjMaterials.hpp"
 #include "Resources/ObjScan.hpp"
@@ -15,20 +16,12 @@ namespace sr {
 
 namespace {
 
-// Double-precision vector for the normal arithmetic (glref's V3).
-struct D3 {
-    double x = 0, y = 0, z = 0;
-};
-D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-
-// glref's normalize_or: a / |a|, or the fallback when the length is zero or not finite.
-D3 normalizeOr(D3 a, D3 fallback) {
-    const double l = std::sqrt(a.x * a.x + a.y * a.y + a.z * a.z);
+// glref's normalize_or (normals in double, as glref's V3): a / |a|, or the fallback when the
+// length is zero or not finite.
+Vec3d normalizeOr(Vec3d a, Vec3d fallback) {
+    const double l = length(a);
     if (!(l > 0.0) || !std::isfinite(l)) return fallback;
-    const double s = 1.0 / l;
-    return {a.x * s, a.y * s, a.z * s};
+    return a * (1.0 / l);
 }
 
 // De-duplication key: the (v, vn, vt) triple of a face-vertex, hashed as glref does.
@@ -153,7 +146,7 @@ Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, con
 
     const auto P = [&](int i) {
         const std::size_t k = std::size_t(i) * 3;
-        return D3{attrib.vertices[k], attrib.vertices[k + 1], attrib.vertices[k + 2]};
+        return Vec3d{attrib.vertices[k], attrib.vertices[k + 1], attrib.vertices[k + 2]};
     };
 
     // 4. Bounds of ALL 'v' entries (the auto-fit camera's sphere uses them, used or not).
@@ -167,21 +160,21 @@ Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, con
     }
 
     // 5. Area-weighted vertex normals per position index, for face-vertices without a 'vn'.
-    std::vector<D3> accum(nv);
+    std::vector<Vec3d> accum(nv);
     bool anyMissingNormal = false, anyFileNormal = false;
     for (const auto& sh : shapes) {
         const auto& idx = sh.mesh.indices;
         for (std::size_t f = 0; f + 2 < idx.size(); f += 3) {
-            const D3 a = P(idx[f].vertex_index), b = P(idx[f + 1].vertex_index), c = P(idx[f + 2].vertex_index);
-            const D3 n = cross(b - a, c - a);
+            const Vec3d a = P(idx[f].vertex_index), b = P(idx[f + 1].vertex_index), c = P(idx[f + 2].vertex_index);
+            const Vec3d n = cross(b - a, c - a);
             for (int k = 0; k < 3; ++k) {
-                D3& acc = accum[std::size_t(idx[f + k].vertex_index)];
+                Vec3d& acc = accum[std::size_t(idx[f + k].vertex_index)];
                 acc = acc + n;
                 (idx[f + k].normal_index < 0 ? anyMissingNormal : anyFileNormal) = true;
             }
         }
     }
-    for (auto& n : accum) n = normalizeOr(n, D3{0, 0, 1});
+    for (auto& n : accum) n = normalizeOr(n, Vec3d{0, 0, 1});
     model.normalsFromFile = anyFileNormal && !anyMissingNormal;
     model.hasUvs = nt > 0;
 
@@ -250,13 +243,13 @@ Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, con
                 const auto vi = std::uint32_t(mesh.positions.size());
                 dedup.emplace(key, vi);
                 mesh.indices[out++] = vi;
-                const D3 p = P(ix.vertex_index);
+                const Vec3d p = P(ix.vertex_index);
                 mesh.positions.emplace_back(float(p.x), float(p.y), float(p.z));
-                const D3 vnorm = accum[std::size_t(ix.vertex_index)];
-                D3 n = vnorm;
+                const Vec3d vnorm = accum[std::size_t(ix.vertex_index)];
+                Vec3d n = vnorm;
                 if (ix.normal_index >= 0) {
                     const std::size_t ni = std::size_t(ix.normal_index) * 3;
-                    n = normalizeOr(D3{attrib.normals[ni], attrib.normals[ni + 1], attrib.normals[ni + 2]}, vnorm);
+                    n = normalizeOr(Vec3d{attrib.normals[ni], attrib.normals[ni + 1], attrib.normals[ni + 2]}, vnorm);
                 }
                 mesh.normals.emplace_back(float(n.x), float(n.y), float(n.z));
                 if (model.hasUvs) {

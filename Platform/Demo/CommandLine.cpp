@@ -11,7 +11,7 @@ namespace sr::demo {
 
 namespace {
 
-// Parses a whole string as a decimal integer in [1, kMaxFrames]; no sign, no spaces, no suffix.
+// Parses a whole string as a decimal integer in [1, kMaxDemoFrames]; no sign, no spaces, no suffix.
 std::optional<long long> parseFrameCount(const std::string& text) {
     if (text.empty() || text.size() > 10)
         return std::nullopt;
@@ -21,7 +21,7 @@ std::optional<long long> parseFrameCount(const std::string& text) {
             return std::nullopt;
         value = value * 10 + (c - '0');
     }
-    if (value < 1 || value > kMaxFrames)
+    if (value < 1 || value > kMaxDemoFrames)
         return std::nullopt;
     return value;
 }
@@ -75,7 +75,7 @@ ParseResult parseCommandLine(const std::vector<std::string>& args) {
             const std::optional<long long> n = parseFrameCount(*value);
             if (!n)
                 return failure("bad value for --frames: '" + *value + "' (expected an integer from 1 to " +
-                               std::to_string(kMaxFrames) + ")");
+                               std::to_string(kMaxDemoFrames) + ")");
             o.frames = n;
             continue;
         }

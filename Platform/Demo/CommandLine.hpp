@@ -41,11 +41,11 @@ struct ParseResult {
 };
 
 // Largest accepted --frames value (about 1 year at 60 Hz: plenty, and far from overflow).
-inline constexpr long long kMaxFrames = 2'000'000'000LL;
+inline constexpr long long kMaxDemoFrames = 2'000'000'000LL;
 
 // Parses the arguments that follow the program name (UTF-8). Accepts one positional model path
 // (like --obj), every flag of parseSceneFlag, "--frames N" / "--frames=N" (1 <= N <=
-// kMaxFrames), "--screenshot PATH" / "--screenshot=PATH", "--help", "-h" and "/?". Anything else
+// kMaxDemoFrames), "--screenshot PATH" / "--screenshot=PATH", "--help", "-h" and "/?". Anything else
 // is an error, and so is a combination validateSceneOptions refuses.
 ParseResult parseCommandLine(const std::vector<std::string>& args);
 

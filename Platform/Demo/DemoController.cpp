@@ -37,7 +37,7 @@ CameraSetup setupFromCamera(const Camera& camera) {
     c.eye = camera.position();
     c.target = camera.position() + camera.forward();
     c.up = {0.0f, 1.0f, 0.0f};
-    c.fovDegrees = double(camera.fovY()) * (180.0 / 3.14159265358979323846);
+    c.fovDegrees = double(camera.fovY()) * (180.0 / kPiD);
     c.nearZ = camera.nearZ();
     c.farZ = camera.infiniteFar() ? std::numeric_limits<double>::infinity() : double(camera.farZ());
     return c;

@@ -1,5 +1,7 @@
-// The scene and quality flags shared by the headless command and SoftRaster.exe (same names,
-// meanings and defaults as the llvmpipe reference renderer's, shared/tools/llvmpipe-ref).
+// The scene and quality flags shared by the headless command and SoftRaster.exe. The scene flags
+// have the names, meanings and defaults of the llvmpipe reference renderer's
+// (shared/tools/llvmpipe-ref); the quality flags (--filter, --wrap, --persp, --ssaa, --quality,
+// --isa) are ours.
 #pragma once
 
 #include <optional>

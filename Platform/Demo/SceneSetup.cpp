@@ -2,12 +2,13 @@
 #include "Platform/Demo/SceneSetup.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 
+#include "Math/Conventions.hpp"
+#include "Math/DoubleMath.hpp"
 #include "Raster/Camera.hpp"
 #include "Resources/DefaultScene.hpp"
 #include "Resources/Image.hpp"
@@ -38,50 +39,34 @@ Scene sceneFromModel(Model&& model, Color kd) {
     return scene;
 }
 
-// Double-precision 4x4 (row-major here, local to this file) for the reference's MVP precision.
-struct M4d {
-    double m[4][4] = {};
-};
-
-M4d mul(const M4d& a, const M4d& b) {
-    M4d r;
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j)
-            for (int k = 0; k < 4; ++k) r.m[i][j] += a.m[i][k] * b.m[k][j];
-    return r;
-}
-
 // gluLookAt in double (right-handed, looking down -Z).
-M4d lookAtD(Vec3 eye, Vec3 target, Vec3 up) {
-    auto sub = [](Vec3 a, Vec3 b) { return std::array<double, 3>{double(a.x) - b.x, double(a.y) - b.y, double(a.z) - b.z}; };
-    auto norm = [](std::array<double, 3> v) {
-        const double l = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-        return l > 0 ? std::array<double, 3>{v[0] / l, v[1] / l, v[2] / l} : v;
+Mat4d lookAtD(Vec3 eye, Vec3 target, Vec3 up) {
+    auto norm = [](Vec3d v) {
+        const double l = length(v);
+        return l > 0 ? v / l : v;
     };
-    auto crossD = [](std::array<double, 3> a, std::array<double, 3> b) {
-        return std::array<double, 3>{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-    };
-    const auto f = norm(sub(target, eye));
-    const auto s = norm(crossD(f, {double(up.x), double(up.y), double(up.z)}));
-    const auto u = crossD(s, f);
-    const double e[3] = {eye.x, eye.y, eye.z};
-    M4d v;
-    for (int c = 0; c < 3; ++c) {
-        v.m[0][c] = s[std::size_t(c)];
-        v.m[1][c] = u[std::size_t(c)];
-        v.m[2][c] = -f[std::size_t(c)];
+    const Vec3d e(eye);
+    const Vec3d f = norm(Vec3d(target) - e);
+    const Vec3d s = norm(cross(f, Vec3d(up)));
+    const Vec3d u = cross(s, f);
+    Mat4d v;
+    const Vec3d rows[3] = {s, u, f * -1.0};
+    for (int r = 0; r < 3; ++r) {
+        v.m[r][0] = rows[r].x;
+        v.m[r][1] = rows[r].y;
+        v.m[r][2] = rows[r].z;
     }
-    v.m[0][3] = -(s[0] * e[0] + s[1] * e[1] + s[2] * e[2]);
-    v.m[1][3] = -(u[0] * e[0] + u[1] * e[1] + u[2] * e[2]);
-    v.m[2][3] = f[0] * e[0] + f[1] * e[1] + f[2] * e[2];
+    v.m[0][3] = -dot(s, e);
+    v.m[1][3] = -dot(u, e);
+    v.m[2][3] = dot(f, e);
     v.m[3][3] = 1.0;
     return v;
 }
 
 // Reversed-Z perspective (Math/Transform.hpp's formula) in double; far may be +infinity.
-M4d perspectiveD(double fovDeg, double aspect, double n, double f) {
-    const double cot = 1.0 / std::tan(fovDeg * 3.14159265358979323846 / 360.0);
-    M4d p;
+Mat4d perspectiveD(double fovDeg, double aspect, double n, double f) {
+    const double cot = 1.0 / std::tan(fovDeg * kPiD / 360.0);
+    Mat4d p;
     p.m[0][0] = cot / aspect;
     p.m[1][1] = cot;
     p.m[2][2] = std::isinf(f) ? 0.0 : n / (f - n);
@@ -183,7 +168,7 @@ CameraSetup resolveCamera(const SceneOptions& o, const LoadedScene& s) {
         return c;
     }
     const double aspect = double(o.width) / double(o.height);
-    const double halfV = o.fovDegrees * 3.14159265358979323846 / 360.0;
+    const double halfV = o.fovDegrees * kPiD / 360.0;
     const double half = std::min(halfV, std::atan(std::tan(halfV) * aspect));
     const double dist = s.radius / std::sin(half);
     c.eye = c.target + Vec3(0.0f, 0.0f, float(dist));
@@ -203,7 +188,7 @@ FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light)
     // As Camera::setNearFar: near clamped into Camera's range, a far not beyond it is infinite.
     const double nearZ = usableNear(c.nearZ);
     const double farZ = c.farZ > nearZ ? c.farZ : std::numeric_limits<double>::infinity();
-    const M4d mvp = mul(perspectiveD(c.fovDegrees, aspect, nearZ, farZ), lookAtD(c.eye, c.target, c.up));
+    const Mat4d mvp = perspectiveD(c.fovDegrees, aspect, nearZ, farZ) * lookAtD(c.eye, c.target, c.up);
     FrameView v;
     for (int r = 0; r < 4; ++r)
         for (int col = 0; col < 4; ++col) v.viewProj(r, col) = float(mvp.m[r][col]);

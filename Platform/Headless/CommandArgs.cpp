@@ -13,7 +13,7 @@ std::optional<int> parseCount(const std::string& text) {
     char* end = nullptr;
     errno = 0;
     const long v = std::strtol(text.c_str(), &end, 10);
-    if (end != text.c_str() + text.size() || errno == ERANGE || v < 0 || v > kMaxFrames) return std::nullopt;
+    if (end != text.c_str() + text.size() || errno == ERANGE || v < 0 || v > kMaxTimedFrames) return std::nullopt;
     return int(v);
 }
 
@@ -127,7 +127,7 @@ ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& 
             const auto n = parseCount(*v);
             if (!n || (flag == "--frames" && *n < 1))
                 return fail("bad value for " + flag + ": '" + *v + "' (expected an integer from " +
-                            (flag == "--frames" ? "1" : "0") + " to " + std::to_string(kMaxFrames) + ")");
+                            (flag == "--frames" ? "1" : "0") + " to " + std::to_string(kMaxTimedFrames) + ")");
             (flag == "--frames" ? a.frames : a.warmup) = *n;
         } else if (report && flag == "--rounds") {
             const auto v = need();

@@ -29,8 +29,9 @@ struct CommandArgs {
     bool help = false;
 };
 
-// Largest accepted --frames / --warmup.
-inline constexpr int kMaxFrames = 1000000;
+// Largest accepted --frames / --warmup of bench and report (timed frames; the demo's --frames,
+// frames to run before exiting, has its own limit: kMaxDemoFrames).
+inline constexpr int kMaxTimedFrames = 1000000;
 
 struct ParsedArgs {
     std::optional<CommandArgs> args;

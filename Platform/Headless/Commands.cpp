@@ -1,4 +1,4 @@
-// `softraster render` and `softraster bench`, their shared argument parsing, and the dispatch.
+// `softraster render` and `softraster bench` (their arguments: CommandArgs.cpp), and the dispatch to them and to report.
 #include "Platform/Headless/Commands.hpp"
 
 #include <cmath>

@@ -9,9 +9,9 @@
 #include <sstream>
 #include <thread>
 
-#include "Platform/Demo/ImageCompare.hpp"
 #include "Platform/Headless/CommandArgs.hpp"
 #include "Platform/Headless/Commands.hpp"
+#include "Platform/Headless/ImageCompare.hpp"
 #include "Platform/Headless/Timing.hpp"
 #include "Raster/Resolve.hpp"
 #include "Resources/FileIO.hpp"
@@ -29,7 +29,7 @@ struct Row {
     Setting setting;
     TimingSummary time;        // median / min over the rounds' per-round medians
     double maxMs = 0.0;        // max over the rounds
-    demo::ImageError error;    // against the ground truth
+    ImageError error;    // against the ground truth
 };
 
 // The ground truth: 16 samples per pixel (4x4, each shaded), exact perspective, trilinear
@@ -103,7 +103,7 @@ std::vector<bool> paretoFront(const std::vector<Row>& rows) {
 // and the presets labelled, every other combination a grey dot.
 std::string svgPlot(const std::vector<Row>& rows, const std::vector<bool>& front, bool textured,
                     const std::string& title) {
-    const double W = 860, H = 520, left = 70, right = 40, top = 40, bottom = 60;
+    const double W = 900, H = 560, left = 70, right = 60, top = 62, bottom = 60;
     double tMin = 1e300, tMax = 0, eMax = 0;
     for (const Row& r : rows) {
         tMin = std::min(tMin, r.time.median);
@@ -147,12 +147,15 @@ std::string svgPlot(const std::vector<Row>& rows, const std::vector<bool>& front
         const bool named = front[i] || r.setting.preset;
         s << "<circle cx='" << x << "' cy='" << y << "' r='" << (named ? 5 : 3) << "' fill='"
           << (r.setting.preset ? "#c33" : front[i] ? "#2a7" : "#aaa") << "'/>\n";
+        // Labels to the right of their point, or to its left near the right edge.
+        const bool leftOf = x > W - right - 220;
         if (named)
-            s << "<text x='" << x + 7 << "' y='" << y - 6 << "'>" << label(r.setting, textured)
+            s << "<text x='" << (leftOf ? x - 8 : x + 8) << "' y='" << y - 6 << "' text-anchor='"
+              << (leftOf ? "end" : "start") << "'>" << label(r.setting, textured)
               << (r.setting.preset ? std::string(" [") + demo::qualityName(*r.setting.preset) + "]" : "") << "</text>\n";
     }
-    s << "<text x='" << W - right - 10 << "' y='" << top + 10
-      << "' text-anchor='end'>green: Pareto front; red: --quality presets; grey: the other combinations</text>\n</svg>\n";
+    s << "<text x='" << W / 2 << "' y='42' text-anchor='middle'>green: Pareto front; red: the --quality presets; "
+      << "grey: the other combinations</text>\n</svg>\n";
     return s.str();
 }
 
@@ -186,12 +189,12 @@ int runReport(const std::vector<std::string>& args, Streams io) {
 
     const std::vector<Setting> settings = settingsToMeasure(p.settings, textured);
     // Images first (the error does not depend on timing), the ground truth first of all.
-    std::vector<demo::ImageError> errors(settings.size());
+    std::vector<ImageError> errors(settings.size());
     FrameBuffer truth;
     for (std::size_t k = 0; k < settings.size(); ++k) {
         demo::renderFrame(p.context, p.scene, p.view, settings[k].settings);
         if (k == 0) truth = p.framebuffer;
-        errors[k] = demo::compareImages(truth, p.framebuffer);
+        errors[k] = compareImages(truth, p.framebuffer);
     }
     // Timing: rounds, each timing every setting once in turn (interleaved, so a slow spell of a
     // shared machine hits every setting alike); per setting the median, min and max of its

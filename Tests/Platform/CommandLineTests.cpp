@@ -29,7 +29,7 @@ TEST_CASE("--frames N and --frames=N", "[platform]") {
 
     r = parseCommandLine({"--frames", "2000000000"});
     REQUIRE(r.ok);
-    CHECK(r.options.frames == sr::demo::kMaxFrames);
+    CHECK(r.options.frames == sr::demo::kMaxDemoFrames);
 }
 
 TEST_CASE("--help, -h and /? ask for help", "[platform]") {

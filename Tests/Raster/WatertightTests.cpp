@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "Math/Conventions.hpp"
 #include "RasterTestUtil.hpp"
 #include "ReferenceRasterizer.hpp"
 
@@ -158,7 +159,7 @@ TEST_CASE("fans of 64+ triangles around one vertex tile their rectangle exactly 
 
 TEST_CASE("a 360-degree fan of 96 triangles around a pixel centre has no holes or double hits", "[raster][watertight]") {
     const int n = 96;
-    const double cx = 32.5, cy = 32.5, r = 25.0, pi = 3.14159265358979323846;
+    const double cx = 32.5, cy = 32.5, r = 25.0, pi = kPiD;
     std::vector<ScreenVertex> ring;
     for (int k = 0; k < n; ++k)
         ring.push_back(vtx(float(cx + r * std::cos(2 * pi * k / n)), float(cy + r * std::sin(2 * pi * k / n))));

@@ -6,6 +6,7 @@
 #include <limits>
 #include <vector>
 
+#include "Math/DoubleMath.hpp"
 #include "Raster/FixedPoint.hpp"
 #include "Raster/Pipeline.hpp"
 #include "Raster/Viewport.hpp"
@@ -17,14 +18,6 @@ namespace {
 constexpr int kSize = 256;              // framebuffer kSize x kSize, and the texture is kSize texels wide
 constexpr double kTexels = 256.0;       // uv error * kTexels = error in texels of a 256 x 256 texture
 constexpr double kExactTolerance = 1.0 / 256.0; // texels
-
-struct D3 {
-    double x, y, z;
-};
-D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 
 // The quad, in view space (camera at the origin looking down -Z). The projection is the plainest
 // one: 90 degree field of view, aspect 1, so x_ndc = X / -Z, y_ndc = Y / -Z, w = -Z; clip z is a
@@ -40,7 +33,7 @@ D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x
 // P2 - P1 = P3 - P0 = (0.125, 1.5625, 0): a planar parallelogram with an affine uv (u along
 // E1 = P1 - P0, v along E2 = P3 - P0), tilted so that depth changes along every scanline (the
 // near edge P0P3 at w = 1 is not horizontal on screen) with a depth ratio of 4.
-const D3 kP[4] = {{-0.875, -0.75, -1.0}, {2.0, -0.5, -4.0}, {2.125, 1.0625, -4.0}, {-0.75, 0.8125, -1.0}};
+const Vec3d kP[4] = {{-0.875, -0.75, -1.0}, {2.0, -0.5, -4.0}, {2.125, 1.0625, -4.0}, {-0.75, 0.8125, -1.0}};
 const float kUv[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
 const double kPixel[4][2] = {{16, 224}, {192, 144}, {196, 94}, {32, 24}};
 const std::uint32_t kIndices[6] = {0, 1, 2, 0, 2, 3};
@@ -48,16 +41,16 @@ const std::uint32_t kIndices[6] = {0, 1, 2, 0, 2, 3};
 // The analytic mapping: the ray through a pixel centre meets the quad's plane; uv = the affine
 // coordinates of the hit point in the (E1, E2) frame, via the dual basis of (E1, E2).
 struct Analytic {
-    D3 e1 = kP[1] - kP[0], e2 = kP[3] - kP[0];
-    D3 n = cross(e1, e2);
-    D3 dual[2];
+    Vec3d e1 = kP[1] - kP[0], e2 = kP[3] - kP[0];
+    Vec3d n = cross(e1, e2);
+    Vec3d dual[2];
     Analytic() {
         const double g11 = dot(e1, e1), g12 = dot(e1, e2), g22 = dot(e2, e2), det = g11 * g22 - g12 * g12;
         dual[0] = (e1 * g22 - e2 * g12) * (1.0 / det); // dual[0].e1 = 1, dual[0].e2 = 0
         dual[1] = (e2 * g11 - e1 * g12) * (1.0 / det); // dual[1].e1 = 0, dual[1].e2 = 1
     }
     // View direction through the screen point (px, py) (pixels, y down), with z = -1.
-    static D3 dir(double px, double py) { return {px * (2.0 / kSize) - 1.0, 1.0 - py * (2.0 / kSize), -1.0}; }
+    static Vec3d dir(double px, double py) { return {px * (2.0 / kSize) - 1.0, 1.0 - py * (2.0 / kSize), -1.0}; }
     // Q = 1/w at the hit point: hit = dir * t with n.(hit - P0) = 0 -> t = n.P0 / n.dir, w = t.
     double invW(double px, double py) const { return dot(n, dir(px, py)) / dot(n, kP[0]); }
     // uv_k = dual_k . (hit - P0) = dual_k . dir / Q - dual_k . P0.

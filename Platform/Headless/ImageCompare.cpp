@@ -1,12 +1,12 @@
 // Image error metrics: mean absolute error, and MSE over the colour channels -> PSNR = 10 log10(255^2 / MSE).
-#include "Platform/Demo/ImageCompare.hpp"
+#include "Platform/Headless/ImageCompare.hpp"
 
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
 
-namespace sr::demo {
+namespace sr::headless {
 
 ImageError compareImages(const FrameBuffer& reference, const FrameBuffer& test) {
     assert(reference.width() == test.width() && reference.height() == test.height());
@@ -34,4 +34,4 @@ ImageError compareImages(const FrameBuffer& reference, const FrameBuffer& test) 
     return e;
 }
 
-} // namespace sr::demo
+} // namespace sr::headless

@@ -5,7 +5,7 @@
 
 #include "Raster/FrameBuffer.hpp"
 
-namespace sr::demo {
+namespace sr::headless {
 
 struct ImageError {
     double meanAbs = 0.0;       // mean absolute difference per R, G, B channel, in levels (0..255)
@@ -18,4 +18,4 @@ struct ImageError {
 // Compares the colour buffers of two framebuffers of the same size (asserted).
 ImageError compareImages(const FrameBuffer& reference, const FrameBuffer& test);
 
-} // namespace sr::demo
+} // namespace sr::headless
