@@ -95,7 +95,11 @@ struct UnlitProgram {
     }
 };
 
-// Flat: lit ONCE per triangle (face normal, view vector at the centroid) in triangle().
+// Flat: lit ONCE per triangle (face normal, view vector at the centroid), lazily: triangle()
+// only notes the triangle, and the lighting runs when its first fragment passes the depth test
+// (ensureLit, from fragment() or the kernel), so a triangle hidden behind others, or facing away
+// in a scene drawn without culling, costs no lighting. Same values as lighting in triangle().
+// The lazy state is per program copy: every render lane has its own.
 template <bool kTextured>
 struct FlatProgram {
     static constexpr ShadingMode kMode = ShadingMode::Flat;
@@ -103,19 +107,28 @@ struct FlatProgram {
     static constexpr int kVaryings = kTextured ? 2 : 0;
     const DrawContext* d;
     const TriangleSetup* setup = nullptr;
-    LightTerms terms;
-    Pixel flat = 0;
+    std::size_t tri = 0;
+    mutable bool lit = false;
+    mutable LightTerms terms;
+    mutable Pixel flat = 0;
     explicit FlatProgram(const DrawContext* dc) : d(dc) {}
     void vertex(std::size_t i, ClipVertex& out) const { transformVertex<kTextured>(*d, i, out); }
     void triangle(std::size_t t, const TriangleSetup& s) {
         setup = &s;
-        const Vec3 p0 = d->mesh.positions[d->indices[3 * t]], p1 = d->mesh.positions[d->indices[3 * t + 1]],
-                   p2 = d->mesh.positions[d->indices[3 * t + 2]];
+        tri = t;
+        lit = false;
+    }
+    void ensureLit() const {
+        if (lit) return;
+        lit = true;
+        const Vec3 p0 = d->mesh.positions[d->indices[3 * tri]], p1 = d->mesh.positions[d->indices[3 * tri + 1]],
+                   p2 = d->mesh.positions[d->indices[3 * tri + 2]];
         const Vec3 centroid = (p0 + p1 + p2) / 3.0f;
         terms = blinnPhong(d->view.lighting, faceNormal(p0, p1, p2), normalize(d->view.eye - centroid));
         if constexpr (!kTextured) flat = packBgra8(applyTerms(d->kd, terms));
     }
     Pixel fragment(const Fragment<kVaryings>& f) const {
+        ensureLit();
         if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), terms));
         else return flat;
     }

@@ -349,6 +349,7 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
     if constexpr (Prog::kMode == ShadingMode::Unlit) {
         out = packBgra8(kd);
     } else if constexpr (Prog::kMode == ShadingMode::Flat) {
+        p.ensureLit(); // FlatProgram lights on its first shaded fragment
         out = packBgra8(applyTerms(kd, Terms{fset(p.terms.diffuse), fset(p.terms.specular)}));
     } else if constexpr (Prog::kMode == ShadingMode::Gouraud) {
         out = packBgra8(applyTerms(kd, Terms{v[kT], v[kT + 1]}));
@@ -456,8 +457,7 @@ struct SpanKernel {
         // that lanes past the end never see values extrapolated off the triangle.
         const F lastStep = fset(float(x1 - 1 - x0));
         const I row = iset(y);
-        Pixel constant = 0;
-        if constexpr (kV == 0) constant = p.flat;
+        Pixel constant = 0; // kV == 0: the triangle's one colour, read at its first passing group
         for (int x = x0; x < x1; x += kLanes) {
             const int n = std::min(kLanes, x1 - x);
             const M inside = firstN(n);
@@ -493,6 +493,8 @@ struct SpanKernel {
             const int passed = popcount(passBits);
             shaded += std::uint64_t(passed);
             if constexpr (kV == 0) {
+                if constexpr (Prog::kMode == ShadingMode::Flat) p.ensureLit(); // lazy flat lighting
+                constant = p.flat;
                 if (inRow) {
                     istore(colour + x, select(pass, iset(int(constant)), iload(colour + x)));
                 } else {
