@@ -137,7 +137,7 @@ std::string usageText(const std::string& programName) {
                        "                       without --frames) as PNG / BMP / PPM (by extension)\n"
                        "  --help               show this text\n"
                        "  (the demo renders on every hardware thread by default: --threads N overrides;\n"
-                       "  it starts at --quality balanced: 4 samples per pixel, bilinear, phong, exact)\n";
+                       "  it starts at --quality balanced: 4 samples per pixel, trilinear, phong, exact)\n";
     text += sceneFlagsHelp();
     text += "keys:\n";
     for (const KeyHelp& k : kKeyHelp) {

@@ -35,8 +35,8 @@ std::optional<int> parseInt(const std::string& text) {
 
 QualitySettings qualitySettings(Quality quality) {
     switch (quality) {
-    case Quality::Fast: return {1, TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Affine};
-    case Quality::Balanced: return {4, TextureFilter::Bilinear, ShadingMode::Phong, PerspectiveMode::Exact};
+    case Quality::Fast: return {1, TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Exact};
+    case Quality::Balanced: return {4, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
     case Quality::Accurate: return {16, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
     }
     return {};
@@ -243,8 +243,8 @@ std::string sceneFlagsHelp() {
            "  --wrap W              repeat | clamp | mirror (default repeat)\n"
            "  --persp P             exact | affine: perspective correction (default exact)\n"
            "  --quality Q           fast | balanced | accurate: a preset of --ssaa, --filter, --shading\n"
-           "                        and --persp (fast: 1, nearest, gouraud, affine; balanced: 4,\n"
-           "                        bilinear, phong, exact; accurate: 16, trilinear, phong, exact);\n"
+           "                        and --persp (fast: 1, nearest, gouraud, exact; balanced: 4,\n"
+           "                        trilinear, phong, exact; accurate: 16, trilinear, phong, exact);\n"
            "                        those flags, given too, win\n"
            "  --ssaa N              supersampling: 1 (off, default), 4 (2x2) or 16 (4x4) samples per pixel,\n"
            "                        each shaded, box-filtered; width and height at most 8192 / sqrt(N)\n"

@@ -30,8 +30,9 @@ struct QualitySettings {
     PerspectiveMode perspective = PerspectiveMode::Exact;
 };
 
-// fast: 1 sample, nearest, Gouraud, affine. balanced: 4 samples (2x2), bilinear, Phong, exact.
-// accurate: 16 samples (4x4), trilinear, Phong, exact - the report's ground truth.
+// fast: 1 sample, nearest, Gouraud, exact. balanced: 4 samples (2x2), trilinear, Phong, exact.
+// accurate: 16 samples (4x4), trilinear, Phong, exact - the report's ground truth. Each is on the
+// measured Pareto front of docs/reports (docs/PERFORMANCE.md says where and why).
 QualitySettings qualitySettings(Quality quality);
 const char* qualityName(Quality quality);
 std::optional<Quality> parseQuality(const std::string& text);

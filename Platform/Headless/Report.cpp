@@ -103,20 +103,26 @@ std::vector<bool> paretoFront(const std::vector<Row>& rows) {
 // and the presets labelled, every other combination a grey dot.
 std::string svgPlot(const std::vector<Row>& rows, const std::vector<bool>& front, bool textured,
                     const std::string& title) {
-    const double W = 900, H = 560, left = 70, right = 60, top = 62, bottom = 60;
-    double tMin = 1e300, tMax = 0, eMax = 0;
+    const double W = 900, H = 560, left = 90, right = 60, top = 62, bottom = 60;
+    double tMin = 1e300, tMax = 0, eMin = 1e300, eMax = 0;
     for (const Row& r : rows) {
         tMin = std::min(tMin, r.time.median);
         tMax = std::max(tMax, r.time.median);
         eMax = std::max(eMax, r.error.meanAbs);
+        if (r.error.meanAbs > 0) eMin = std::min(eMin, r.error.meanAbs);
     }
-    if (eMax <= 0) eMax = 1;
-    eMax *= 1.08;
+    if (eMax <= 0) eMax = eMin = 1;
+    // Error on a log axis too (it spans three or four decades); an error of 0 (the ground truth)
+    // is drawn on the top line, labelled 0.
+    const double yTop = std::log10(eMin / 2), yBottom = std::log10(eMax * 1.3);
     if (tMax <= tMin) tMax = tMin + 1;
     // Time on a log axis: the ground truth costs an order of magnitude more than the rest.
     const double lMin = std::log10(std::max(tMin, 1e-3) / 1.15), lMax = std::log10(tMax * 1.15);
     auto X = [&](double t) { return left + (std::log10(std::max(t, 1e-3)) - lMin) / (lMax - lMin) * (W - left - right); };
-    auto Y = [&](double e) { return top + e / eMax * (H - top - bottom); };
+    auto Y = [&](double e) {
+        const double l = e > 0 ? std::log10(e) : yTop;
+        return top + (l - yTop) / (yBottom - yTop) * (H - top - bottom);
+    };
     std::ostringstream s;
     s << "<svg xmlns='http://www.w3.org/2000/svg' width='" << W << "' height='" << H
       << "' font-family='sans-serif' font-size='12'>\n<rect width='100%' height='100%' fill='white'/>\n";
@@ -125,14 +131,15 @@ std::string svgPlot(const std::vector<Row>& rows, const std::vector<bool>& front
       << "' stroke='black'/>\n<line x1='" << left << "' y1='" << top << "' x2='" << left << "' y2='" << H - bottom
       << "' stroke='black'/>\n";
     for (int k = 0; k <= 4; ++k) {
-        const double t = std::pow(10.0, lMin + (lMax - lMin) * k / 4), e = eMax * k / 4;
+        const double t = std::pow(10.0, lMin + (lMax - lMin) * k / 4);
+        const double e = k == 0 ? 0.0 : std::pow(10.0, yTop + (yBottom - yTop) * k / 4);
         s << "<text x='" << X(t) << "' y='" << H - bottom + 18 << "' text-anchor='middle'>" << fmt(t, 2) << "</text>\n";
-        s << "<text x='" << left - 8 << "' y='" << Y(e) + 4 << "' text-anchor='end'>" << fmt(e, 2) << "</text>\n";
+        s << "<text x='" << left - 8 << "' y='" << Y(e) + 4 << "' text-anchor='end'>" << fmt(e, 3) << "</text>\n";
     }
     s << "<text x='" << (left + W - right) / 2 << "' y='" << H - 15
       << "' text-anchor='middle'>ms per frame (median of the rounds, log scale)</text>\n";
     s << "<text transform='translate(18," << (top + H - bottom) / 2 << ") rotate(-90)' text-anchor='middle'>"
-      << "mean abs error vs SSAA 16 ground truth (levels, 0 at top)</text>\n";
+      << "mean abs error vs SSAA 16 ground truth (levels, log scale; 0 at top)</text>\n";
     // The Pareto front as a line through its points, fastest first.
     std::vector<std::size_t> idx;
     for (std::size_t i = 0; i < rows.size(); ++i)

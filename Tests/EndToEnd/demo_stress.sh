@@ -107,7 +107,7 @@ rendering() {
 }
 # The modes (the title after "tris — "): back to the start ones, one key at a time (keys sent
 # while the window is minimised or unfocused are lost, so the storm's count is no guide); then R.
-default_modes="cull none | phong | bilinear | exact | ssaa 4" # --quality balanced, the demo default
+default_modes="cull none | phong | trilinear | exact | ssaa 4" # --quality balanced, the demo default
 modes_now() { local t; t=$(xdotool getwindowname "$win" 2>/dev/null || true); echo "${t#* tris — }"; }
 reset_modes() {
   local m k i
@@ -117,7 +117,7 @@ reset_modes() {
     if [[ "$m" == "$default_modes" ]]; then x key r; return 0; fi
     case $m in
       *"| help"*) k=F1 ;; *"depth view"*) k=z ;; *wireframe*) k=l ;;
-      "cull none | phong | bilinear |"*) k=p ;; "cull none | phong |"*) k=t ;;
+      "cull none | phong | trilinear |"*) k=p ;; "cull none | phong |"*) k=t ;;
       "cull none |"*) k=m ;; *) k=c ;;
     esac
     x key "$k"; sleep 0.3

@@ -173,12 +173,13 @@ TEST_CASE("the demo starts at the balanced quality preset; --quality and explici
     CHECK(fast.options.scene.ssaa == 1);
     CHECK(fast.options.scene.filter == sr::TextureFilter::Nearest);
     CHECK(fast.options.scene.shading == sr::ShadingMode::Gouraud);
-    CHECK(fast.options.scene.perspective == sr::PerspectiveMode::Affine);
+    CHECK(fast.options.scene.perspective == sr::PerspectiveMode::Exact);
     // An explicit knob without --quality keeps the balanced preset for the others.
-    const auto one = parseCommandLine({"--ssaa", "1", "--filter", "trilinear"});
+    const auto one = parseCommandLine({"--ssaa", "1", "--filter", "nearest"});
     REQUIRE(one.ok);
     CHECK(one.options.scene.ssaa == 1);
-    CHECK(one.options.scene.filter == sr::TextureFilter::Trilinear);
+    CHECK(one.options.scene.filter == sr::TextureFilter::Nearest);
+    CHECK(plain.options.scene.filter == sr::TextureFilter::Trilinear);
     CHECK(one.options.scene.shading == sr::ShadingMode::Phong);
     // A window too large for its sample target is not an error (it renders without SSAA).
     CHECK(parseCommandLine({"--width", "8000"}).ok);
