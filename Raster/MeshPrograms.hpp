@@ -1,6 +1,7 @@
 // The scalar mesh programs (unlit, flat, Gouraud, Phong x textured): the reference twins of the kernels.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -8,6 +9,7 @@
 #include "Raster/Mesh.hpp"
 #include "Raster/Pipeline.hpp" // DrawState
 #include "Raster/RenderSettings.hpp"
+#include "Raster/Resolve.hpp" // ssaaFactor
 #include "Raster/ScanlineFill.hpp"
 #include "Raster/TextureLod.hpp"
 
@@ -60,6 +62,7 @@ inline DrawState drawStateFor(const DrawContext& d) {
     s.cull = d.settings.cull;
     s.clipFar = d.view.finiteFar;
     s.wireframe = d.settings.wireframe;
+    s.wireWidth = std::max(1, ssaaFactor(d.settings.ssaa));
     s.stopAfter = d.settings.stopAfter;
     s.perspective = d.settings.perspective;
     if (d.texture != nullptr) s.rebase = {2, wrapPeriod(d.settings.wrap)}; // varyings 0-1 are the uv

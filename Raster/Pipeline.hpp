@@ -31,6 +31,10 @@ struct DrawState {
     bool wireframe = false;                 // overlay the (clipped) triangle outlines
     VaryingRebase rebase;                   // uv varyings shifted per triangle (textured draws)
     Pixel wireColour = packBgra(255, 255, 255);
+    // Wireframe lines are this many target pixels wide: 1, or under supersampling the grid side
+    // k (RenderSettings::ssaa), so that after the k x k resolve an edge still covers whole output
+    // pixels (a 1-sample line would resolve to 1/k of its colour).
+    int wireWidth = 1;
 };
 
 namespace detail {
@@ -54,12 +58,19 @@ inline void rebaseVaryings(const VaryingRebase& rebase, ClipVertex& a, ClipVerte
 // if that surface is within 0.025% of the line's depth in z_ndc).
 inline float wireDepth(float z) { return z * (1.0f + 1.0f / 4096.0f); }
 
+// A width of k draws k parallel DDA lines, offset along the minor axis by whole or half pixels
+// (exact on the 1/256 snapping grid) and centred on the edge.
 inline void drawWireEdge(FrameBuffer& fb, const ScreenVertex& a, const ScreenVertex& b, Pixel colour,
-                         bool depthTest) {
+                         bool depthTest, int width = 1) {
     LineOptions options;
     options.depthTest = depthTest;
-    drawLine(fb, LineVertex{a.x, a.y, wireDepth(a.z), colour}, LineVertex{b.x, b.y, wireDepth(b.z), colour},
-             options);
+    const bool xMajor = std::fabs(b.x - a.x) >= std::fabs(b.y - a.y);
+    for (int k = 0; k < width; ++k) {
+        const float offset = float(k) - 0.5f * float(width - 1);
+        const float dx = xMajor ? 0.0f : offset, dy = xMajor ? offset : 0.0f;
+        drawLine(fb, LineVertex{a.x + dx, a.y + dy, wireDepth(a.z), colour},
+                 LineVertex{b.x + dx, b.y + dy, wireDepth(b.z), colour}, options);
+    }
 }
 
 // A triangle hook that does nothing (draws without per-triangle work).
@@ -244,9 +255,9 @@ void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipp
             assert(ctx.usable[i0] && ctx.usable[i1] && ctx.usable[i2]);
             if (rasterizeTriangle<kVaryings>(fb, state, bands, lane, sink, t / 3, s0, s1, s2, program) &&
                 state.wireframe) {
-                drawWireEdge(fb, s0, s1, state.wireColour, wireDepthTest);
-                drawWireEdge(fb, s1, s2, state.wireColour, wireDepthTest);
-                drawWireEdge(fb, s2, s0, state.wireColour, wireDepthTest);
+                drawWireEdge(fb, s0, s1, state.wireColour, wireDepthTest, state.wireWidth);
+                drawWireEdge(fb, s1, s2, state.wireColour, wireDepthTest, state.wireWidth);
+                drawWireEdge(fb, s2, s0, state.wireColour, wireDepthTest, state.wireWidth);
             }
             break;
         }
@@ -264,7 +275,7 @@ void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipp
             }
             if (drawn && state.wireframe) {
                 for (int k = 0; k < n; ++k)
-                    drawWireEdge(fb, screen[k], screen[(k + 1) % n], state.wireColour, wireDepthTest);
+                    drawWireEdge(fb, screen[k], screen[(k + 1) % n], state.wireColour, wireDepthTest, state.wireWidth);
             }
             break;
         }

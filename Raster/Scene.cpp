@@ -35,8 +35,10 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& v
     const bool supersample = factor > 1 && !out.empty();
     if (!supersample || !ctx.samples.resize(out.width() * factor, out.height() * factor)) {
         if (!ctx.samples.empty()) ctx.samples = FrameBuffer{}; // no SSAA: give the sample memory back
+        RenderSettings plain = settings;
+        plain.ssaa = 1; // drawn at the output size (also what the wireframe width follows)
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
-        renderScene(ctx, scene, view, settings, textureOverride);
+        renderScene(ctx, scene, view, plain, textureOverride);
         return factor <= 1 || out.empty();
     }
     // The same view: clip space does not depend on the target size, only the viewport does.

@@ -198,3 +198,36 @@ TEST_CASE("SSAA: the same image on every thread count; sample memory only while 
     CHECK_FALSE(renderSceneFrame(cw, scene, view, settings));
     CHECK(cw.samples.empty());
 }
+
+TEST_CASE("SSAA: wireframe edges keep their weight after the resolve (k-sample-wide lines)", "[ssaa]") {
+    // A black triangle with its white wireframe: the resolved image's total white ("ink", in
+    // pixels) is about one pixel per unit of each edge's major-axis extent, at every sample count.
+    // One-sample-wide lines would resolve to 1/2 (2x2) or 1/4 (4x4) of it.
+    const std::vector<std::pair<double, double>> tri{{5.3, 6.1}, {58.7, 14.9}, {22.2, 43.6}};
+    Scene scene = whiteTriangle(tri, 64, 48);
+    scene.draws[0].kd = Color{0, 0, 0, 1};
+    FrameView view;
+    view.viewProj = Mat4::identity();
+    RenderSettings settings;
+    settings.shading = ShadingMode::Unlit;
+    settings.wireframe = true;
+    double ink[3] = {};
+    int k = 0;
+    for (int ssaa : {1, 4, 16}) {
+        FrameBuffer fb(64, 48);
+        RenderContext ctx(fb);
+        settings.ssaa = ssaa;
+        REQUIRE(renderSceneFrame(ctx, scene, view, settings));
+        for (int y = 0; y < 48; ++y)
+            for (int x = 0; x < 64; ++x) ink[k] += pixelR(fb.pixel(x, y)) / 255.0;
+        ++k;
+    }
+    CAPTURE(ink[0], ink[1], ink[2]);
+    // Major-axis extents: 53.4 (x), 36.5 (x), 37.5 (y): about 127 pixels of line at 1 sample.
+    CHECK(ink[0] > 110);
+    CHECK(ink[0] < 140);
+    for (int i : {1, 2}) {
+        CHECK(ink[i] > 0.85 * ink[0]);
+        CHECK(ink[i] < 1.15 * ink[0]);
+    }
+}
