@@ -10,6 +10,7 @@
 
 #include "Raster/RenderContext.hpp"
 #include "Raster/Resolve.hpp"
+#include "Platform/Demo/SceneSetup.hpp"
 #include "Raster/Scene.hpp"
 
 using namespace sr;
@@ -229,5 +230,87 @@ TEST_CASE("SSAA: wireframe edges keep their weight after the resolve (k-sample-w
     for (int i : {1, 2}) {
         CHECK(ink[i] > 0.85 * ink[0]);
         CHECK(ink[i] < 1.15 * ink[0]);
+    }
+}
+
+TEST_CASE("SSAA 16 of the built-in scene equals its 4x render, box-filtered by hand", "[ssaa]") {
+    // The whole path (sample target, viewport, clear, texture LOD at the sample rate, resolve)
+    // against the plain renderer at 4x the size and a box filter written out here.
+    demo::SceneOptions options;
+    options.width = 64;
+    options.height = 40;
+    auto scene = demo::loadScene(options);
+    REQUIRE(scene.ok());
+    for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear}) {
+        CAPTURE(filterName(filter));
+        RenderSettings settings;
+        settings.filter = filter;
+        const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 64, 40, options.light);
+        FrameBuffer big(256, 160), aa(64, 40);
+        RenderContext cBig(big), cAa(aa);
+        demo::renderFrame(cBig, scene.value(), view, settings);
+        settings.ssaa = 16;
+        demo::renderFrame(cAa, scene.value(), view, settings);
+        int differing = 0;
+        for (int y = 0; y < 40; ++y)
+            for (int x = 0; x < 64; ++x) {
+                unsigned sum[3] = {};
+                for (int j = 0; j < 4; ++j)
+                    for (int i = 0; i < 4; ++i) {
+                        const Pixel p = big.pixel(4 * x + i, 4 * y + j);
+                        sum[0] += pixelR(p);
+                        sum[1] += pixelG(p);
+                        sum[2] += pixelB(p);
+                    }
+                const Pixel expect = packBgra(std::uint8_t((sum[0] + 8) / 16), std::uint8_t((sum[1] + 8) / 16),
+                                              std::uint8_t((sum[2] + 8) / 16));
+                differing += aa.pixel(x, y) != expect;
+            }
+        CHECK(differing == 0);
+    }
+}
+
+TEST_CASE("SSAA: depth per sample resolves the intersection line of two interpenetrating planes", "[ssaa]") {
+    // Two screen-filling quads: red in front left of x = 20.3 (pixels), green in front right of it
+    // (their depths cross there: z_red - z_green = (20.3 - x) / 64). Per pixel the red share is
+    // the share of the grid's sample columns left of 20.3: pixel 20 has sample columns at
+    // 20 + (i + 0.5) / k: 0 of 1 (k = 1: the centre 20.5 is right of it), 1 of 2 (20.25; 20.75 is
+    // right), 1 of 4 (20.125; 20.375 is right).
+    const double c = 20.3;
+    Scene scene;
+    auto quad = [&](double zLeft, double zRight) {
+        Mesh m;
+        for (auto [x, y] : {std::pair{-1.0, -1.0}, std::pair{1.0, -1.0}, std::pair{1.0, 1.0}, std::pair{-1.0, 1.0}}) {
+            const double px = (x + 1.0) * 32.0; // pixels, on a 64-wide target
+            m.positions.push_back({float(x), float(y), float(zLeft + (zRight - zLeft) * px / 64.0)});
+        }
+        m.indices = {0, 1, 2, 0, 2, 3};
+        return m;
+    };
+    // Reversed-Z: larger is nearer. Red: 0.5 + (c - x) / 128, green: 0.5 - (c - x) / 128.
+    scene.meshes.push_back(quad(0.5 + c / 128.0, 0.5 + (c - 64.0) / 128.0));
+    scene.meshes.push_back(quad(0.5 - c / 128.0, 0.5 - (c - 64.0) / 128.0));
+    scene.draws.push_back(SceneDraw{0, 0, 6, -1, Color{1, 0, 0, 1}});
+    scene.draws.push_back(SceneDraw{1, 0, 6, -1, Color{0, 1, 0, 1}});
+    FrameView view;
+    view.viewProj = Mat4::identity();
+    RenderSettings settings;
+    settings.shading = ShadingMode::Unlit;
+    const struct {
+        int ssaa;
+        int redAt20, greenAt20; // expected levels of pixel column 20: (n 255 + half) / samples
+    } cases[] = {{1, 0, 255}, {4, 128, 128}, {16, 64, 191}};
+    for (const auto& k : cases) {
+        CAPTURE(k.ssaa);
+        FrameBuffer fb(64, 8);
+        RenderContext ctx(fb);
+        settings.ssaa = k.ssaa;
+        REQUIRE(renderSceneFrame(ctx, scene, view, settings));
+        for (int y = 0; y < 8; ++y) {
+            CHECK(fb.pixel(19, y) == packBgra(255, 0, 0));
+            CHECK(int(pixelR(fb.pixel(20, y))) == k.redAt20);
+            CHECK(int(pixelG(fb.pixel(20, y))) == k.greenAt20);
+            CHECK(fb.pixel(21, y) == packBgra(0, 255, 0));
+        }
     }
 }
