@@ -25,13 +25,17 @@ struct UvDerivatives {
 // hands a fragment (Fragment::invW and its varyings). The plane indices are kPlaneVarying0 + the
 // varying's index (TriangleSetup.hpp). invW <= 0 or non-finite inputs give non-finite derivatives;
 // mipLevel() accepts them.
-// Evaluated in double (the subtraction can cancel where u dQ/dx is close to dU/dx), rounded once.
+// Evaluated in float, as a SIMD lane repeats it (Raster/Kernels): the gradients rounded to float
+// once per triangle, then per pixel w = 1 / invW, a product, a difference and a product per
+// derivative. The difference cancels only where u dQ/dx is close to dU/dx; setup rebases u per
+// triangle (TriangleSetup.hpp, rebaseOffset), so |u| stays within the triangle's own uv extent and
+// the lost bits are those of a uv difference across it, far below what the 8-bit level blend shows
+// (TextureLodTests: against finite differences in double).
 inline UvDerivatives uvDerivatives(const TriangleSetup& t, int uPlane, int vPlane, float invW, float u, float v) {
-    const double w = 1.0 / double(invW);
-    const double dqdx = double(t.ddx[kPlaneInvW]), dqdy = double(t.ddy[kPlaneInvW]);
-    const double du = double(u), dv = double(v);
-    return {float((double(t.ddx[uPlane]) - du * dqdx) * w), float((double(t.ddx[vPlane]) - dv * dqdx) * w),
-            float((double(t.ddy[uPlane]) - du * dqdy) * w), float((double(t.ddy[vPlane]) - dv * dqdy) * w)};
+    const float w = 1.0f / invW;
+    const float dqdx = float(t.ddx[kPlaneInvW]), dqdy = float(t.ddy[kPlaneInvW]);
+    return {(float(t.ddx[uPlane]) - u * dqdx) * w, (float(t.ddx[vPlane]) - v * dqdx) * w,
+            (float(t.ddy[uPlane]) - u * dqdy) * w, (float(t.ddy[vPlane]) - v * dqdy) * w};
 }
 
 // log2(x) for a normal positive finite float x, in float arithmetic that a SIMD lane repeats

@@ -221,24 +221,21 @@ float affineMipLevel(const Prog& p) {
 }
 
 // The lanes' mip level under exact perspective, as programs::sampleKd computes it per fragment:
-// uvDerivatives (the quotient rule in double, rounded to float) at each lane, then mipLevel
-// (TextureLod.cpp) lane by lane.
+// uvDerivatives (the quotient rule in float) at each lane, then mipLevel (TextureLod.cpp) lane by
+// lane.
 template <class Prog>
 SR_SIMD_INLINE F mipLevels(const Prog& p, F u, F v, F invW) {
     const TriangleSetup& t = *p.setup;
     const Texture& texture = *p.d->texture;
     constexpr int kU = kPlaneVarying0, kVp = kPlaneVarying0 + 1;
-    const D dqdx = dset(t.ddx[kPlaneInvW]), dqdy = dset(t.ddy[kPlaneInvW]);
-    const D dUdx = dset(t.ddx[kU]), dVdx = dset(t.ddx[kVp]), dUdy = dset(t.ddy[kU]), dVdy = dset(t.ddy[kVp]);
-    const D one = dset(1.0);
-    const D wLo = one / lowHalf(invW), wHi = one / highHalf(invW);
-    const D uLo = lowHalf(u), uHi = highHalf(u), vLo = lowHalf(v), vHi = highHalf(v);
-    const F dudx = toFloat((dUdx - uLo * dqdx) * wLo, (dUdx - uHi * dqdx) * wHi);
-    const F dvdx = toFloat((dVdx - vLo * dqdx) * wLo, (dVdx - vHi * dqdx) * wHi);
-    const F dudy = toFloat((dUdy - uLo * dqdy) * wLo, (dUdy - uHi * dqdy) * wHi);
-    const F dvdy = toFloat((dVdy - vLo * dqdy) * wLo, (dVdy - vHi * dqdy) * wHi);
-    const F w = fset(float(texture.width())), h = fset(float(texture.height()));
-    const F ax = dudx * w, bx = dvdx * h, ay = dudy * w, by = dvdy * h;
+    const F dqdx = fset(float(t.ddx[kPlaneInvW])), dqdy = fset(float(t.ddy[kPlaneInvW]));
+    const F w = fset(1.0f) / invW;
+    const F dudx = (fset(float(t.ddx[kU])) - u * dqdx) * w;
+    const F dvdx = (fset(float(t.ddx[kVp])) - v * dqdx) * w;
+    const F dudy = (fset(float(t.ddy[kU])) - u * dqdy) * w;
+    const F dvdy = (fset(float(t.ddy[kVp])) - v * dqdy) * w;
+    const F tw = fset(float(texture.width())), th = fset(float(texture.height()));
+    const F ax = dudx * tw, bx = dvdx * th, ay = dudy * tw, by = dvdy * th;
     const F rx = ax * ax + bx * bx, ry = ay * ay + by * by;
     const M ok = (rx >= fzero()) & (ry >= fzero()); // not NaN
     const F rho2 = fmin(fmax(fmax(rx, ry), fset(kMinRho2)), fset(kMaxRho2));
