@@ -52,7 +52,7 @@ for preset in "${presets[@]}"; do
   fi
   echo "=== [$preset] test"
   # In parallel: every Wine end-to-end test runs in a Wine prefix of its own (xsession.sh), and
-  # they share one resource lock among themselves (they time window events).
+  # alone (RUN_SERIAL: they time window events), the other tests two at a time.
   ctest --preset "$preset" -j "$jobs" 2>&1 | tee "build/$preset/ctest.log"
   rc=${PIPESTATUS[0]}
   # Catch2 prints its own count per binary; show them so the log proves which suites ran.
