@@ -241,11 +241,11 @@ TEST_CASE("SSAA 16 of the built-in scene equals its 4x render, box-filtered by h
     options.height = 40;
     auto scene = demo::loadScene(options);
     REQUIRE(scene.ok());
+    const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 64, 40, options.light);
     for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear}) {
         CAPTURE(filterName(filter));
         RenderSettings settings;
         settings.filter = filter;
-        const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 64, 40, options.light);
         FrameBuffer big(256, 160), aa(64, 40);
         RenderContext cBig(big), cAa(aa);
         demo::renderFrame(cBig, scene.value(), view, settings);
