@@ -155,6 +155,21 @@ std::optional<LineSetup> setupLine(const LineVertex& inA, const LineVertex& inB,
     return l;
 }
 
+namespace {
+
+// The colour of a line pixel at canonical parameter t (clamped to [0, 1] by the caller).
+Pixel lineColour(const LineSetup& l, const LineOptions& o, float t) {
+    if (!o.interpolateColour) return l.flatColour;
+    std::uint8_t ch[3];
+    for (int k = 0; k < 3; ++k) {
+        const float v = l.colourA[k] + t * (l.colourB[k] - l.colourA[k]);
+        ch[k] = std::uint8_t(std::clamp(v + 0.5f, 0.0f, 255.0f));
+    }
+    return packBgra(ch[0], ch[1], ch[2]);
+}
+
+} // namespace
+
 void drawLine(FrameBuffer& fb, const LineVertex& a, const LineVertex& b, const LineOptions& o) {
     const Scissor s = fullScissor(fb);
     const std::optional<LineSetup> l = setupLine(a, b, s);
@@ -167,16 +182,28 @@ void drawLine(FrameBuffer& fb, const LineVertex& a, const LineVertex& b, const L
             if (!(z >= d)) return;
             if (o.depthWrite) d = z;
         }
-        Pixel c = l->flatColour;
-        if (o.interpolateColour) {
-            std::uint8_t ch[3];
-            for (int k = 0; k < 3; ++k) {
-                const float v = l->colourA[k] + t * (l->colourB[k] - l->colourA[k]);
-                ch[k] = std::uint8_t(std::clamp(v + 0.5f, 0.0f, 255.0f));
+        fb.colorRow(y)[x] = lineColour(*l, o, t);
+    });
+}
+
+void drawLine(MsaaBuffer& target, const LineVertex& a, const LineVertex& b, const LineOptions& o) {
+    const Scissor s{0, 0, target.width(), target.height()};
+    const std::optional<LineSetup> l = setupLine(a, b, s);
+    if (!l) return;
+    const int n = target.samples();
+    forEachLinePixel(*l, s, [&](int x, int y, float t) {
+        t = std::clamp(t, 0.0f, 1.0f);
+        const float z = l->zA + t * (l->zB - l->zA);
+        const Pixel c = lineColour(*l, o, t);
+        Pixel* colour = target.colourRow(y) + std::size_t(x) * std::size_t(n);
+        float* depth = target.depthRow(y) + std::size_t(x) * std::size_t(n);
+        for (int k = 0; k < n; ++k) {
+            if (o.depthTest) {
+                if (!(z >= depth[k])) continue;
+                if (o.depthWrite) depth[k] = z;
             }
-            c = packBgra(ch[0], ch[1], ch[2]);
+            colour[k] = c;
         }
-        fb.colorRow(y)[x] = c;
     });
 }
 

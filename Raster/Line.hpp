@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "Raster/FrameBuffer.hpp"
+#include "Raster/Msaa.hpp"
 #include "Raster/ScanlineFill.hpp"
 
 namespace sr {
@@ -80,6 +81,11 @@ void forEachLinePixel(const LineSetup& l, const Scissor& s, Plot&& plot);
 // Draws the line a-b into fb (colour, optional depth test/write) following the rule above.
 void drawLine(FrameBuffer& fb, const LineVertex& a, const LineVertex& b,
               const LineOptions& options = {});
+
+// The same line into a multisampled target: the pixels of the rule above, each covering all of
+// its samples (depth tested per sample, with the line's depth at the pixel), so that after the
+// resolve the line looks as it does without multisampling.
+void drawLine(MsaaBuffer& target, const LineVertex& a, const LineVertex& b, const LineOptions& options = {});
 
 // ---------------------------------------------------------------------------------------------
 // Row of column c at the fixed-point major coordinate m (clamped to the segment): the exact

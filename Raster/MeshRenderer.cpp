@@ -21,9 +21,15 @@ using programs::UnlitProgram;
 template <class Base>
 struct KernelProgram : Base {
     FillKernel<Base> kernel = nullptr;
+    ShadeRunsKernel<Base> runsKernel = nullptr;
     bool fillKernel(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) const {
         if (!kernel) return false;
         kernel(*this, t, fb, s, shaded);
+        return true;
+    }
+    bool shadeRuns(const TriangleSetup& t, FrameBuffer& fb, int y, const SpanRun* runs, int count) const {
+        if (!runsKernel) return false;
+        runsKernel(*this, t, fb, y, runs, count);
         return true;
     }
 };
@@ -42,6 +48,7 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
     if (Program::kMode != ShadingMode::Phong || kernelsCoverLighting(d.view.lighting)) {
         const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
+        withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
     }
     drawProgram<Program::kVaryings>(ctx, state, d.mesh.vertexCount(), d.indices, indexCount, withKernel);
 }

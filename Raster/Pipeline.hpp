@@ -12,6 +12,7 @@
 #include "Raster/Clipper.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Line.hpp"
+#include "Raster/MsaaFill.hpp"
 #include "Raster/PipelineModes.hpp" // PipelineStop, DepthMode, PerspectiveMode
 #include "Raster/RenderContext.hpp"
 #include "Raster/ScanlineFill.hpp"
@@ -60,10 +61,15 @@ inline float wireDepth(float z) { return z * (1.0f + 1.0f / 4096.0f); }
 
 // A width of k draws k parallel DDA lines, offset along the minor axis by whole or half pixels
 // (exact on the 1/256 snapping grid) and centred on the edge.
-inline void drawWireEdge(FrameBuffer& fb, const ScreenVertex& a, const ScreenVertex& b, Pixel colour,
-                         bool depthTest, int width = 1) {
+inline void drawWireEdge(FrameBuffer& fb, MsaaBuffer* msaa, const ScreenVertex& a, const ScreenVertex& b,
+                         Pixel colour, bool depthTest, int width = 1) {
     LineOptions options;
     options.depthTest = depthTest;
+    if (msaa) { // multisampled: the line's pixels cover all their samples
+        drawLine(*msaa, LineVertex{a.x, a.y, wireDepth(a.z), colour}, LineVertex{b.x, b.y, wireDepth(b.z), colour},
+                 options);
+        return;
+    }
     const bool xMajor = std::fabs(b.x - a.x) >= std::fabs(b.y - a.y);
     for (int k = 0; k < width; ++k) {
         const float offset = float(k) - 0.5f * float(width - 1);
@@ -83,6 +89,7 @@ struct NoTriangleHook {
 struct alignas(64) LaneState {
     RenderStats stats;
     TriangleSetup setup;
+    MsaaScratch msaa; // the multisampled fill's memory (used only while multisampling)
 };
 
 // Which rows a lane fills. One lane: the whole target. Several: the target is cut into bands
@@ -112,6 +119,15 @@ struct LaneBands {
 // drawMesh's programs carry the kernel chosen once per draw (Raster/Kernels/KernelTable.hpp).
 template <class Program, class = void>
 struct HasFillKernel : std::false_type {};
+// ... and optionally bool shadeRuns(const TriangleSetup&, FrameBuffer&, int y, const SpanRun*,
+// int count): shades the pixel centres of the runs of row y into fb's row (no depth test), as
+// fillSpan with DepthMode::Off and fragment() would, or returns false (the multisampled fill).
+template <class Program, class = void>
+struct HasShadeRuns : std::false_type {};
+template <class Program>
+struct HasShadeRuns<Program, std::void_t<decltype(std::declval<Program&>().shadeRuns(
+                                 std::declval<const TriangleSetup&>(), std::declval<FrameBuffer&>(), 0,
+                                 std::declval<const SpanRun*>(), 0))>> : std::true_type {};
 template <class Program>
 struct HasFillKernel<Program, std::void_t<decltype(std::declval<Program&>().fillKernel(
                                   std::declval<const TriangleSetup&>(), std::declval<FrameBuffer&>(),
@@ -127,6 +143,14 @@ inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, cons
     end = int(firstCentreAtOrAfter(std::max({y0, y1, y2}), 1));
 }
 
+// The same for a multisampled draw: every row the snapped y extent touches (msaaRowRange).
+inline void snappedSampleRowRange(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
+                                  int& begin, int& end) {
+    const Fixed y0 = snapToFixed(v0.y), y1 = snapToFixed(v1.y), y2 = snapToFixed(v2.y);
+    begin = int(floorDiv(std::min({y0, y1, y2}), kSubPixelScale));
+    end = int(floorDiv(std::max({y0, y1, y2}), kSubPixelScale)) + 1;
+}
+
 // Culls, sets up and fills one screen-space triangle (index t of the draw) on one lane.
 // Returns true when it was not culled. The program's triangle() runs once per set-up
 // triangle, right before its fill. With several lanes, the lane owning the band of the
@@ -134,14 +158,15 @@ inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, cons
 // whose bands it meets sets it up and fills it clipped to those bands, in submission order:
 // the image is bit-identical to one lane's.
 template <int kVaryings, class Program>
-bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands& bands, LaneState& lane,
+bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state, const LaneBands& bands, LaneState& lane,
                        RenderStats& sink, std::size_t t, const ScreenVertex& v0, const ScreenVertex& v1,
                        const ScreenVertex& v2, Program& program) {
     RenderStats* stats = &lane.stats;
     if (bands.lanes > 1) {
         int rowBegin = 0, rowEnd = 0;
         if (std::fabs(v0.y) <= kGuardBand && std::fabs(v1.y) <= kGuardBand && std::fabs(v2.y) <= kGuardBand) {
-            snappedRowRange(v0, v1, v2, rowBegin, rowEnd);
+            if (msaa) snappedSampleRowRange(v0, v1, v2, rowBegin, rowEnd);
+            else snappedRowRange(v0, v1, v2, rowBegin, rowEnd);
         }
         const bool owner = bands.ownerOfRow(rowBegin) == bands.lane;
         if (!owner) {
@@ -158,9 +183,9 @@ bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands&
     }
     const bool affine = kVaryings > 0 && state.perspective == PerspectiveMode::Affine;
     TriangleSetup& setup = lane.setup;
-    switch (setupTriangleCulled(setup, v0, v1, v2, state.cull, kVaryings, !affine, state.rebase)) {
+    switch (setupTriangleCulled(setup, v0, v1, v2, state.cull, kVaryings, !affine, state.rebase, msaa != nullptr)) {
     case SetupOutcome::Culled: ++stats->culled; return false;
-    case SetupOutcome::Empty: return true; // covers no pixel-centre row: nothing to do, but not culled
+    case SetupOutcome::Empty: return true; // covers no sample: nothing to do, but not culled
     case SetupOutcome::Ready: break;
     }
     ++stats->rasterized;
@@ -175,8 +200,33 @@ bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands&
     // The program's own kernel if it has one for this draw; else the scalar loop, depth mode x
     // perspective mode resolved once per triangle (without varyings only Exact exists: nothing
     // to interpolate, which keeps the number of instantiated loops down).
+    // Multisampled: coverage and depth per sample, the program's fragments once per pixel (at the
+    // centre through its run shader, or the scalar loop; at the centroid through fragment()).
+    auto fillSamples = [&](auto depthTag, const Scissor& scissor, auto perspTag) {
+        constexpr DepthMode kDepth = decltype(depthTag)::value;
+        constexpr PerspectiveMode kPersp = decltype(perspTag)::value;
+        auto shadeRow = [&fb](int y) -> const Pixel* { return fb.colorRow(y); };
+        auto shadeRuns = [&](int y, const SpanRun* runs, int count) {
+            if constexpr (HasShadeRuns<Program>::value) {
+                if (program.shadeRuns(static_cast<const TriangleSetup&>(setup), fb, y, runs, count)) return;
+            }
+            auto fragment = [&program](const Fragment<kVaryings>& f) { return program.fragment(f); };
+            for (int r = 0; r < count; ++r)
+                fillSpan<DepthMode::Off, kVaryings, kPersp>(setup, fb, y, runs[r].x0, runs[r].x1, fragment);
+        };
+        auto shadeAt = [&](int x, int y, double px, double py) {
+            return program.fragment(fragmentAt<kVaryings, kPersp>(setup, x, y, px, py));
+        };
+        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shadeAt, shaded);
+    };
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
+        if (msaa) {
+            if (kVaryings > 0 && state.perspective == PerspectiveMode::Affine)
+                fillSamples(depthTag, scissor, std::integral_constant<PerspectiveMode, PerspectiveMode::Affine>{});
+            else fillSamples(depthTag, scissor, std::integral_constant<PerspectiveMode, PerspectiveMode::Exact>{});
+            return;
+        }
         if constexpr (HasFillKernel<Program>::value) {
             if (program.fillKernel(static_cast<const TriangleSetup&>(setup), fb, scissor, shaded)) return;
         }
@@ -195,7 +245,10 @@ bool rasterizeTriangle(FrameBuffer& fb, const DrawState& state, const LaneBands&
             return;
         }
         // This lane's bands that meet the triangle's rows, top to bottom.
-        const int rowBegin = std::max(setup.firstRow, 0), rowEnd = std::min(setup.endRow, fb.height());
+        int rowBegin = setup.firstRow, rowEnd = setup.endRow;
+        if (msaa) msaaRowRange(setup, rowBegin, rowEnd);
+        rowBegin = std::max(rowBegin, 0);
+        rowEnd = std::min(rowEnd, fb.height());
         for (int b = rowBegin / LaneBands::kBandRows; b * LaneBands::kBandRows < rowEnd; ++b) {
             if (b % bands.lanes != bands.lane) continue;
             const int y0 = b * LaneBands::kBandRows;
@@ -228,6 +281,7 @@ template <int kVaryings, class Program>
 void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, const LaneBands& bands,
                 LaneState& lane, const std::uint32_t* indices, std::size_t indexCount, Program& program) {
     FrameBuffer& fb = ctx.target();
+    MsaaBuffer* msaa = ctx.multisampleTarget();
     const int width = fb.width(), height = fb.height();
     Clipper clipper = clipperProto;
     ClippedPolygon polygon;
@@ -253,11 +307,11 @@ void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipp
             const ScreenVertex& s1 = ctx.screenVertices[i1];
             const ScreenVertex& s2 = ctx.screenVertices[i2];
             assert(ctx.usable[i0] && ctx.usable[i1] && ctx.usable[i2]);
-            if (rasterizeTriangle<kVaryings>(fb, state, bands, lane, sink, t / 3, s0, s1, s2, program) &&
+            if (rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t / 3, s0, s1, s2, program) &&
                 state.wireframe) {
-                drawWireEdge(fb, s0, s1, state.wireColour, wireDepthTest, state.wireWidth);
-                drawWireEdge(fb, s1, s2, state.wireColour, wireDepthTest, state.wireWidth);
-                drawWireEdge(fb, s2, s0, state.wireColour, wireDepthTest, state.wireWidth);
+                drawWireEdge(fb, msaa, s0, s1, state.wireColour, wireDepthTest, state.wireWidth);
+                drawWireEdge(fb, msaa, s1, s2, state.wireColour, wireDepthTest, state.wireWidth);
+                drawWireEdge(fb, msaa, s2, s0, state.wireColour, wireDepthTest, state.wireWidth);
             }
             break;
         }
@@ -270,12 +324,12 @@ void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipp
             // The fan keeps the input winding, so every piece gets the same cull decision.
             bool drawn = false;
             for (int k = 0; k < polygon.triangleCount(); ++k) {
-                drawn |= rasterizeTriangle<kVaryings>(fb, state, bands, lane, sink, t / 3, screen[0], screen[k + 1],
+                drawn |= rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t / 3, screen[0], screen[k + 1],
                                                       screen[k + 2], program);
             }
             if (drawn && state.wireframe) {
                 for (int k = 0; k < n; ++k)
-                    drawWireEdge(fb, screen[k], screen[(k + 1) % n], state.wireColour, wireDepthTest, state.wireWidth);
+                    drawWireEdge(fb, msaa, screen[k], screen[(k + 1) % n], state.wireColour, wireDepthTest, state.wireWidth);
             }
             break;
         }

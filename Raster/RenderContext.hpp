@@ -8,6 +8,7 @@
 
 #include "Raster/Clipper.hpp"
 #include "Raster/FrameBuffer.hpp"
+#include "Raster/Msaa.hpp"
 #include "Raster/ThreadPool.hpp"
 #include "Raster/Vertex.hpp"
 
@@ -67,24 +68,38 @@ public:
     int threads() const { return pool_ ? pool_->lanes() : 1; }
     ThreadPool* pool() { return pool_.get(); }
 
-    // Clears the target's colour and depth, split by rows over the render threads.
+    // Clears the target's colour and depth (and, while multisampling, every sample), split by
+    // rows over the render threads.
     void clearTarget(Pixel colour, float depth) {
         FrameBuffer& fb = *target_;
+        MsaaBuffer* samples = multisampleTarget();
         const int lanes = threads(), height = fb.height(), width = fb.width();
         auto job = [&](int lane) {
             const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
             if (y0 >= y1) return;
             fillWords(fb.colorRow(y0), std::size_t(y1 - y0) * std::size_t(width), colour);
             fillWords(fb.depthRow(y0), std::size_t(y1 - y0) * std::size_t(width), depth);
+            if (samples) samples->clearRows(y0, y1, colour, depth);
         };
         if (pool_) pool_->run(job);
-        else fb.clear(colour, depth);
+        else job(0);
     }
 
     // Supersampling's sample target (renderSceneFrame with ssaa > 1): factor x factor times the
     // output's size while a supersampled frame is drawn, released by the next frame without SSAA
     // (memory only while supersampling).
     FrameBuffer samples;
+
+    // Multisampling's sample target (renderSceneFrame with msaa > 1). While `multisampling` is
+    // set and it has the target's size, every draw fills its samples instead of the target (the
+    // target's colour rows serve as the per-pixel shading scratch) until the frame resolves it.
+    MsaaBuffer msaa;
+    bool multisampling = false;
+    MsaaBuffer* multisampleTarget() {
+        const bool active = multisampling && msaa.width() == target_->width() && msaa.height() == target_->height() &&
+                            !msaa.empty();
+        return active ? &msaa : nullptr;
+    }
 
     // Runs job(rowBegin, rowEnd) over rows [0, height) split evenly over the render threads.
     template <class Job>

@@ -20,6 +20,7 @@ struct RenderSettings {
     PipelineStop stopAfter = PipelineStop::Fill; // partial pipelines, for per-stage timing only
     Isa isa = bestIsa(); // which span kernels fill (Raster/Kernels/Isa.hpp); Scalar = the reference loop
     int ssaa = 1;        // supersampling: samples per pixel, 1 (off), 4 (2x2) or 16 (4x4) (Raster/Resolve.hpp)
+    int msaa = 1;        // multisampling: samples per pixel, 1 (off), 2, 4 or 8 (Raster/Msaa.hpp); not with ssaa > 1
 };
 
 // What every draw of one frame shares.

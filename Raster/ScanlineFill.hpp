@@ -57,8 +57,9 @@ private:
 // centre ON a left edge is in) and ends before the first centre >= the right edge's x (a centre
 // on a right edge is out). A horizontal top edge is the top row's span itself (in); a
 // horizontal bottom edge lies on the excluded yBottom row (out).
-template <class Visit>
-void forEachSpan(const TriangleSetup& t, const Scissor& s, Visit&& visit) {
+// `t` is a TriangleSetup or a SpanCoverage (its coverage fields alone).
+template <class Coverage, class Visit>
+void forEachSpan(const Coverage& t, const Scissor& s, Visit&& visit) {
     const int rowBegin = std::max(t.firstRow, s.y0);
     const int rowEnd = std::min(t.endRow, s.y1);
     if (rowBegin >= rowEnd || t.maxX < s.x0 || t.minX >= s.x1) return;
@@ -84,6 +85,39 @@ void forEachSpan(const TriangleSetup& t, const Scissor& s, Visit&& visit) {
     }
 }
 
+// The coverage fields of a TriangleSetup on their own (what forEachSpan reads).
+struct SpanCoverage {
+    FixedEdge longEdge, upperEdge, lowerEdge;
+    bool longEdgeOnLeft = true;
+    int firstRow = 0, midRow = 0, endRow = 0;
+    int minX = 0, maxX = 0; // conservative column bounds (for scissor rejection only)
+};
+
+// The coverage of the sample at offset (ox, oy) from every pixel centre (1/256 pixel, |o| < 128):
+// pixel (x, y)'s sample is covered exactly when its centre is covered by the triangle moved by
+// -(ox, oy), so the edges move and the rows are recomputed; all of it stays exact (integers).
+// With (0, 0) it is the setup's own coverage.
+inline SpanCoverage sampleCoverage(const TriangleSetup& t, Fixed ox, Fixed oy) {
+    SpanCoverage c;
+    auto moved = [&](FixedEdge e) {
+        e.x0 -= ox;
+        e.y0 -= oy;
+        return e;
+    };
+    c.longEdge = moved(t.longEdge);
+    c.upperEdge = moved(t.upperEdge);
+    c.lowerEdge = moved(t.lowerEdge);
+    c.longEdgeOnLeft = t.longEdgeOnLeft;
+    const std::int64_t yTop = c.longEdge.y0, yBottom = std::int64_t(c.longEdge.y0) + c.longEdge.dy;
+    const std::int64_t yMid = c.lowerEdge.y0;
+    c.firstRow = int(firstCentreAtOrAfter(yTop, 1));
+    c.midRow = int(firstCentreAtOrAfter(yMid, 1));
+    c.endRow = int(firstCentreAtOrAfter(yBottom, 1));
+    c.minX = t.minX - 1;
+    c.maxX = t.maxX + 1;
+    return c;
+}
+
 // What the span loop hands the per-pixel shader: position, depth and, when kVaryings > 0,
 // 1/w and the perspective-correct varyings (v/w divided by 1/w at this pixel centre).
 template <int kVaryings>
@@ -105,60 +139,63 @@ struct Fragment {
 // 2^-24 to cancellation: 8.6% on an 8000-pixel span ending near a vanishing line). The other
 // varyings get start + k * gradient in float (one multiply-add each).
 // Shader: any callable `Pixel(const Fragment<kVaryings>&)`, inlined: no virtual call per pixel.
+// One span of fillTriangle: pixels [x0, x1) of row y (all covered by `t`), in order.
+template <DepthMode kDepth, int kVaryings, PerspectiveMode kPersp, class Shader>
+void fillSpan(const TriangleSetup& t, FrameBuffer& fb, int y, int x0, int x1, Shader& shader) {
+    constexpr int kPlanes = kVaryings > 0 ? kPlaneVarying0 + kVaryings : 1;
+    // Plane values at the centre of the span's first pixel (double, once per span).
+    const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
+    // Sized for z and 1/w at least, so code that names kPlaneInvW compiles in range for every
+    // instantiation (only the first kPlanes entries are used).
+    constexpr int kArray = kPlanes > kPlaneVarying0 ? kPlanes : kPlaneVarying0;
+    float start[kArray] = {};
+    double startD[kPlaneVarying0] = {}; // depth and 1/w (when interpolated), unrounded
+    for (int k = 0; k < kPlanes; ++k) {
+        const double v = t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy;
+        start[k] = float(v);
+        if (k < kPlaneVarying0) startD[k] = v;
+    }
+
+    float gradient[kArray] = {}; // per-pixel gradients in locals: stores to the buffers can't alias them
+    for (int k = 0; k < kPlanes; ++k) gradient[k] = t.ddxStep[k];
+    Pixel* colour = fb.colorRow(y);
+    float* depth = fb.depthRow(y);
+    Fragment<kVaryings> f;
+    f.y = y;
+    float step = 0.0f; // pixel index along the span, exact in float
+    for (int x = x0; x < x1; ++x, step += 1.0f) {
+        f.z = float(startD[kPlaneZ] + t.ddx[kPlaneZ] * double(step));
+        if constexpr (kDepth != DepthMode::Off) {
+            if (!(f.z > depth[x])) continue;
+            if constexpr (kDepth == DepthMode::TestWrite) depth[x] = f.z;
+        }
+        f.x = x;
+        if constexpr (kVaryings > 0) {
+            f.invW = float(startD[kPlaneInvW] + t.ddx[kPlaneInvW] * double(step));
+            if constexpr (kPersp == PerspectiveMode::Exact) {
+                const float w = 1.0f / f.invW;
+                for (int k = 0; k < kVaryings; ++k) {
+                    const int p = kPlaneVarying0 + k;
+                    f.varyings[std::size_t(k)] = (start[p] + gradient[p] * step) * w;
+                }
+            } else {
+                static_assert(kPersp == PerspectiveMode::Affine);
+                for (int k = 0; k < kVaryings; ++k) {
+                    const int p = kPlaneVarying0 + k;
+                    f.varyings[std::size_t(k)] = start[p] + gradient[p] * step;
+                }
+            }
+        }
+        colour[x] = shader(static_cast<const Fragment<kVaryings>&>(f));
+    }
+}
+
 template <DepthMode kDepth, int kVaryings, PerspectiveMode kPersp = PerspectiveMode::Exact, class Shader>
 void fillTriangle(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, Shader&& shader) {
     static_assert(kVaryings >= 0 && kVaryings <= kMaxVaryings, "too many varyings");
     assert(kVaryings <= t.varyingCount);
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= fb.width() && s.y1 <= fb.height());
-    constexpr int kPlanes = kVaryings > 0 ? kPlaneVarying0 + kVaryings : 1;
-
-    forEachSpan(t, s, [&](int y, int x0, int x1) {
-        // Plane values at the centre of the span's first pixel (double, once per span).
-        const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
-        // Sized for z and 1/w at least, so code that names kPlaneInvW compiles in range for every
-        // instantiation (only the first kPlanes entries are used).
-        constexpr int kArray = kPlanes > kPlaneVarying0 ? kPlanes : kPlaneVarying0;
-        float start[kArray] = {};
-        double startD[kPlaneVarying0] = {}; // depth and 1/w (when interpolated), unrounded
-        for (int k = 0; k < kPlanes; ++k) {
-            const double v = t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy;
-            start[k] = float(v);
-            if (k < kPlaneVarying0) startD[k] = v;
-        }
-
-        float gradient[kArray] = {}; // per-pixel gradients in locals: stores to the buffers can't alias them
-        for (int k = 0; k < kPlanes; ++k) gradient[k] = t.ddxStep[k];
-        Pixel* colour = fb.colorRow(y);
-        float* depth = fb.depthRow(y);
-        Fragment<kVaryings> f;
-        f.y = y;
-        float step = 0.0f; // pixel index along the span, exact in float
-        for (int x = x0; x < x1; ++x, step += 1.0f) {
-            f.z = float(startD[kPlaneZ] + t.ddx[kPlaneZ] * double(step));
-            if constexpr (kDepth != DepthMode::Off) {
-                if (!(f.z > depth[x])) continue;
-                if constexpr (kDepth == DepthMode::TestWrite) depth[x] = f.z;
-            }
-            f.x = x;
-            if constexpr (kVaryings > 0) {
-                f.invW = float(startD[kPlaneInvW] + t.ddx[kPlaneInvW] * double(step));
-                if constexpr (kPersp == PerspectiveMode::Exact) {
-                    const float w = 1.0f / f.invW;
-                    for (int k = 0; k < kVaryings; ++k) {
-                        const int p = kPlaneVarying0 + k;
-                        f.varyings[std::size_t(k)] = (start[p] + gradient[p] * step) * w;
-                    }
-                } else {
-                    static_assert(kPersp == PerspectiveMode::Affine);
-                    for (int k = 0; k < kVaryings; ++k) {
-                        const int p = kPlaneVarying0 + k;
-                        f.varyings[std::size_t(k)] = start[p] + gradient[p] * step;
-                    }
-                }
-            }
-            colour[x] = shader(static_cast<const Fragment<kVaryings>&>(f));
-        }
-    });
+    forEachSpan(t, s, [&](int y, int x0, int x1) { fillSpan<kDepth, kVaryings, kPersp>(t, fb, y, x0, x1, shader); });
 }
 
 template <DepthMode kDepth, int kVaryings, PerspectiveMode kPersp = PerspectiveMode::Exact, class Shader>

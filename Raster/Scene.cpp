@@ -3,6 +3,7 @@
 
 #include <cassert>
 
+#include "Raster/Msaa.hpp"
 #include "Raster/Resolve.hpp"
 
 namespace sr {
@@ -31,8 +32,22 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& v
                       const Texture* textureOverride, Pixel clearColour) {
     const int factor = ssaaFactor(settings.ssaa);
     assert(factor > 0 && "RenderSettings::ssaa must be 1, 4 or 16");
+    assert(validMsaa(settings.msaa) && "RenderSettings::msaa must be 1, 2, 4 or 8");
     FrameBuffer& out = ctx.target();
     const bool supersample = factor > 1 && !out.empty();
+    const bool multisample = !supersample && settings.msaa > 1 && !out.empty();
+    if (!multisample && !ctx.msaa.empty()) ctx.msaa.release(); // memory only while multisampling
+    if (multisample) {
+        if (!ctx.samples.empty()) ctx.samples = FrameBuffer{};
+        [[maybe_unused]] const bool sized = ctx.msaa.resize(out.width(), out.height(), settings.msaa);
+        assert(sized); // the target's own size, a valid count
+        ctx.multisampling = true;
+        ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
+        renderScene(ctx, scene, view, settings, textureOverride);
+        ctx.multisampling = false;
+        ctx.forRows(out.height(), [&](int y0, int y1) { resolveMsaaRows(ctx.msaa, out, y0, y1); });
+        return true;
+    }
     if (!supersample || !ctx.samples.resize(out.width() * factor, out.height() * factor)) {
         if (!ctx.samples.empty()) ctx.samples = FrameBuffer{}; // no SSAA: give the sample memory back
         RenderSettings plain = settings;

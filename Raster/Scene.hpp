@@ -40,6 +40,9 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
 // box-filtered into the target (Raster/Resolve.hpp): the target ends with the resolved colour and,
 // per pixel, its nearest sample's depth. A sample target above FrameBuffer::kMaxDimension cannot
 // be made: the frame is then drawn without supersampling and false is returned (true otherwise).
+// With settings.msaa = 2, 4 or 8 (and ssaa 1; supersampling wins when both are asked for) the
+// frame is drawn multisampled into ctx.msaa and resolved the same way (Raster/Msaa.hpp,
+// MsaaFill.hpp); the sample memory is released by the next frame without multisampling.
 bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                       const Texture* textureOverride = nullptr, Pixel clearColour = packBgra(0, 0, 0));
 

@@ -30,7 +30,7 @@ int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 
 SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const ScreenVertex& v1,
                                  const ScreenVertex& v2, CullMode cull, int varyingCount, bool perspectiveCorrect,
-                                 const VaryingRebase& rebase) {
+                                 const VaryingRebase& rebase, bool keepRowless) {
     // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
     const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
     if (!valid) return isCulled(cull, v0, v1, v2) ? SetupOutcome::Culled : SetupOutcome::Empty;
@@ -62,7 +62,8 @@ SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const
     // --- Rows: centre y in [yTop, yBottom), the lower part from the first centre >= yMid ----
     t.firstRow = firstRowAtOrBelow(pt.y);
     t.endRow = firstRowAtOrBelow(pb.y);
-    if (t.firstRow >= t.endRow) return SetupOutcome::Empty; // thinner than one row of centres
+    // Thinner than one row of centres: nothing to fill, unless the caller samples elsewhere too.
+    if (t.firstRow >= t.endRow && !keepRowless) return SetupOutcome::Empty;
     t.midRow = firstRowAtOrBelow(pm.y);
 
     t.longEdge = makeEdge(pt, pb);
@@ -123,7 +124,7 @@ std::optional<TriangleSetup> setupTriangle(const ScreenVertex& v0, const ScreenV
     assert(valid && "triangle setup: vertex outside the guard band or not finite");
     // Built in place in the returned optional (one named return value: no copy of the record).
     std::optional<TriangleSetup> result(std::in_place);
-    if (setupTriangleCulled(*result, v0, v1, v2, CullMode::None, varyingCount, perspectiveCorrect, rebase) !=
+    if (setupTriangleCulled(*result, v0, v1, v2, CullMode::None, varyingCount, perspectiveCorrect, rebase, false) !=
         SetupOutcome::Ready)
         result.reset();
     return result;

@@ -112,8 +112,11 @@ enum class SetupOutcome {
 // edges and planes into `out` (a record the caller reuses: no copy, no optional). Returns
 // Culled exactly when isCulled(cull, ...) is true, else what setupTriangle would give. Vertices
 // outside the guard band (the clipper never outputs them) are Culled or Empty as isCulled says.
+// keepRowless (multisampling: samples lie off the pixel centres) builds the whole record, and
+// returns Ready, for a triangle that misses every pixel-centre row too (firstRow >= endRow).
 SetupOutcome setupTriangleCulled(TriangleSetup& out, const ScreenVertex& v0, const ScreenVertex& v1,
                                  const ScreenVertex& v2, CullMode cull, int varyingCount,
-                                 bool perspectiveCorrect = true, const VaryingRebase& rebase = {});
+                                 bool perspectiveCorrect = true, const VaryingRebase& rebase = {},
+                                 bool keepRowless = false);
 
 } // namespace sr

@@ -7,6 +7,7 @@
 
 #include "Raster/Camera.hpp"
 #include "Raster/FrameBuffer.hpp"
+#include "Raster/Msaa.hpp"
 #include "Raster/Resolve.hpp"
 
 namespace sr::demo {
@@ -35,9 +36,9 @@ std::optional<int> parseInt(const std::string& text) {
 
 QualitySettings qualitySettings(Quality quality) {
     switch (quality) {
-    case Quality::Fast: return {1, TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Exact};
-    case Quality::Balanced: return {4, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
-    case Quality::Accurate: return {16, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
+    case Quality::Fast: return {1, 1, TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Exact};
+    case Quality::Balanced: return {4, 1, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
+    case Quality::Accurate: return {16, 1, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
     }
     return {};
 }
@@ -83,7 +84,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     static const char* const kFlags[] = {"--obj",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
-                                         "--isa",   "--ssaa",   "--quality"};
+                                         "--isa",   "--ssaa",   "--msaa",   "--quality"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
@@ -188,6 +189,13 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         if (!v || ssaaFactor(*v) == 0) return bad("1, 4 or 16 samples per pixel");
         o.ssaa = *v;
         o.explicitSsaa = true;
+        if (!o.explicitMsaa) o.msaa = 1;
+    } else if (flag == "--msaa") {
+        const auto v = parseInt(value);
+        if (!v || !validMsaa(*v)) return bad("1, 2, 4 or 8 samples per pixel");
+        o.msaa = *v;
+        o.explicitMsaa = true;
+        if (!o.explicitSsaa) o.ssaa = 1;
     } else if (flag == "--quality") {
         const auto q = parseQuality(value);
         if (!q) return bad("fast, balanced or accurate");
@@ -203,7 +211,10 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
 void applyQuality(SceneOptions& o, Quality quality) {
     o.quality = quality;
     const QualitySettings p = qualitySettings(quality);
-    if (!o.explicitSsaa) o.ssaa = p.ssaa;
+    if (!o.explicitSsaa && !o.explicitMsaa) {
+        o.ssaa = p.ssaa;
+        o.msaa = p.msaa;
+    }
     if (!o.explicitFilter) o.filter = p.filter;
     if (!o.explicitShading) o.shading = p.shading;
     if (!o.explicitPerspective) o.perspective = p.perspective;
@@ -214,6 +225,9 @@ std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
         return "--far (" + std::to_string(*o.farZ) + ") must be greater than --near (" + std::to_string(*o.nearZ) + ")";
     if (o.eye && o.target && *o.eye == *o.target) return "--eye and --target must differ";
     if (length(o.light) == 0.0f) return "--light must not be the zero vector";
+    if (o.ssaa > 1 && o.msaa > 1)
+        return "--ssaa " + std::to_string(o.ssaa) + " and --msaa " + std::to_string(o.msaa) +
+               ": choose one way of anti-aliasing (the other must be 1)";
     if (const int f = ssaaFactor(o.ssaa); f > 1 && (o.width > FrameBuffer::kMaxDimension / f ||
                                                    o.height > FrameBuffer::kMaxDimension / f))
         return "--ssaa " + std::to_string(o.ssaa) + " renders " + std::to_string(o.width) + "x" +
@@ -248,6 +262,9 @@ std::string sceneFlagsHelp() {
            "                        those flags, given too, win\n"
            "  --ssaa N              supersampling: 1 (off, default), 4 (2x2) or 16 (4x4) samples per pixel,\n"
            "                        each shaded, box-filtered; width and height at most 8192 / sqrt(N)\n"
+           "  --msaa N              multisampling: 1 (off, default), 2, 4 or 8 samples per pixel at the\n"
+           "                        Direct3D positions, coverage and depth per sample, shaded once per\n"
+           "                        pixel (centre, or centroid on edges), box-filtered; not with --ssaa\n"
            "  --isa I               auto | scalar | sse2 | avx2 | avx512: span kernels (default auto, the\n"
            "                        widest this CPU has; scalar = the reference loop; same image for all)\n"
            "  --kd r,g,b            colour of untextured surfaces (default 0.8,0.8,0.8)\n"

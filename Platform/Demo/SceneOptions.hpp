@@ -19,12 +19,14 @@
 namespace sr::demo {
 
 // Three points on the speed/accuracy front that `softraster report` measures (docs/reports),
-// selected by --quality on the command line and in the demo. Explicit --ssaa, --filter,
-// --shading and --persp flags override the preset's value, in any order.
+// selected by --quality on the command line and in the demo. Explicit --ssaa, --msaa, --filter,
+// --shading and --persp flags override the preset's value, in any order (an explicit --msaa
+// replaces the preset's supersampling, an explicit --ssaa its multisampling).
 enum class Quality { Fast, Balanced, Accurate };
 
 struct QualitySettings {
     int ssaa = 1;
+    int msaa = 1;
     TextureFilter filter = TextureFilter::Bilinear;
     ShadingMode shading = ShadingMode::Phong;
     PerspectiveMode perspective = PerspectiveMode::Exact;
@@ -54,12 +56,13 @@ struct SceneOptions {
     WrapMode wrap = WrapMode::Repeat;
     PerspectiveMode perspective = PerspectiveMode::Exact;
     int ssaa = 1;        // --ssaa: supersampling samples per pixel, 1, 4 or 16 (Raster/Resolve.hpp)
+    int msaa = 1;        // --msaa: multisampling samples per pixel, 1, 2, 4 or 8 (Raster/Msaa.hpp)
     Isa isa = bestIsa(); // --isa: which span kernels fill (auto = the widest this CPU has)
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
     bool wireframe = false;
     std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
-    bool explicitSsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
+    bool explicitSsaa = false, explicitMsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
 };
 
 // Largest accepted --width / --height and --threads.

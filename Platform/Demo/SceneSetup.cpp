@@ -210,6 +210,7 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.isa = o.isa;
     s.wireframe = o.wireframe;
     s.ssaa = o.ssaa;
+    s.msaa = o.msaa;
     return s;
 }
 

@@ -6,6 +6,7 @@
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/Kernels/KernelConfig.hpp"
 #include "Raster/FrameBuffer.hpp"
+#include "Raster/MsaaFill.hpp"   // SpanRun
 #include "Raster/PipelineModes.hpp" // DepthMode, PerspectiveMode
 #include "Raster/Scissor.hpp"
 #include "Raster/Texture.hpp"       // TextureFilter, WrapMode
@@ -29,19 +30,30 @@ struct KernelKey {
 template <class Prog>
 using FillKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, const Scissor&, std::uint64_t& shaded);
 
+// The multisampled fill's run shader (MsaaFill.hpp): shades the pixel centres of `count` runs of
+// row y into fb's row, without a depth test. Bit-identical to fillSpan<DepthMode::Off> + fragment().
+template <class Prog>
+using ShadeRunsKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, int y, const SpanRun* runs, int count);
+
 // One table per ISA (Kernels*.cpp); nullptr where the ISA has no kernel for the key (the
 // scalar reference then fills: non-integer shininess).
 namespace kernels_sse2 {
 template <class Prog>
 FillKernel<Prog> fillKernel(const KernelKey& key);
+template <class Prog>
+ShadeRunsKernel<Prog> shadeRunsKernel(const KernelKey& key);
 }
 namespace kernels_avx2 {
 template <class Prog>
 FillKernel<Prog> fillKernel(const KernelKey& key);
+template <class Prog>
+ShadeRunsKernel<Prog> shadeRunsKernel(const KernelKey& key);
 }
 namespace kernels_avx512 {
 template <class Prog>
 FillKernel<Prog> fillKernel(const KernelKey& key);
+template <class Prog>
+ShadeRunsKernel<Prog> shadeRunsKernel(const KernelKey& key);
 }
 
 template <class Prog>
@@ -53,6 +65,23 @@ FillKernel<Prog> selectFillKernel(Isa isa, const KernelKey& key) {
     case Isa::Sse2: return kernels_sse2::fillKernel<Prog>(key);
     case Isa::Avx2: return kernels_avx2::fillKernel<Prog>(key);
     case Isa::Avx512: return kernels_avx512::fillKernel<Prog>(key);
+    }
+#else
+    (void)key;
+#endif
+    return nullptr;
+}
+
+// The same for the run shader (the key's depth mode is ignored).
+template <class Prog>
+ShadeRunsKernel<Prog> selectShadeRunsKernel(Isa isa, const KernelKey& key) {
+    if (!isaAvailable(isa)) return nullptr;
+#if SR_KERNELS_X86
+    switch (isa) {
+    case Isa::Scalar: return nullptr;
+    case Isa::Sse2: return kernels_sse2::shadeRunsKernel<Prog>(key);
+    case Isa::Avx2: return kernels_avx2::shadeRunsKernel<Prog>(key);
+    case Isa::Avx512: return kernels_avx512::shadeRunsKernel<Prog>(key);
     }
 #else
     (void)key;

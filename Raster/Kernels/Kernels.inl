@@ -548,25 +548,56 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
     if constexpr (Prog::kVaryings > 0) span.flush();
 }
 
+// The multisampled fill's shading (MsaaFill.hpp): the pixel centres of the given runs of row y,
+// shaded into fb's row without a depth test, as fillSpan<DepthMode::Off> with fragment() does
+// (SpanKernel's very loop, one span per run; the queue is flushed before returning).
+template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, int y, const SpanRun* runs, int count) {
+    assert(Prog::kVaryings <= t.varyingCount);
+    static thread_local FragmentQueue<Prog::kVaryings> queue;
+    queue.count = 0;
+    std::uint64_t shaded = 0; // the multisampled fill counts its pixels itself
+    using Span = SpanKernel<Prog, DepthMode::Off, kPersp, kFilter, kWrap>;
+    Span span{p, t, fb, shaded, queue, {}, fzero()};
+    if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
+        span.triangleLod = fset(affineMipLevel(p));
+    for (int k = 0; k < Span::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
+    for (int r = 0; r < count; ++r) span(y, runs[r].x0, runs[r].x1);
+    if constexpr (Prog::kVaryings > 0) span.flush();
+}
+
 // --- The table ---------------------------------------------------------------------------------
+// Both entries of a key: the fill (per depth mode) and the multisampled run shader (the same
+// for every depth mode: one instantiation).
+template <class Prog>
+struct KernelPair {
+    FillKernel<Prog> fill = nullptr;
+    ShadeRunsKernel<Prog> runs = nullptr;
+};
+
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+KernelPair<Prog> entries() {
+    return {&fillSpans<Prog, kDepth, kPersp, kFilter, kWrap>, &shadeRunSpans<Prog, kPersp, kFilter, kWrap>};
+}
+
 // Resolves the key's run-time values into template arguments, one level at a time; a program
 // that does not read a setting gets the one instantiation that ignores it.
 template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
-FillKernel<Prog> pickWrap(const KernelKey& key) {
+KernelPair<Prog> pickWrap(const KernelKey& key) {
     if constexpr (!Prog::kIsTextured) {
-        return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>; // wrap unused
+        return entries<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>(); // wrap unused
     } else {
         switch (key.wrap) {
-        case WrapMode::Repeat: return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>;
-        case WrapMode::Clamp: return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Clamp>;
-        case WrapMode::Mirror: return &fillSpans<Prog, kDepth, kPersp, kFilter, WrapMode::Mirror>;
+        case WrapMode::Repeat: return entries<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>();
+        case WrapMode::Clamp: return entries<Prog, kDepth, kPersp, kFilter, WrapMode::Clamp>();
+        case WrapMode::Mirror: return entries<Prog, kDepth, kPersp, kFilter, WrapMode::Mirror>();
         }
-        return nullptr;
+        return {};
     }
 }
 
 template <class Prog, DepthMode kDepth, PerspectiveMode kPersp>
-FillKernel<Prog> pickFilter(const KernelKey& key) {
+KernelPair<Prog> pickFilter(const KernelKey& key) {
     if constexpr (!Prog::kIsTextured) {
         return pickWrap<Prog, kDepth, kPersp, TextureFilter::Bilinear>(key);
     } else {
@@ -575,12 +606,12 @@ FillKernel<Prog> pickFilter(const KernelKey& key) {
         case TextureFilter::Bilinear: return pickWrap<Prog, kDepth, kPersp, TextureFilter::Bilinear>(key);
         case TextureFilter::Trilinear: return pickWrap<Prog, kDepth, kPersp, TextureFilter::Trilinear>(key);
         }
-        return nullptr;
+        return {};
     }
 }
 
 template <class Prog, DepthMode kDepth>
-FillKernel<Prog> pickPerspective(const KernelKey& key) {
+KernelPair<Prog> pickPerspective(const KernelKey& key) {
     if constexpr (Prog::kVaryings == 0) {
         return pickFilter<Prog, kDepth, PerspectiveMode::Exact>(key); // nothing to interpolate
     } else {
@@ -588,18 +619,23 @@ FillKernel<Prog> pickPerspective(const KernelKey& key) {
         case PerspectiveMode::Exact: return pickFilter<Prog, kDepth, PerspectiveMode::Exact>(key);
         case PerspectiveMode::Affine: return pickFilter<Prog, kDepth, PerspectiveMode::Affine>(key);
         }
-        return nullptr;
+        return {};
     }
 }
 
 template <class Prog>
 FillKernel<Prog> fillKernel(const KernelKey& key) {
     switch (key.depth) {
-    case DepthMode::Off: return pickPerspective<Prog, DepthMode::Off>(key);
-    case DepthMode::Test: return pickPerspective<Prog, DepthMode::Test>(key);
-    case DepthMode::TestWrite: return pickPerspective<Prog, DepthMode::TestWrite>(key);
+    case DepthMode::Off: return pickPerspective<Prog, DepthMode::Off>(key).fill;
+    case DepthMode::Test: return pickPerspective<Prog, DepthMode::Test>(key).fill;
+    case DepthMode::TestWrite: return pickPerspective<Prog, DepthMode::TestWrite>(key).fill;
     }
     return nullptr;
+}
+
+template <class Prog>
+ShadeRunsKernel<Prog> shadeRunsKernel(const KernelKey& key) {
+    return pickPerspective<Prog, DepthMode::Off>(key).runs; // no depth test: the fill did it per sample
 }
 
 // The one shading model this translation unit instantiates, untextured and textured:
@@ -607,3 +643,5 @@ FillKernel<Prog> fillKernel(const KernelKey& key) {
 // shading model, so that no single file compiles all 2 x 4 programs' kernels).
 template FillKernel<programs::SR_KERNEL_PROGRAM<false>> fillKernel(const KernelKey&);
 template FillKernel<programs::SR_KERNEL_PROGRAM<true>> fillKernel(const KernelKey&);
+template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false>> shadeRunsKernel(const KernelKey&);
+template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true>> shadeRunsKernel(const KernelKey&);

@@ -27,8 +27,9 @@ bool isTopLeft(P a, P b) {
 
 // Calls f(x, y, w0, w1, w2, area) for each covered pixel, where w_i is the edge function of the
 // edge opposite vertex i (so w_i / area is vertex i's barycentric), in input vertex order.
+// The sample point of pixel (x, y) is its centre moved by (ox, oy) in 1/256 pixel (0, 0: the centre).
 template <class F>
-void forEachCovered(const ScreenVertex* v, int width, int height, F&& f) {
+void forEachCovered(const ScreenVertex* v, int width, int height, F&& f, std::int64_t ox = 0, std::int64_t oy = 0) {
     P p[3];
     for (int i = 0; i < 3; ++i) p[i] = {snap(v[i].x), snap(v[i].y)};
     std::int64_t area = edge(p[0], p[1], p[2]);
@@ -44,11 +45,12 @@ void forEachCovered(const ScreenVertex* v, int width, int height, F&& f) {
     const std::int64_t bias1 = isTopLeft(c, a) ? 0 : -1;
     const std::int64_t bias2 = isTopLeft(a, b) ? 0 : -1;
 
-    const std::int64_t minX = std::min({a.x, b.x, c.x}) >> 8, maxX = std::max({a.x, b.x, c.x}) >> 8;
-    const std::int64_t minY = std::min({a.y, b.y, c.y}) >> 8, maxY = std::max({a.y, b.y, c.y}) >> 8;
+    // The pixels whose sample point can lie in the bounding box (one more on each side: |o| < 1).
+    const std::int64_t minX = (std::min({a.x, b.x, c.x}) >> 8) - 1, maxX = (std::max({a.x, b.x, c.x}) >> 8) + 1;
+    const std::int64_t minY = (std::min({a.y, b.y, c.y}) >> 8) - 1, maxY = (std::max({a.y, b.y, c.y}) >> 8) + 1;
     for (std::int64_t y = std::max<std::int64_t>(minY, 0); y <= std::min<std::int64_t>(maxY, height - 1); ++y) {
         for (std::int64_t x = std::max<std::int64_t>(minX, 0); x <= std::min<std::int64_t>(maxX, width - 1); ++x) {
-            const P centre{x * 256 + 128, y * 256 + 128};
+            const P centre{x * 256 + 128 + ox, y * 256 + 128 + oy};
             const std::int64_t w0 = edge(b, c, centre), w1 = edge(c, a, centre), w2 = edge(a, b, centre);
             if (w0 + bias0 < 0 || w1 + bias1 < 0 || w2 + bias2 < 0) continue;
             std::int64_t w[3];
@@ -70,6 +72,17 @@ std::vector<int> coverage(const ScreenVertex& v0, const ScreenVertex& v1, const 
     std::vector<int> out;
     forEachCovered(v, width, height, [&](int x, int y, std::int64_t, std::int64_t, std::int64_t,
                                          std::int64_t) { out.push_back(y * width + x); });
+    return out;
+}
+
+std::vector<int> sampleCoverage(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, int width,
+                                int height, std::int64_t ox, std::int64_t oy) {
+    const ScreenVertex v[3] = {v0, v1, v2};
+    std::vector<int> out;
+    forEachCovered(
+        v, width, height,
+        [&](int x, int y, std::int64_t, std::int64_t, std::int64_t, std::int64_t) { out.push_back(y * width + x); },
+        ox, oy);
     return out;
 }
 

@@ -19,6 +19,11 @@ std::int64_t snap(float v);
 std::vector<int> coverage(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
                           int width, int height);
 
+// The same for the sample point at (ox, oy) from every pixel centre (in 1/256 pixel, |o| < 256):
+// pixel indices whose sample point the triangle covers (multisampling's per-sample coverage).
+std::vector<int> sampleCoverage(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, int width,
+                                int height, std::int64_t ox, std::int64_t oy);
+
 // One covered pixel with its attributes from barycentrics in double: z linear in screen space,
 // varyings perspective-correct (sum b_i v_i / w_i divided by sum b_i / w_i).
 struct Fragment {

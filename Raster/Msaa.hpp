@@ -1,0 +1,63 @@
+// Multisampling (MSAA): the sample patterns, the per-sample colour and depth target, its resolve.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "Raster/FixedPoint.hpp"
+#include "Raster/FrameBuffer.hpp"
+
+namespace sr {
+
+// Samples per pixel MSAA offers: 1 (off), 2, 4 or 8.
+inline constexpr int kMsaaSampleCounts[] = {1, 2, 4, 8};
+constexpr bool validMsaa(int samples) { return samples == 1 || samples == 2 || samples == 4 || samples == 8; }
+
+// A sample's offset from its pixel centre in 1/256 pixel (the snapping grid), y down.
+struct SampleOffset {
+    Fixed x = 0, y = 0;
+};
+
+// The Direct3D standard sample patterns (D3D11_STANDARD_MULTISAMPLE_PATTERN; offsets in 1/16
+// pixel, y down, as the D3D documentation lists them), scaled to the 1/256 grid: every sample
+// lies exactly on it, so the per-sample coverage uses the same 8-bit fixed point as one sample.
+// 1 sample: the pixel centre. Returns nullptr for a count validMsaa rejects.
+const SampleOffset* msaaPattern(int samples);
+
+// The per-sample target: `samples` colours and depths per pixel, pixel-major (the samples of
+// one pixel are adjacent: sample s of pixel x on row y is element (y * width + x) * samples + s).
+// Empty until resized; resize keeps the allocation when it fits.
+class MsaaBuffer {
+public:
+    // Returns false (and leaves the buffer as it was) for a size FrameBuffer would refuse or a
+    // count validMsaa rejects.
+    [[nodiscard]] bool resize(int width, int height, int samples);
+    void release(); // gives the memory back
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    int samples() const { return samples_; }
+    bool empty() const { return width_ == 0 || height_ == 0; }
+
+    Pixel* colourRow(int y) { return colour_.data() + offset(y); }
+    const Pixel* colourRow(int y) const { return colour_.data() + offset(y); }
+    float* depthRow(int y) { return depth_.data() + offset(y); }
+    const float* depthRow(int y) const { return depth_.data() + offset(y); }
+
+    // Sets rows [rowBegin, rowEnd) of every sample to colour and depth.
+    void clearRows(int rowBegin, int rowEnd, Pixel colour, float depth);
+
+private:
+    std::size_t offset(int y) const { return std::size_t(y) * std::size_t(width_) * std::size_t(samples_); }
+    int width_ = 0, height_ = 0, samples_ = 1;
+    std::vector<Pixel> colour_;
+    std::vector<float> depth_;
+};
+
+// Box-filters rows [rowBegin, rowEnd) of `out` (the same size as `samples`, asserted) from the
+// sample target, with the SSAA resolve's rule (Resolve.hpp): per channel the rounded mean
+// (sum + n/2) / n of the stored 8-bit values, depth = the nearest (largest) sample.
+void resolveMsaaRows(const MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd);
+
+} // namespace sr

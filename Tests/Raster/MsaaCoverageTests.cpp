@@ -1,0 +1,250 @@
+// Multisampled coverage (Raster/MsaaFill.hpp): per sample equal to the reference rasterizer's edge
+// functions at the sample points, shading once per covered pixel, and watertight per sample.
+#include "TestFramework.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "Raster/Msaa.hpp"
+#include "Raster/MsaaFill.hpp"
+#include "RasterTestUtil.hpp"
+#include "ReferenceRasterizer.hpp"
+
+using namespace sr;
+using namespace sr::test;
+
+namespace {
+
+constexpr Pixel kClear = 0xFF000000u, kInk = 0xFFFFFFFFu;
+
+// What fillTriangleMsaa did with one triangle (no depth test): the covered pixels of every sample
+// (indices y * width + x, ascending), and how it shaded.
+struct MsaaFillResult {
+    std::vector<std::vector<int>> perSample;
+    std::vector<int> centreShaded;   // pixels shaded at the centre (through the run shader)
+    std::vector<int> centroidShaded; // pixels shaded at the centroid of their covered samples
+    std::uint64_t shadedCount = 0;   // the fill's own counter
+};
+
+MsaaFillResult fillSamples(const ScreenVertex& a, const ScreenVertex& b, const ScreenVertex& c, int samples,
+                           int width, int height) {
+    MsaaBuffer target;
+    REQUIRE(target.resize(width, height, samples));
+    target.clearRows(0, height, kClear, 0.0f);
+    FrameBuffer shadeRows(width, height);
+    MsaaFillResult r;
+    TriangleSetup t;
+    if (setupTriangleCulled(t, a, b, c, CullMode::None, 0, true, {}, true) == SetupOutcome::Ready) {
+        MsaaScratch scratch;
+        auto shadeRow = [&](int y) -> const Pixel* { return shadeRows.colorRow(y); };
+        auto shadeRuns = [&](int y, const SpanRun* runs, int count) {
+            for (int k = 0; k < count; ++k)
+                for (int x = runs[k].x0; x < runs[k].x1; ++x) {
+                    shadeRows.colorRow(y)[x] = kInk;
+                    r.centreShaded.push_back(y * width + x);
+                }
+        };
+        auto shadeAt = [&](int x, int y, double, double) {
+            r.centroidShaded.push_back(y * width + x);
+            return kInk;
+        };
+        fillTriangleMsaa<DepthMode::Off>(t, target, Scissor{0, 0, width, height}, scratch, shadeRow, shadeRuns,
+                                         shadeAt, r.shadedCount);
+    }
+    r.perSample.resize(std::size_t(samples));
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            for (int s = 0; s < samples; ++s)
+                if (target.colourRow(y)[std::size_t(x) * std::size_t(samples) + std::size_t(s)] == kInk)
+                    r.perSample[std::size_t(s)].push_back(y * width + x);
+    std::sort(r.centreShaded.begin(), r.centreShaded.end());
+    std::sort(r.centroidShaded.begin(), r.centroidShaded.end());
+    return r;
+}
+
+// Checks one triangle in all six vertex orders against the reference, for every sample count.
+void checkAgainstReference(const std::array<ScreenVertex, 3>& v, int width, int height) {
+    for (int n : {2, 4, 8}) {
+        const SampleOffset* pattern = msaaPattern(n);
+        std::vector<std::vector<int>> expected;
+        std::vector<int> any;
+        for (int s = 0; s < n; ++s) {
+            expected.push_back(ref::sampleCoverage(v[0], v[1], v[2], width, height, pattern[s].x, pattern[s].y));
+            any.insert(any.end(), expected.back().begin(), expected.back().end());
+        }
+        std::sort(any.begin(), any.end());
+        any.erase(std::unique(any.begin(), any.end()), any.end());
+        const std::vector<int> centre = ref::coverage(v[0], v[1], v[2], width, height);
+        std::vector<int> centreAndSample, sampleOnly;
+        std::set_intersection(any.begin(), any.end(), centre.begin(), centre.end(), std::back_inserter(centreAndSample));
+        std::set_difference(any.begin(), any.end(), centre.begin(), centre.end(), std::back_inserter(sampleOnly));
+
+        std::array<int, 3> order{0, 1, 2};
+        do {
+            CAPTURE(n, order[0], order[1], order[2]);
+            const MsaaFillResult r = fillSamples(v[std::size_t(order[0])], v[std::size_t(order[1])],
+                                                 v[std::size_t(order[2])], n, width, height);
+            for (int s = 0; s < n; ++s) {
+                CAPTURE(s);
+                REQUIRE(r.perSample[std::size_t(s)] == expected[std::size_t(s)]);
+            }
+            // Shaded once per pixel with a covered sample: at the centre where the centre is
+            // covered, else at the centroid.
+            REQUIRE(r.centreShaded == centreAndSample);
+            REQUIRE(r.centroidShaded == sampleOnly);
+            REQUIRE(r.shadedCount == any.size());
+        } while (std::next_permutation(order.begin(), order.end()));
+    }
+}
+
+} // namespace
+
+TEST_CASE("MSAA: the standard Direct3D patterns, on the 1/256 grid, inside the pixel", "[msaa]") {
+    CHECK(msaaPattern(3) == nullptr);
+    CHECK(msaaPattern(16) == nullptr);
+    CHECK(msaaPattern(1)[0].x == 0);
+    CHECK(msaaPattern(1)[0].y == 0);
+    // D3D11_STANDARD_MULTISAMPLE_PATTERN, 1/16 pixel: 2x (4,4) (-4,-4); 4x (-2,-6) (6,-2) (-6,2) (2,6).
+    CHECK(msaaPattern(2)[0].x == 64);
+    CHECK(msaaPattern(2)[1].y == -64);
+    CHECK(msaaPattern(4)[0].x == -32);
+    CHECK(msaaPattern(4)[0].y == -96);
+    CHECK(msaaPattern(4)[3].x == 32);
+    CHECK(msaaPattern(4)[3].y == 96);
+    for (int n : {2, 4, 8}) {
+        const SampleOffset* p = msaaPattern(n);
+        int sumX = 0, sumY = 0;
+        for (int s = 0; s < n; ++s) {
+            CAPTURE(n, s);
+            CHECK(p[s].x % 16 == 0);
+            CHECK(p[s].y % 16 == 0);
+            CHECK(p[s].x >= -128);
+            CHECK(p[s].x < 128);
+            CHECK(p[s].y >= -128);
+            CHECK(p[s].y < 128);
+            for (int o = 0; o < s; ++o) CHECK((p[o].x != p[s].x || p[o].y != p[s].y));
+            sumX += p[s].x;
+            sumY += p[s].y;
+        }
+        // Every standard pattern is centred on the pixel (no drift of the image).
+        CHECK(sumX == 0);
+        CHECK(sumY == 0);
+    }
+}
+
+TEST_CASE("MSAA coverage equals the per-sample reference, sample by sample (random, fixed seed)", "[msaa]") {
+    constexpr int kW = 40, kH = 32;
+    std::mt19937 rng(20261125);
+    auto point = [&](float lo, float hi) { return vtx(uniform(rng, lo, hi), uniform(rng, lo, hi)); };
+    SECTION("general triangles, partly off the target") {
+        for (int i = 0; i < 150; ++i) checkAgainstReference({point(-6, 46), point(-6, 46), point(-6, 46)}, kW, kH);
+    }
+    SECTION("vertices on the 1/16 grid: edges through sample points, axis-aligned edges") {
+        auto grid = [&] { return vtxFixed(16 * uniformInt(rng, -16, 16 * 36), 16 * uniformInt(rng, -16, 16 * 28)); };
+        for (int i = 0; i < 150; ++i) {
+            ScreenVertex a = grid(), b = grid(), c = grid();
+            if (i % 3 == 0) b.y = a.y; // a horizontal edge
+            if (i % 3 == 1) c.x = a.x; // a vertical edge
+            checkAgainstReference({a, b, c}, kW, kH);
+        }
+    }
+    SECTION("sub-pixel triangles (no pixel centre needed)") {
+        for (int i = 0; i < 200; ++i) {
+            const float x = uniform(rng, 2, 38), y = uniform(rng, 2, 30);
+            checkAgainstReference({vtx(x, y), vtx(x + uniform(rng, -1.2f, 1.2f), y + uniform(rng, -1.2f, 1.2f)),
+                                   vtx(x + uniform(rng, -1.2f, 1.2f), y + uniform(rng, -1.2f, 1.2f))},
+                                  kW, kH);
+        }
+    }
+    SECTION("slivers: the third vertex a few 1/256 off the line through the other two") {
+        for (int i = 0; i < 150; ++i) {
+            const ScreenVertex a = point(-4, 44), b = point(-4, 44);
+            const float t = uniform(rng, 0.0f, 1.0f), off = float(uniformInt(rng, -4, 4)) / 256.0f;
+            checkAgainstReference({a, b, vtx(a.x + t * (b.x - a.x) + off, a.y + t * (b.y - a.y) - off)}, kW, kH);
+        }
+    }
+    SECTION("guard-band sizes: vertices up to 16384 pixels away") {
+        for (int i = 0; i < 60; ++i) {
+            const float g = kGuardBand;
+            checkAgainstReference({point(-g, g), point(-g, g), vtx(uniform(rng, 0, 40), uniform(rng, 0, 32))}, kW, kH);
+        }
+    }
+}
+
+TEST_CASE("MSAA is watertight per sample: a jittered grid and a fan cover every sample once", "[msaa]") {
+    constexpr int kW = 48, kH = 40;
+    std::mt19937 rng(7);
+    for (int n : {2, 4, 8}) {
+        CAPTURE(n);
+        const SampleOffset* pattern = msaaPattern(n);
+        // A 6 x 5 grid of cells over [4, 44) x [4, 36) with jittered inner vertices (1/256 grid,
+        // some on the 1/16 sample grid), each cell split along a random diagonal.
+        constexpr int kCols = 6, kRows = 5;
+        std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> grid(kRows + 1);
+        for (int j = 0; j <= kRows; ++j)
+            for (int i = 0; i <= kCols; ++i) {
+                std::int64_t x = (4 + i * 40 / kCols) * 256, y = (4 + j * 32 / kRows) * 256;
+                if (i > 0 && i < kCols) x += (j % 2 ? 16 : 1) * uniformInt(rng, -100 / (j % 2 ? 16 : 1), 100 / (j % 2 ? 16 : 1));
+                if (j > 0 && j < kRows) y += uniformInt(rng, -100, 100);
+                grid[std::size_t(j)].push_back({x, y});
+            }
+        std::vector<int> hits(std::size_t(kW * kH * n), 0);
+        auto add = [&](std::pair<std::int64_t, std::int64_t> a, std::pair<std::int64_t, std::int64_t> b,
+                       std::pair<std::int64_t, std::int64_t> c) {
+            if (uniformInt(rng, 0, 1)) std::swap(b, c);
+            const MsaaFillResult r = fillSamples(vtxFixed(a.first, a.second), vtxFixed(b.first, b.second),
+                                                 vtxFixed(c.first, c.second), n, kW, kH);
+            for (int s = 0; s < n; ++s)
+                for (int p : r.perSample[std::size_t(s)]) ++hits[std::size_t(p * n + s)];
+        };
+        for (int j = 0; j < kRows; ++j)
+            for (int i = 0; i < kCols; ++i) {
+                const auto p00 = grid[std::size_t(j)][std::size_t(i)], p10 = grid[std::size_t(j)][std::size_t(i + 1)];
+                const auto p01 = grid[std::size_t(j + 1)][std::size_t(i)], p11 = grid[std::size_t(j + 1)][std::size_t(i + 1)];
+                if (uniformInt(rng, 0, 1)) {
+                    add(p00, p10, p11);
+                    add(p00, p11, p01);
+                } else {
+                    add(p00, p10, p01);
+                    add(p10, p11, p01);
+                }
+            }
+        int inside = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                for (int s = 0; s < n; ++s) {
+                    const std::int64_t sx = x * 256 + 128 + pattern[s].x, sy = y * 256 + 128 + pattern[s].y;
+                    // The rectangle [4, 44) x [4, 36): left and top sides in, right and bottom out.
+                    const int expect = sx >= 4 * 256 && sx < 44 * 256 && sy >= 4 * 256 && sy < 36 * 256 ? 1 : 0;
+                    inside += expect;
+                    CAPTURE(x, y, s);
+                    REQUIRE(hits[std::size_t((y * kW + x) * n + s)] == expect);
+                }
+        CHECK(inside == 40 * 32 * n);
+
+        // A fan of 64 triangles around an off-grid centre: every sample inside the polygon once.
+        std::fill(hits.begin(), hits.end(), 0);
+        std::vector<int> expected(hits.size(), 0);
+        const std::pair<std::int64_t, std::int64_t> centre{24 * 256 + 37, 20 * 256 + 101};
+        std::vector<std::pair<std::int64_t, std::int64_t>> ring;
+        for (int k = 0; k < 64; ++k) {
+            const double a = 2.0 * 3.14159265358979 * k / 64.0;
+            ring.push_back({centre.first + std::int64_t(std::cos(a) * 17.3 * 256), centre.second + std::int64_t(std::sin(a) * 15.1 * 256)});
+        }
+        for (int k = 0; k < 64; ++k) {
+            const auto a = ring[std::size_t(k)], b = ring[std::size_t((k + 1) % 64)];
+            add(centre, a, b);
+            for (int s = 0; s < n; ++s)
+                for (int p : ref::sampleCoverage(vtxFixed(centre.first, centre.second), vtxFixed(a.first, a.second),
+                                                 vtxFixed(b.first, b.second), kW, kH, pattern[s].x, pattern[s].y))
+                    ++expected[std::size_t(p * n + s)];
+        }
+        CHECK(*std::max_element(expected.begin(), expected.end()) == 1);
+        CHECK(std::count(expected.begin(), expected.end(), 1) > 700 * n);
+        CHECK(hits == expected);
+    }
+}

@@ -1,0 +1,283 @@
+// Multisampling (Raster/Msaa.hpp, MsaaFill.hpp, renderSceneFrame with msaa > 1): the resolve, the
+// resolved coverage of edges against the exact area, depth per sample, shading at the centroid,
+// lines, threads, kernels against the scalar reference, memory.
+#include "TestFramework.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "AntialiasTestUtil.hpp"
+#include "Platform/Demo/SceneSetup.hpp"
+#include "Raster/Kernels/Isa.hpp"
+#include "Raster/Line.hpp"
+#include "Raster/Msaa.hpp"
+#include "Raster/Pipeline.hpp"
+#include "Raster/RenderContext.hpp"
+#include "Raster/Scene.hpp"
+
+using namespace sr;
+using namespace sr::test;
+
+TEST_CASE("resolveMsaaRows: each channel the rounded mean of the samples, depth the nearest", "[msaa]") {
+    std::mt19937 rng(99);
+    for (int n : {1, 2, 4, 8}) {
+        CAPTURE(n);
+        const int w = 13, h = 7;
+        MsaaBuffer samples;
+        REQUIRE(samples.resize(w, h, n));
+        for (int y = 0; y < h; ++y)
+            for (int i = 0; i < w * n; ++i) {
+                // A third of the pixels with all samples alike (the resolve's shortcut), the rest random.
+                const bool alike = (i / n) % 3 == 0;
+                const int src = alike ? (i / n) * n : i;
+                std::mt19937 cell(unsigned(y * 1000 + src));
+                samples.colourRow(y)[i] = packBgra(std::uint8_t(cell()), std::uint8_t(cell()), std::uint8_t(cell()));
+                samples.depthRow(y)[i] = float(rng() % 1000) / 1000.0f;
+            }
+        FrameBuffer out(w, h);
+        resolveMsaaRows(samples, out, 0, h);
+        for (int y = 0; y < h; ++y)
+            for (int x = 0; x < w; ++x) {
+                double r = 0, g = 0, b = 0;
+                float nearest = 0.0f;
+                for (int s = 0; s < n; ++s) {
+                    const Pixel p = samples.colourRow(y)[x * n + s];
+                    r += pixelR(p);
+                    g += pixelG(p);
+                    b += pixelB(p);
+                    nearest = std::max(nearest, samples.depthRow(y)[x * n + s]);
+                }
+                const Pixel expect = packBgra(std::uint8_t(std::floor(r / n + 0.5)), std::uint8_t(std::floor(g / n + 0.5)),
+                                              std::uint8_t(std::floor(b / n + 0.5)));
+                CAPTURE(x, y);
+                REQUIRE(out.pixel(x, y) == expect);
+                REQUIRE(out.depth(x, y) == nearest);
+            }
+    }
+    // Ties round up: one of two samples at 1 resolves to 1 (0.5 -> 1); three of eight at 255 to 96 (95.6).
+    MsaaBuffer two;
+    REQUIRE(two.resize(1, 1, 8));
+    two.clearRows(0, 1, packBgra(0, 0, 0), 0.0f);
+    for (int s = 0; s < 4; ++s) two.colourRow(0)[s] = packBgra(1, 0, 0);
+    for (int s = 0; s < 3; ++s) two.colourRow(0)[s] |= packBgra(0, 255, 0);
+    FrameBuffer o(1, 1);
+    resolveMsaaRows(two, o, 0, 1);
+    CHECK(o.pixel(0, 0) == packBgra(1, 96, 0));
+}
+
+TEST_CASE("MSAA: resolved coverage approaches the analytic area of a triangle's edges", "[msaa]") {
+    const std::vector<std::vector<std::pair<double, double>>> triangles = {
+        {{3.3, 4.1}, {60.7, 12.9}, {20.2, 45.6}},
+        {{1.05, 47.3}, {62.9, 1.7}, {63.2, 46.8}},   // a long shallow diagonal
+        {{10.6, 0.4}, {11.9, 47.6}, {50.25, 30.1}},  // a near-vertical edge
+        {{0.5, 23.37}, {63.5, 24.61}, {32.0, 47.0}}, // a near-horizontal edge
+    };
+    double sum[4] = {};
+    for (const auto& tri : triangles) {
+        CAPTURE(tri);
+        EdgeError e[4];
+        for (int i = 0; i < 4; ++i) e[i] = coverageError(1, tri, 64, 48, 1, 1 << i);
+        CAPTURE(e[0].mean, e[1].mean, e[2].mean, e[3].mean, e[0].max, e[1].max, e[2].max, e[3].max);
+        REQUIRE(e[3].pixels > 60);
+        for (int i = 0; i < 4; ++i) sum[i] += e[i].mean;
+        // N samples: the coverage of a pixel is a multiple of 1/N; an edge crossing a pixel can
+        // misplace at most all but one of them (the error is below 1 - 1/N + 1/510 everywhere),
+        // and the D3D patterns (one sample per row and column of the N x N sub-grid) keep the
+        // mean far lower on edges of any slope.
+        CHECK(e[0].mean > 0.1);
+        CHECK(e[1].mean < 0.9 * e[0].mean);
+        CHECK(e[2].mean < 0.6 * e[0].mean);
+        CHECK(e[3].mean < 0.45 * e[0].mean);
+        CHECK(e[2].max <= 0.75 + 0.01);
+        CHECK(e[3].max <= 0.5 + 0.01);
+    }
+    // Over the four triangles: 4 samples cut the one-sample edge error by more than half, 8 by more.
+    CAPTURE(sum[0], sum[1], sum[2], sum[3]);
+    CHECK(sum[1] < 0.75 * sum[0]);
+    CHECK(sum[2] < 0.5 * sum[0]);
+    CHECK(sum[3] < sum[2]);
+}
+
+TEST_CASE("MSAA: depth per sample resolves the intersection line of two interpenetrating planes", "[msaa]") {
+    // As the SSAA case: red nearer left of x = c, green right of it; per pixel the red share is
+    // the share of its samples left of c, counted here from the sample pattern.
+    const double c = 20.3;
+    Scene scene;
+    auto quad = [&](double zLeft, double zRight) {
+        Mesh m;
+        for (auto [x, y] : {std::pair{-1.0, -1.0}, std::pair{1.0, -1.0}, std::pair{1.0, 1.0}, std::pair{-1.0, 1.0}}) {
+            const double px = (x + 1.0) * 32.0;
+            m.positions.push_back({float(x), float(y), float(zLeft + (zRight - zLeft) * px / 64.0)});
+        }
+        m.indices = {0, 1, 2, 0, 2, 3};
+        return m;
+    };
+    scene.meshes.push_back(quad(0.5 + c / 128.0, 0.5 + (c - 64.0) / 128.0));
+    scene.meshes.push_back(quad(0.5 - c / 128.0, 0.5 - (c - 64.0) / 128.0));
+    scene.draws.push_back(SceneDraw{0, 0, 6, -1, Color{1, 0, 0, 1}});
+    scene.draws.push_back(SceneDraw{1, 0, 6, -1, Color{0, 1, 0, 1}});
+    FrameView view;
+    view.viewProj = Mat4::identity();
+    RenderSettings settings;
+    settings.shading = ShadingMode::Unlit;
+    for (int n : {2, 4, 8}) {
+        CAPTURE(n);
+        int red = 0;
+        for (int s = 0; s < n; ++s) red += 20.5 + msaaPattern(n)[s].x / 256.0 < c;
+        REQUIRE(red > 0);
+        REQUIRE(red < n);
+        FrameBuffer fb(64, 8);
+        RenderContext ctx(fb);
+        settings.msaa = n;
+        REQUIRE(renderSceneFrame(ctx, scene, view, settings));
+        for (int y = 0; y < 8; ++y) {
+            CHECK(fb.pixel(19, y) == packBgra(255, 0, 0));
+            CHECK(int(pixelR(fb.pixel(20, y))) == (red * 255 + n / 2) / n);
+            CHECK(int(pixelG(fb.pixel(20, y))) == ((n - red) * 255 + n / 2) / n);
+            CHECK(fb.pixel(21, y) == packBgra(0, 255, 0));
+        }
+    }
+}
+
+TEST_CASE("MSAA: an edge pixel whose centre is outside is shaded at the centroid, never extrapolated", "[msaa]") {
+    // One triangle with a varying u = x / 64 (screen pixels): a fragment shaded at a point inside
+    // the triangle gets u within the vertices' range; shaded at the centre of a pixel whose centre
+    // is outside, it would not. Also: some pixels are shaded off their centre.
+    FrameBuffer fb(64, 48);
+    RenderContext ctx(fb);
+    REQUIRE(ctx.msaa.resize(64, 48, 4));
+    ctx.multisampling = true;
+    ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+    const float xs[3] = {3.3f, 60.7f, 20.2f}, ys[3] = {4.1f, 12.9f, 45.6f};
+    const std::uint32_t idx[3] = {0, 1, 2};
+    float uMin = 1e9f, uMax = -1e9f;
+    int offCentre = 0, fragments = 0;
+    DrawState state;
+    drawIndexed<1>(
+        ctx, state, 3, idx, 3,
+        [&](std::size_t i, ClipVertex& out) {
+            out.position = Vec4(xs[i] / 32.0f - 1.0f, 1.0f - ys[i] / 24.0f, 0.5f, 1.0f);
+            out.varyings[0] = xs[i] / 64.0f;
+        },
+        [&](const Fragment<1>& f) {
+            ++fragments;
+            uMin = std::min(uMin, f.varyings[0]);
+            uMax = std::max(uMax, f.varyings[0]);
+            // The centre's u would be (x + 0.5) / 64; the centroid's differs.
+            offCentre += std::abs(f.varyings[0] - (f.x + 0.5f) / 64.0f) > 1e-5f;
+            return packBgra(255, 255, 255);
+        });
+    ctx.multisampling = false;
+    CAPTURE(uMin, uMax, offCentre, fragments);
+    CHECK(fragments > 500);
+    CHECK(offCentre > 10);
+    CHECK(uMin >= 3.3f / 64.0f - 1e-6f);
+    CHECK(uMax <= 60.7f / 64.0f + 1e-6f);
+}
+
+TEST_CASE("MSAA: lines cover all samples of their pixels; the wireframe keeps its weight", "[msaa]") {
+    const LineVertex a{2.3f, 3.1f, 0.5f, packBgra(255, 255, 255)}, b{61.7f, 40.2f, 0.5f, packBgra(255, 255, 255)};
+    FrameBuffer plain(64, 48), resolved(64, 48);
+    plain.clear(packBgra(0, 0, 0));
+    drawLine(plain, a, b);
+    for (int n : {2, 4, 8}) {
+        CAPTURE(n);
+        MsaaBuffer samples;
+        REQUIRE(samples.resize(64, 48, n));
+        samples.clearRows(0, 48, packBgra(0, 0, 0), 0.0f);
+        drawLine(samples, a, b);
+        resolveMsaaRows(samples, resolved, 0, 48);
+        CHECK(std::equal(plain.colorData(), plain.colorData() + 64 * 48, resolved.colorData()));
+    }
+    // The overlay through renderSceneFrame: about as much white as at one sample.
+    const std::vector<std::pair<double, double>> tri{{5.3, 6.1}, {58.7, 14.9}, {22.2, 43.6}};
+    Scene scene = whiteTriangle(tri, 64, 48);
+    scene.draws[0].kd = Color{0, 0, 0, 1};
+    FrameView view;
+    view.viewProj = Mat4::identity();
+    RenderSettings settings;
+    settings.shading = ShadingMode::Unlit;
+    settings.wireframe = true;
+    double ink[2] = {};
+    for (int i = 0; i < 2; ++i) {
+        FrameBuffer fb(64, 48);
+        RenderContext ctx(fb);
+        settings.msaa = i == 0 ? 1 : 4;
+        REQUIRE(renderSceneFrame(ctx, scene, view, settings));
+        for (int y = 0; y < 48; ++y)
+            for (int x = 0; x < 64; ++x) ink[i] += pixelR(fb.pixel(x, y)) / 255.0;
+    }
+    CAPTURE(ink[0], ink[1]);
+    CHECK(ink[0] > 110);
+    CHECK(ink[1] > 0.9 * ink[0]);
+    CHECK(ink[1] < 1.1 * ink[0]);
+}
+
+TEST_CASE("MSAA: the same image on every thread count; sample memory only while multisampling", "[msaa]") {
+    demo::SceneOptions options;
+    options.width = 96;
+    options.height = 64;
+    auto scene = demo::loadScene(options);
+    REQUIRE(scene.ok());
+    const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 96, 64, options.light);
+    FrameBuffer one(96, 64), two(96, 64), plain(96, 64);
+    RenderContext c1(one), c2(two), c0(plain);
+    c2.setThreads(2);
+    RenderSettings settings;
+    demo::renderFrame(c0, scene.value(), view, settings); // the plain path
+    for (int n : {1, 2, 4, 8, 1}) {
+        CAPTURE(n);
+        settings.msaa = n;
+        demo::renderFrame(c1, scene.value(), view, settings);
+        demo::renderFrame(c2, scene.value(), view, settings);
+        CHECK(std::equal(one.colorData(), one.colorData() + 96 * 64, two.colorData()));
+        CHECK(std::equal(one.depthData(), one.depthData() + 96 * 64, two.depthData()));
+        CHECK(c1.msaa.width() == (n > 1 ? 96 : 0));
+        CHECK(c1.msaa.samples() == (n > 1 ? n : 1));
+        CHECK_FALSE(c1.multisampling); // only during the frame
+        const int differing = int(std::mismatch(one.colorData(), one.colorData() + 96 * 64, plain.colorData()).first -
+                                  one.colorData());
+        if (n == 1) CHECK(differing == 96 * 64); // --msaa 1 is the plain path, bit for bit
+        else CHECK(differing < 96 * 64);         // edges change
+    }
+    // Supersampling wins when both are asked for; no multisample memory then.
+    settings.msaa = 4;
+    settings.ssaa = 4;
+    demo::renderFrame(c1, scene.value(), view, settings);
+    CHECK(c1.msaa.empty());
+    CHECK(c1.samples.width() == 2 * 96);
+}
+
+TEST_CASE("MSAA: every kernel ISA gives the scalar reference's image, for every program and filter", "[msaa]") {
+    demo::SceneOptions options;
+    options.width = 80;
+    options.height = 56;
+    auto scene = demo::loadScene(options);
+    REQUIRE(scene.ok());
+    const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 80, 56, options.light);
+    for (ShadingMode shading : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
+        for (TextureFilter filter : {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear})
+            for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine}) {
+                RenderSettings settings;
+                settings.shading = shading;
+                settings.filter = filter;
+                settings.perspective = persp;
+                settings.msaa = 4;
+                settings.isa = Isa::Scalar;
+                FrameBuffer reference(80, 56);
+                RenderContext cr(reference);
+                demo::renderFrame(cr, scene.value(), view, settings);
+                for (Isa isa : kAllIsas) {
+                    if (isa == Isa::Scalar || !isaAvailable(isa)) continue;
+                    CAPTURE(shadingModeName(shading), filterName(filter), perspectiveModeName(persp), isaName(isa));
+                    settings.isa = isa;
+                    FrameBuffer fb(80, 56);
+                    RenderContext ctx(fb);
+                    demo::renderFrame(ctx, scene.value(), view, settings);
+                    CHECK(std::equal(fb.colorData(), fb.colorData() + 80 * 56, reference.colorData()));
+                }
+            }
+}
