@@ -87,7 +87,7 @@ Action DemoController::keyDown(Key key, bool repeat) {
     case Action::CycleShading: settings_.shading = next(settings_.shading, 4); break;
     case Action::CycleFilter: settings_.filter = next(settings_.filter, 3); break;
     case Action::CyclePerspective: settings_.perspective = next(settings_.perspective, 2); break;
-    case Action::CycleAntialiasing: settings_.ssaa = settings_.ssaa == 1 ? 4 : settings_.ssaa == 4 ? 16 : 1; break;
+    case Action::CycleAntialiasing: cycleAntialiasing(); break;
     case Action::ToggleWireframe: settings_.wireframe = !settings_.wireframe; break;
     case Action::ToggleDepthView: depthView_ = !depthView_; break;
     case Action::ResetView: resetView(); break;
@@ -134,6 +134,20 @@ void DemoController::update(double dtSeconds) {
         camera_.moveUp(u * step);
 }
 
+void DemoController::cycleAntialiasing() {
+    // off -> MSAA 2 -> 4 -> 8 -> SSAA 4 -> 16 -> off (one kind at a time).
+    struct Aa {
+        int msaa, ssaa;
+    };
+    static constexpr Aa kCycle[] = {{1, 1}, {2, 1}, {4, 1}, {8, 1}, {1, 4}, {1, 16}};
+    constexpr int n = int(sizeof kCycle / sizeof kCycle[0]);
+    int at = 0;
+    for (int i = 0; i < n; ++i)
+        if (kCycle[i].msaa == settings_.msaa && kCycle[i].ssaa == settings_.ssaa) at = i;
+    settings_.msaa = kCycle[(at + 1) % n].msaa;
+    settings_.ssaa = kCycle[(at + 1) % n].ssaa;
+}
+
 std::string DemoController::modeSummary() const {
     std::string s = cullLabel(settings_.cull);
     s += " | ";
@@ -142,8 +156,8 @@ std::string DemoController::modeSummary() const {
     s += filterName(settings_.filter);
     s += " | ";
     s += perspectiveModeName(settings_.perspective);
-    s += " | ssaa ";
-    s += std::to_string(settings_.ssaa);
+    s += settings_.msaa > 1 ? " | msaa " : " | ssaa ";
+    s += std::to_string(settings_.msaa > 1 ? settings_.msaa : settings_.ssaa);
     if (settings_.wireframe)
         s += " | wireframe";
     if (depthView_)

@@ -74,10 +74,12 @@ public:
     CameraSetup cameraSetup() const;
     FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_); }
 
-    // "cull none | phong | bilinear | exact | ssaa 4" (+ " | wireframe", " | depth view", " | help").
+    // "cull none | phong | bilinear | exact | ssaa 4" (or "| msaa 4" while multisampling; + " | wireframe",
+    // " | depth view", " | help").
     std::string modeSummary() const;
 
 private:
+    void cycleAntialiasing();
     Camera home_;
     std::optional<CameraSetup> homeSetup_; // the exact starting setup, when constructed from one
     Camera camera_;

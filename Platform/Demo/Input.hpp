@@ -28,7 +28,7 @@ enum class Action {
     CycleShading,     // unlit -> flat -> gouraud -> phong
     CycleFilter,      // nearest -> bilinear -> trilinear
     CyclePerspective, // exact <-> affine
-    CycleAntialiasing, // supersampling 1 -> 4 -> 16 samples per pixel -> 1
+    CycleAntialiasing, // off -> MSAA 2 -> 4 -> 8 -> SSAA 4 -> 16 -> off
     ToggleWireframe,
     ToggleDepthView,  // show the depth buffer as grey
     ResetView,        // back to the starting camera
@@ -71,7 +71,7 @@ inline constexpr std::array<KeyHelp, 16> kKeyHelp{{
     {"M", "shading: unlit -> flat -> gouraud -> phong"},
     {"T", "texture filter: nearest -> bilinear -> trilinear"},
     {"P", "perspective: exact <-> affine"},
-    {"N", "anti-aliasing: 1 -> 4 -> 16 samples per pixel (SSAA)"},
+    {"N", "anti-aliasing: off -> MSAA 2, 4, 8 -> SSAA 4, 16"},
     {"L", "wireframe overlay on / off"},
     {"Z", "depth view (near = white) on / off"},
     {"F1", "this help on / off"},

@@ -69,8 +69,8 @@ std::string usage(Subcommand c) {
                "  --warmup N            untimed frames before each setting's timed ones (default 5)\n"
                "  --rounds N            interleaved timing rounds (default 3): median, min and max\n"
                "Renders the ground truth (16 samples per pixel, trilinear, phong, exact) and every\n"
-               "combination of anti-aliasing (--ssaa 1 or 4) x texture filter x shading (flat, gouraud,\n"
-               "phong) x perspective (affine, exact); records the time per frame and the error against\n"
+               "combination of anti-aliasing (1 sample, --msaa 4, --ssaa 4) x texture filter x shading\n"
+               "(flat, gouraud, phong) x perspective (affine, exact), and --msaa 8; records the time per frame and the error against\n"
                "the ground truth (mean abs error, PSNR, max abs error, share of differing pixels), the\n"
                "Pareto front and the --quality presets. The scene flags fix everything else; width and\n"
                "height at most 2048 (the ground truth renders 4x4 the size).\n" +

@@ -33,10 +33,10 @@ struct Row {
 };
 
 // The ground truth: 16 samples per pixel (4x4, each shaded), exact perspective, trilinear
-// mipmaps, per-pixel (Phong) lighting. Then every combination of anti-aliasing (1 or 4 samples)
-// x texture filter x shading frequency x perspective mode. A scene without textures skips the
-// filter (it changes nothing there); unlit is left out (it drops the lighting: another picture,
-// not an approximation of this one).
+// mipmaps, per-pixel (Phong) lighting. Then every combination of anti-aliasing (1 sample, MSAA 4
+// or SSAA 4) x texture filter x shading frequency x perspective mode, and MSAA 8 with the truth's
+// other settings. A scene without textures skips the filter (it changes nothing there); unlit is
+// left out (it drops the lighting: another picture, not an approximation of this one).
 std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured) {
     base.perspective = PerspectiveMode::Exact;
     base.filter = TextureFilter::Trilinear;
@@ -45,22 +45,30 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured) {
     std::vector<Setting> out{{base, true, {}}};
     std::vector<TextureFilter> filters{TextureFilter::Trilinear};
     if (textured) filters = {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear};
-    for (int ssaa : {1, 4})
+    struct Aa {
+        int ssaa, msaa;
+    };
+    for (Aa aa : {Aa{1, 1}, Aa{1, 4}, Aa{4, 1}})
         for (TextureFilter f : filters)
             for (ShadingMode m : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
                 for (PerspectiveMode p : {PerspectiveMode::Affine, PerspectiveMode::Exact}) {
                     Setting s{base, false, {}};
-                    s.settings.ssaa = ssaa;
+                    s.settings.ssaa = aa.ssaa;
+                    s.settings.msaa = aa.msaa;
                     s.settings.filter = f;
                     s.settings.shading = m;
                     s.settings.perspective = p;
                     out.push_back(s);
                 }
+    Setting msaa8{base, false, {}};
+    msaa8.settings.ssaa = 1;
+    msaa8.settings.msaa = 8;
+    out.push_back(msaa8);
     // Mark the presets (untextured scenes: the filter does not count).
     for (demo::Quality q : {demo::Quality::Fast, demo::Quality::Balanced, demo::Quality::Accurate}) {
         const demo::QualitySettings qs = demo::qualitySettings(q);
         for (Setting& s : out)
-            if (s.settings.ssaa == qs.ssaa && s.settings.shading == qs.shading &&
+            if (s.settings.ssaa == qs.ssaa && s.settings.msaa == qs.msaa && s.settings.shading == qs.shading &&
                 s.settings.perspective == qs.perspective && (!textured || s.settings.filter == qs.filter)) {
                 s.preset = q;
                 break;
@@ -78,7 +86,7 @@ std::string fmt(double v, int decimals = 3) {
 
 std::string label(const Setting& s, bool textured) {
     const RenderSettings& r = s.settings;
-    std::string l = "ssaa" + std::to_string(r.ssaa);
+    std::string l = r.msaa > 1 ? "msaa" + std::to_string(r.msaa) : "ssaa" + std::to_string(r.ssaa);
     if (textured) l += " " + std::string(filterName(r.filter));
     l += " " + std::string(shadingModeName(r.shading)) + " " + perspectiveModeName(r.perspective);
     return l;
@@ -232,7 +240,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
                                 std::to_string(p.threadsUsed) + " render thread" + (p.threadsUsed == 1 ? "" : "s") +
                                 ", span kernels " + isaName(p.settings.isa);
     std::ostringstream csv, md;
-    csv << "ssaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,max_abs,differing_share,pareto,preset,"
+    csv << "ssaa,msaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,max_abs,differing_share,pareto,preset,"
            "truth\n";
     md << "# SoftRaster quality report\n\n"
        << "Scene: " << scene << ", " << a.scene.width << "x" << a.scene.height << ", "
@@ -244,22 +252,23 @@ int runReport(const std::vector<std::string>& args, Streams io) {
        << "**Error is measured against the ground truth**: the image with 16 samples per pixel (4x4 supersampling, "
           "each sample shaded) and the most accurate other settings (trilinear filtering, Phong shading, exact "
           "perspective). Mean abs error is per colour channel in levels (0-255); PSNR over R, G, B. Every "
-          "combination of anti-aliasing (1 or 4 samples) x texture filter x shading x perspective is measured; "
-          "the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
+          "combination of anti-aliasing (1 sample, MSAA 4: coverage and depth per sample, shaded once per pixel; "
+          "SSAA 4: 2x2 samples, each shaded) x texture filter x shading x perspective is measured, and MSAA 8 with "
+          "the ground truth's other settings; the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
           "`--quality` presets.\n\n"
-       << "| ssaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | max abs | "
+       << "| ssaa | msaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | max abs | "
           "differing pixels | Pareto | preset |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
         const RenderSettings& st = r.setting.settings;
         const std::string filter = textured ? filterName(st.filter) : "-";
         const std::string preset = r.setting.preset ? demo::qualityName(*r.setting.preset) : "";
-        csv << st.ssaa << "," << filter << "," << shadingModeName(st.shading) << "," << perspectiveModeName(st.perspective)
+        csv << st.ssaa << "," << st.msaa << "," << filter << "," << shadingModeName(st.shading) << "," << perspectiveModeName(st.perspective)
             << "," << fmt(r.time.median) << "," << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
             << "," << fmt(r.error.psnrDb, 2) << "," << r.error.maxAbs << "," << fmt(r.error.differingShare, 5) << ","
             << (front[i] ? 1 : 0) << "," << preset << "," << (r.setting.truth ? 1 : 0) << "\n";
-        md << "| " << st.ssaa << (r.setting.truth ? " (ground truth)" : "") << " | " << filter << " | "
+        md << "| " << st.ssaa << (r.setting.truth ? " (ground truth)" : "") << " | " << st.msaa << " | " << filter << " | "
            << shadingModeName(st.shading) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
            << " [" << fmt(r.time.min) << ", " << fmt(r.maxMs) << "] | " << fmt(r.error.meanAbs, 4) << " | "
            << fmt(r.error.psnrDb, 2) << " | " << r.error.maxAbs << " | " << fmt(100.0 * r.error.differingShare, 2)

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "Platform/Demo/DemoController.hpp"
 #include "Platform/Demo/DepthView.hpp"
@@ -58,14 +59,19 @@ TEST_CASE("shading, filter, perspective and anti-aliasing cycle through every mo
         c.keyDown(Key::P);
         CHECK(c.settings().perspective == p);
     }
-    for (const int samples : {4, 16, 1}) {
+    // off -> MSAA 2, 4, 8 -> SSAA 4, 16 -> off: one kind at a time.
+    const std::pair<int, int> cycle[] = {{2, 1}, {4, 1}, {8, 1}, {1, 4}, {1, 16}, {1, 1}};
+    for (const auto& [msaa, ssaa] : cycle) {
         CHECK(c.keyDown(Key::N) == Action::CycleAntialiasing);
-        CHECK(c.settings().ssaa == samples);
+        CHECK(c.settings().msaa == msaa);
+        CHECK(c.settings().ssaa == ssaa);
     }
     c.keyDown(Key::N);
+    c.keyDown(Key::N);
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | msaa 4");
+    for (int i = 0; i < 2; ++i) c.keyDown(Key::N);
     CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 4");
-    c.keyDown(Key::N);
-    c.keyDown(Key::N);
+    for (int i = 0; i < 2; ++i) c.keyDown(Key::N);
     c.keyDown(Key::M);
     c.keyDown(Key::P);
     CHECK(c.modeSummary() == "cull none | unlit | bilinear | affine | ssaa 1");
