@@ -27,9 +27,9 @@ struct KernelProgram : Base {
         kernel(*this, t, fb, s, shaded);
         return true;
     }
-    bool shadeRuns(const TriangleSetup& t, FrameBuffer& fb, int y, const SpanRun* runs, int count) const {
+    bool shadeRuns(const TriangleSetup& t, FrameBuffer& fb, const SpanRun* runs, int count) const {
         if (!runsKernel) return false;
-        runsKernel(*this, t, fb, y, runs, count);
+        runsKernel(*this, t, fb, runs, count);
         return true;
     }
 };

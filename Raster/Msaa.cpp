@@ -64,8 +64,10 @@ bool MsaaBuffer::resize(int width, int height, int samples) {
         !validMsaa(samples))
         return false;
     const std::size_t n = std::size_t(width) * std::size_t(height) * std::size_t(samples);
+    if (width == width_ && height == height_ && samples == samples_) return true; // contents kept
     colour_.resize(n);
     depth_.resize(n);
+    cleared_ = false;
     width_ = width;
     height_ = height;
     samples_ = samples;
@@ -75,6 +77,7 @@ bool MsaaBuffer::resize(int width, int height, int samples) {
 void MsaaBuffer::release() {
     colour_ = {};
     depth_ = {};
+    cleared_ = false;
     width_ = height_ = 0;
     samples_ = 1;
 }
@@ -103,6 +106,16 @@ void resolveMsaaRows(const MsaaBuffer& samples, FrameBuffer& out, int rowBegin, 
         case 8: resolveRow<8>(samples, out, y); break;
         default: assert(false && "MSAA sample count must be 1, 2, 4 or 8"); return;
         }
+    }
+}
+
+void resolveAndClearMsaaRows(MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd, Pixel colour,
+                             float depth) {
+    rowBegin = std::max(rowBegin, 0);
+    rowEnd = std::min(rowEnd, out.height());
+    for (int y = rowBegin; y < rowEnd; ++y) {
+        resolveMsaaRows(samples, out, y, y + 1);
+        samples.clearRows(y, y + 1, colour, depth);
     }
 }
 

@@ -27,7 +27,8 @@ const SampleOffset* msaaPattern(int samples);
 
 // The per-sample target: `samples` colours and depths per pixel, pixel-major (the samples of
 // one pixel are adjacent: sample s of pixel x on row y is element (y * width + x) * samples + s).
-// Empty until resized; resize keeps the allocation when it fits.
+// Empty until resized; resize keeps the allocation when it fits, and the contents when the size
+// and count are unchanged.
 class MsaaBuffer {
 public:
     // Returns false (and leaves the buffer as it was) for a size FrameBuffer would refuse or a
@@ -48,9 +49,24 @@ public:
     // Sets rows [rowBegin, rowEnd) of every sample to colour and depth.
     void clearRows(int rowBegin, int rowEnd, Pixel colour, float depth);
 
+    // Whether every sample is known to hold (colour, depth): set by markCleared once all rows are
+    // cleared (by clearRows or a resolve that clears), reset by resize and markDrawn (any draw).
+    bool isCleared(Pixel colour, float depth) const {
+        return cleared_ && clearColour_ == colour && clearDepth_ == depth;
+    }
+    void markCleared(Pixel colour, float depth) {
+        cleared_ = true;
+        clearColour_ = colour;
+        clearDepth_ = depth;
+    }
+    void markDrawn() { cleared_ = false; }
+
 private:
     std::size_t offset(int y) const { return std::size_t(y) * std::size_t(width_) * std::size_t(samples_); }
     int width_ = 0, height_ = 0, samples_ = 1;
+    bool cleared_ = false;
+    Pixel clearColour_ = 0;
+    float clearDepth_ = 0.0f;
     std::vector<Pixel> colour_;
     std::vector<float> depth_;
 };
@@ -59,5 +75,11 @@ private:
 // sample target, with the SSAA resolve's rule (Resolve.hpp): per channel the rounded mean
 // (sum + n/2) / n of the stored 8-bit values, depth = the nearest (largest) sample.
 void resolveMsaaRows(const MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd);
+
+// The same, clearing each row of samples to (colour, depth) right after it is resolved, while its
+// lines are still in the cache: the next frame's clear costs no second pass over the memory (the
+// caller marks the buffer cleared once every row is done).
+void resolveAndClearMsaaRows(MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd, Pixel colour,
+                             float depth);
 
 } // namespace sr

@@ -12,38 +12,34 @@
 
 namespace sr {
 
-// Pixels [x0, x1) of one row.
+// Pixels [x0, x1) of row y, to be shaded at their centres moved by (dx, dy) pixels: (0, 0) for
+// runs of pixels whose centre the triangle covers, the centroid's offset for a single pixel whose
+// centre it does not. A moved point is evaluated as the plane with its origin moved the other
+// way (shiftedSetup), so the span loops and kernels need no other change.
 struct SpanRun {
-    int x0 = 0, x1 = 0;
+    int y = 0, x0 = 0, x1 = 0;
+    double dx = 0.0, dy = 0.0;
 };
+
+// Makes `moved` (a copy of `t`) evaluate its planes at (x + run.dx, y + run.dy) when asked for
+// (x, y): the plane origin moves the other way (rounded once, the same in every path).
+inline void moveOrigin(const TriangleSetup& t, const SpanRun& run, TriangleSetup& moved) {
+    moved.originX = t.originX - run.dx;
+    moved.originY = t.originY - run.dy;
+}
 
 // Per-lane memory of the multisampled fill, kept from triangle to triangle.
 struct MsaaScratch {
     std::vector<int> spans;             // per row of the triangle, per sample and the centre: [x0, x1)
-    std::vector<std::uint8_t> covered;  // per pixel of a row: the covered samples (bit s = sample s)
+    struct Row {
+        int y = 0, lo = 0, hi = 0; // pixels [lo, hi) of row y have a covered sample
+        std::size_t offset = 0;    // where the row's masks start in `covered` and `passed`
+    };
+    std::vector<Row> rows;
+    std::vector<std::uint8_t> covered;  // per pixel of those rows: the covered samples (bit s = sample s)
     std::vector<std::uint8_t> passed;   // ... the covered samples that passed the depth test
-    std::vector<SpanRun> runs;          // the row's runs of centre-covered pixels to shade
+    std::vector<SpanRun> runs;          // the triangle's pixels to shade (SpanRun)
 };
-
-// The fragment at screen point (px, py) of pixel (x, y): the planes evaluated there in double
-// and rounded once, the varyings perspective-correct as kPersp says (fillSpan's formulas, at an
-// arbitrary point instead of a pixel centre).
-template <int kVaryings, PerspectiveMode kPersp>
-Fragment<kVaryings> fragmentAt(const TriangleSetup& t, int x, int y, double px, double py) {
-    Fragment<kVaryings> f;
-    f.x = x;
-    f.y = y;
-    f.z = float(t.planeAt(kPlaneZ, px, py));
-    if constexpr (kVaryings > 0) {
-        f.invW = float(t.planeAt(kPlaneInvW, px, py));
-        const float w = kPersp == PerspectiveMode::Exact ? 1.0f / f.invW : 1.0f;
-        for (int k = 0; k < kVaryings; ++k) {
-            const float v = float(t.planeAt(kPlaneVarying0 + k, px, py));
-            f.varyings[std::size_t(k)] = kPersp == PerspectiveMode::Exact ? v * w : v;
-        }
-    }
-    return f;
-}
 
 // Pixel rows a triangle's samples can fall in: every row the snapped triangle's y extent
 // touches (a sample lies inside its pixel), a superset of every sample's covered rows. From the
@@ -55,16 +51,71 @@ inline void msaaRowRange(const TriangleSetup& t, int& rowBegin, int& rowEnd) {
 
 namespace detail {
 
-template <int kN, DepthMode kDepth, class ShadeRow, class ShadeRuns, class ShadeAt>
+// A hint that the cache line holding `p` is about to be read and written (no effect where the
+// compiler has no such hint).
+inline void prefetchForWrite(const void* p) {
+#if defined(__GNUC__) || defined(__clang__)
+    __builtin_prefetch(p, 1, 3);
+#else
+    (void)p;
+#endif
+}
+
+// The centroid of the samples in a coverage mask, as an offset from the pixel centre in pixels
+// (the mean of their pattern offsets; (0, 0) for an empty mask).
+struct Centroid {
+    double dx = 0.0, dy = 0.0;
+};
+template <int kN>
+const Centroid* centroidTable() {
+    static const auto table = [] {
+        std::vector<Centroid> t(std::size_t(1) << kN);
+        const SampleOffset* pattern = msaaPattern(kN);
+        for (unsigned mask = 1; mask < t.size(); ++mask) {
+            double sx = 0.0, sy = 0.0;
+            int count = 0;
+            for (int k = 0; k < kN; ++k) {
+                if (!(mask & (1u << k))) continue;
+                sx += pattern[k].x;
+                sy += pattern[k].y;
+                ++count;
+            }
+            t[mask] = {sx / (count * double(kSubPixelScale)), sy / (count * double(kSubPixelScale))};
+        }
+        return t;
+    }();
+    return table.data();
+}
+
+template <int kN, DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
-                         ShadeRow& shadeRow, ShadeRuns& shadeRuns, ShadeAt& shadeAt, std::uint64_t& shaded) {
+                         ShadeRow& shadeRow, ShadeRuns& shadeRuns, std::uint64_t& shaded) {
     constexpr int n = kN;
     const SampleOffset* pattern = msaaPattern(n);
+    const Centroid* centroids = centroidTable<kN>();
     int rowBegin = 0, rowEnd = 0;
     msaaRowRange(t, rowBegin, rowEnd);
     rowBegin = std::max(rowBegin, s.y0);
     rowEnd = std::min(rowEnd, s.y1);
     if (rowBegin >= rowEnd || t.maxX + 1 < s.x0 || t.minX - 1 >= s.x1) return;
+
+    // 0. A small triangle's samples are a few short pieces of rows far apart in memory (a row of
+    //    samples is width * n * 4 bytes): ask for all of its depth and colour lines now, so that
+    //    their cache misses overlap with each other and with the walks below instead of stalling
+    //    the depth test one line at a time (a large triangle's rows stream well on their own).
+    const int boxX0 = std::max(t.minX - 1, s.x0), boxX1 = std::min(t.maxX + 2, s.x1);
+    if (boxX1 - boxX0 <= 64 && rowEnd - rowBegin <= 64) {
+        constexpr std::size_t kLine = 64 / sizeof(float); // samples per 64-byte cache line
+        for (int y = rowBegin; y < rowEnd; ++y) {
+            const std::size_t from = std::size_t(boxX0) * n, to = std::size_t(boxX1) * n;
+            for (std::size_t i = from; i < to; i += kLine) {
+                prefetchForWrite(target.depthRow(y) + i);
+                prefetchForWrite(target.colourRow(y) + i);
+            }
+            prefetchForWrite(target.depthRow(y) + to - 1);
+            prefetchForWrite(target.colourRow(y) + to - 1);
+        }
+    }
 
     // 1. The span of every sample (and of the centre, entry n) on every row: n + 1 exact walks.
     const int stride = 2 * (n + 1);
@@ -79,6 +130,16 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
         });
     }
 
+    // 2. Per row: coverage and the depth test, pixel by pixel, its N samples together (adjacent
+    //    in memory); the masks are kept (per row from its first pixel `lo`) for step 4, and the
+    //    pixels to shade are listed: runs of pixels whose centre is covered, shaded at the
+    //    centre, and every other pixel with a sample that passed on its own, at the centroid of
+    //    its covered samples. Depth of sample k: the plane at the sample point of pixel `lo` in
+    //    double, then + (x - lo) ddx in double, rounded once.
+    scratch.rows.clear();
+    scratch.runs.clear();
+    std::size_t used = 0;
+    const double ddx = t.ddx[kPlaneZ];
     for (int y = rowBegin; y < rowEnd; ++y) {
         const int* spans = scratch.spans.data() + std::size_t(y - rowBegin) * std::size_t(stride);
         int lo = s.x1, hi = s.x0;
@@ -89,16 +150,15 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
         }
         if (lo >= hi) continue;
         const std::size_t width = std::size_t(hi - lo);
-        if (scratch.covered.size() < width) {
-            scratch.covered.resize(width);
-            scratch.passed.resize(width);
+        if (scratch.covered.size() < used + width) {
+            scratch.covered.resize(2 * (used + width));
+            scratch.passed.resize(2 * (used + width));
         }
-        std::uint8_t* covered = scratch.covered.data();
-        std::uint8_t* passed = scratch.passed.data();
+        std::uint8_t* covered = scratch.covered.data() + used;
+        std::uint8_t* passed = scratch.passed.data() + used;
+        scratch.rows.push_back({y, lo, hi, used});
+        used += width;
 
-        // 2. Coverage and the depth test, pixel by pixel, its N samples together (adjacent in
-        //    memory). Depth of sample k: the plane at the sample point of the row's first pixel
-        //    `lo`, in double, then + (x - lo) ddx in double, rounded once.
         float* depth = target.depthRow(y);
         double zStart[kN];
         int x0s[kN], x1s[kN];
@@ -108,7 +168,6 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
             zStart[k] = t.planeAt(kPlaneZ, lo + 0.5 + double(pattern[k].x) / kSubPixelScale,
                                   y + 0.5 + double(pattern[k].y) / kSubPixelScale);
         }
-        const double ddx = t.ddx[kPlaneZ];
         for (int x = lo; x < hi; ++x) {
             float* stored = depth + std::size_t(x) * kN;
             const double step = double(x - lo);
@@ -126,44 +185,37 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
             passed[x - lo] = std::uint8_t(pass);
         }
 
-        // 3. Shade: the pixels whose centre is covered in runs (at the centre), the others one
-        //    by one at the centroid of their covered samples.
         const int c0 = std::max(spans[2 * n], lo), c1 = std::min(spans[2 * n + 1], hi);
-        scratch.runs.clear();
-        for (int x = c0; x < c1;) {
+        for (int x = lo; x < hi;) {
             if (passed[x - lo] == 0) {
                 ++x;
-                continue;
+            } else if (x >= c0 && x < c1) {
+                const int from = x;
+                while (x < c1 && passed[x - lo] != 0) ++x;
+                scratch.runs.push_back({y, from, x, 0.0, 0.0});
+            } else {
+                const Centroid& m = centroids[covered[x - lo]];
+                scratch.runs.push_back({y, x, x + 1, m.dx, m.dy});
+                ++x;
             }
-            const int from = x;
-            while (x < c1 && passed[x - lo] != 0) ++x;
-            scratch.runs.push_back({from, x});
         }
-        if (!scratch.runs.empty()) shadeRuns(y, scratch.runs.data(), int(scratch.runs.size()));
-        const Pixel* centreColours = shadeRow(y);
+    }
+    if (scratch.runs.empty()) return;
 
-        // 4. Write each shaded colour to the samples that passed.
-        Pixel* colour = target.colourRow(y);
-        for (int x = lo; x < hi; ++x) {
-            const unsigned pass = passed[x - lo];
+    // 3. Shade once per listed pixel, all rows in one call; the colours land in the pixel-sized
+    //    shading rows.
+    shadeRuns(static_cast<const SpanRun*>(scratch.runs.data()), int(scratch.runs.size()));
+
+    // 4. Write each shaded colour to the samples that passed.
+    for (const MsaaScratch::Row& row : scratch.rows) {
+        const Pixel* shadedRow = shadeRow(row.y);
+        const std::uint8_t* passed = scratch.passed.data() + row.offset;
+        Pixel* colour = target.colourRow(row.y);
+        for (int x = row.lo; x < row.hi; ++x) {
+            const unsigned pass = passed[x - row.lo];
             if (pass == 0) continue;
             ++shaded;
-            Pixel c;
-            if (x >= c0 && x < c1) {
-                c = centreColours[x];
-            } else {
-                const unsigned cover = covered[x - lo];
-                double sx = 0.0, sy = 0.0;
-                int count = 0;
-                for (int k = 0; k < n; ++k) {
-                    if (!(cover & (1u << k))) continue;
-                    sx += pattern[k].x;
-                    sy += pattern[k].y;
-                    ++count;
-                }
-                c = shadeAt(x, y, x + 0.5 + sx / (count * double(kSubPixelScale)),
-                            y + 0.5 + sy / (count * double(kSubPixelScale)));
-            }
+            const Pixel c = shadedRow[x];
             Pixel* samples = colour + std::size_t(x) * std::size_t(n);
             for (int k = 0; k < n; ++k)
                 if (pass & (1u << k)) samples[k] = c;
@@ -180,21 +232,20 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
 //  - depth per sample: the depth plane at the sample point, tested (and written, TestWrite)
 //    against that sample's depth;
 //  - shading ONCE per pixel with at least one covered sample that passed: at the pixel centre
-//    when the centre is inside the triangle, with shadeRuns(y, runs, count) over the row's runs
-//    of such pixels, which writes their colours to shadeRow(y)[x] (a pixel-sized scratch row);
-//    otherwise at the centroid of the covered samples, with shadeAt(x, y, px, py) -> Pixel
-//    (no attribute is extrapolated outside the triangle);
+//    when the centre is inside the triangle, otherwise at the centroid of the covered samples (no
+//    attribute is extrapolated outside the triangle), by one call shadeRuns(runs, count) per
+//    triangle (SpanRun), which writes the colours to shadeRow(y)[x] (pixel-sized scratch rows);
 //  - the colour goes to every covered sample that passed.
 // `shaded` counts the pixels shaded.
-template <DepthMode kDepth, class ShadeRow, class ShadeRuns, class ShadeAt>
+template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleMsaa(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
-                      ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, ShadeAt&& shadeAt, std::uint64_t& shaded) {
+                      ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded) {
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
     switch (target.samples()) {
-    case 2: detail::fillTriangleSamples<2, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shadeAt, shaded); break;
-    case 4: detail::fillTriangleSamples<4, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shadeAt, shaded); break;
-    case 8: detail::fillTriangleSamples<8, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shadeAt, shaded); break;
-    default: detail::fillTriangleSamples<1, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shadeAt, shaded); break;
+    case 2: detail::fillTriangleSamples<2, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded); break;
+    case 4: detail::fillTriangleSamples<4, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded); break;
+    case 8: detail::fillTriangleSamples<8, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded); break;
+    default: detail::fillTriangleSamples<1, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded); break;
     }
 }
 

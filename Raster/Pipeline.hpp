@@ -119,14 +119,14 @@ struct LaneBands {
 // drawMesh's programs carry the kernel chosen once per draw (Raster/Kernels/KernelTable.hpp).
 template <class Program, class = void>
 struct HasFillKernel : std::false_type {};
-// ... and optionally bool shadeRuns(const TriangleSetup&, FrameBuffer&, int y, const SpanRun*,
-// int count): shades the pixel centres of the runs of row y into fb's row (no depth test), as
+// ... and optionally bool shadeRuns(const TriangleSetup&, FrameBuffer&, const SpanRun*, int count):
+// shades the runs' pixels (SpanRun: at the centre or moved) into fb's rows (no depth test), as
 // fillSpan with DepthMode::Off and fragment() would, or returns false (the multisampled fill).
 template <class Program, class = void>
 struct HasShadeRuns : std::false_type {};
 template <class Program>
 struct HasShadeRuns<Program, std::void_t<decltype(std::declval<Program&>().shadeRuns(
-                                 std::declval<const TriangleSetup&>(), std::declval<FrameBuffer&>(), 0,
+                                 std::declval<const TriangleSetup&>(), std::declval<FrameBuffer&>(),
                                  std::declval<const SpanRun*>(), 0))>> : std::true_type {};
 template <class Program>
 struct HasFillKernel<Program, std::void_t<decltype(std::declval<Program&>().fillKernel(
@@ -206,18 +206,22 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         constexpr DepthMode kDepth = decltype(depthTag)::value;
         constexpr PerspectiveMode kPersp = decltype(perspTag)::value;
         auto shadeRow = [&fb](int y) -> const Pixel* { return fb.colorRow(y); };
-        auto shadeRuns = [&](int y, const SpanRun* runs, int count) {
+        auto shadeRuns = [&](const SpanRun* runs, int count) {
             if constexpr (HasShadeRuns<Program>::value) {
-                if (program.shadeRuns(static_cast<const TriangleSetup&>(setup), fb, y, runs, count)) return;
+                if (program.shadeRuns(static_cast<const TriangleSetup&>(setup), fb, runs, count)) return;
             }
             auto fragment = [&program](const Fragment<kVaryings>& f) { return program.fragment(f); };
-            for (int r = 0; r < count; ++r)
-                fillSpan<DepthMode::Off, kVaryings, kPersp>(setup, fb, y, runs[r].x0, runs[r].x1, fragment);
+            for (int r = 0; r < count; ++r) {
+                if (runs[r].dx == 0.0 && runs[r].dy == 0.0) {
+                    fillSpan<DepthMode::Off, kVaryings, kPersp>(setup, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
+                    continue;
+                }
+                TriangleSetup moved = setup; // shaded off the centre: at the centroid
+                moveOrigin(setup, runs[r], moved);
+                fillSpan<DepthMode::Off, kVaryings, kPersp>(moved, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
+            }
         };
-        auto shadeAt = [&](int x, int y, double px, double py) {
-            return program.fragment(fragmentAt<kVaryings, kPersp>(setup, x, y, px, py));
-        };
-        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shadeAt, shaded);
+        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded);
     };
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
@@ -367,6 +371,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
 #ifndef NDEBUG
     for (std::size_t t = 0; t < indexCount; ++t) assert(indices[t] < vertexCount);
 #endif
+    if (MsaaBuffer* samples = ctx.multisampleTarget()) samples->markDrawn();
     ctx.clipVertices.resize(vertexCount);
     ctx.screenVertices.resize(vertexCount);
     ctx.usable.resize(vertexCount);

@@ -68,21 +68,28 @@ public:
     int threads() const { return pool_ ? pool_->lanes() : 1; }
     ThreadPool* pool() { return pool_.get(); }
 
-    // Clears the target's colour and depth (and, while multisampling, every sample), split by
-    // rows over the render threads.
+    // Clears the target's colour and depth, split by rows over the render threads. While
+    // multisampling, the samples instead (the target's rows are then only the shading scratch
+    // and the resolve's output), and nothing when they are known to be clear already (a resolve
+    // that cleared them: MsaaBuffer::isCleared).
     void clearTarget(Pixel colour, float depth) {
         FrameBuffer& fb = *target_;
         MsaaBuffer* samples = multisampleTarget();
+        if (samples && samples->isCleared(colour, depth)) return;
         const int lanes = threads(), height = fb.height(), width = fb.width();
         auto job = [&](int lane) {
             const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
             if (y0 >= y1) return;
+            if (samples) {
+                samples->clearRows(y0, y1, colour, depth);
+                return;
+            }
             fillWords(fb.colorRow(y0), std::size_t(y1 - y0) * std::size_t(width), colour);
             fillWords(fb.depthRow(y0), std::size_t(y1 - y0) * std::size_t(width), depth);
-            if (samples) samples->clearRows(y0, y1, colour, depth);
         };
         if (pool_) pool_->run(job);
         else job(0);
+        if (samples) samples->markCleared(colour, depth);
     }
 
     // Supersampling's sample target (renderSceneFrame with ssaa > 1): factor x factor times the

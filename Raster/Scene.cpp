@@ -45,7 +45,11 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& v
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, settings, textureOverride);
         ctx.multisampling = false;
-        ctx.forRows(out.height(), [&](int y0, int y1) { resolveMsaaRows(ctx.msaa, out, y0, y1); });
+        // Resolved and cleared for the next frame in one pass over the samples.
+        ctx.forRows(out.height(), [&](int y0, int y1) {
+            resolveAndClearMsaaRows(ctx.msaa, out, y0, y1, clearColour, FrameBuffer::kFarDepth);
+        });
+        ctx.msaa.markCleared(clearColour, FrameBuffer::kFarDepth);
         return true;
     }
     if (!supersample || !ctx.samples.resize(out.width() * factor, out.height() * factor)) {

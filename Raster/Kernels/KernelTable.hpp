@@ -30,10 +30,11 @@ struct KernelKey {
 template <class Prog>
 using FillKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, const Scissor&, std::uint64_t& shaded);
 
-// The multisampled fill's run shader (MsaaFill.hpp): shades the pixel centres of `count` runs of
-// row y into fb's row, without a depth test. Bit-identical to fillSpan<DepthMode::Off> + fragment().
+// The multisampled fill's run shader (MsaaFill.hpp): shades the pixels of `count` runs (SpanRun:
+// at their centres or moved) into fb's rows, without a depth test. Bit-identical to
+// fillSpan<DepthMode::Off> + fragment() on the setup (or its moved copy, moveOrigin).
 template <class Prog>
-using ShadeRunsKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, int y, const SpanRun* runs, int count);
+using ShadeRunsKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, const SpanRun* runs, int count);
 
 // One table per ISA (Kernels*.cpp); nullptr where the ISA has no kernel for the key (the
 // scalar reference then fills: non-integer shininess).

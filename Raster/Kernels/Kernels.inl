@@ -548,21 +548,37 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
     if constexpr (Prog::kVaryings > 0) span.flush();
 }
 
-// The multisampled fill's shading (MsaaFill.hpp): the pixel centres of the given runs of row y,
-// shaded into fb's row without a depth test, as fillSpan<DepthMode::Off> with fragment() does
-// (SpanKernel's very loop, one span per run; the queue is flushed before returning).
+// The multisampled fill's shading (MsaaFill.hpp): the pixels of the given runs, shaded into fb's
+// rows without a depth test, as fillSpan<DepthMode::Off> with fragment() does (SpanKernel's very
+// loop, one span per run; the queue is flushed before returning).
 template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
-void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, int y, const SpanRun* runs, int count) {
+void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const SpanRun* runs, int count) {
     assert(Prog::kVaryings <= t.varyingCount);
     static thread_local FragmentQueue<Prog::kVaryings> queue;
     queue.count = 0;
     std::uint64_t shaded = 0; // the multisampled fill counts its pixels itself
     using Span = SpanKernel<Prog, DepthMode::Off, kPersp, kFilter, kWrap>;
+    // Runs shaded off the centre (centroids) go through a second span loop on a copy of the setup
+    // with its origin moved (moveOrigin), made after the centre runs; both fill the one queue.
     Span span{p, t, fb, shaded, queue, {}, fzero()};
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));
     for (int k = 0; k < Span::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
-    for (int r = 0; r < count; ++r) span(y, runs[r].x0, runs[r].x1);
+    int movedRuns = 0;
+    for (int r = 0; r < count; ++r) {
+        if (runs[r].dx == 0.0 && runs[r].dy == 0.0) span(runs[r].y, runs[r].x0, runs[r].x1);
+        else ++movedRuns;
+    }
+    if (movedRuns > 0) {
+        TriangleSetup moved = t;
+        Span movedSpan{p, moved, fb, shaded, queue, {}, span.triangleLod};
+        for (int k = 0; k < Span::kPlanes; ++k) movedSpan.gradient[k] = span.gradient[k];
+        for (int r = 0; r < count; ++r) {
+            if (runs[r].dx == 0.0 && runs[r].dy == 0.0) continue;
+            moveOrigin(t, runs[r], moved);
+            movedSpan(runs[r].y, runs[r].x0, runs[r].x1);
+        }
+    }
     if constexpr (Prog::kVaryings > 0) span.flush();
 }
 
