@@ -61,7 +61,7 @@ const SampleOffset* msaaPattern(int samples) {
 
 bool MsaaBuffer::resize(int width, int height, int samples) {
     if (width < 0 || height < 0 || width > FrameBuffer::kMaxDimension || height > FrameBuffer::kMaxDimension ||
-        !validMsaa(samples))
+        !validMsaa(samples) || !msaaFits(width, height, samples))
         return false;
     const std::size_t n = std::size_t(width) * std::size_t(height) * std::size_t(samples);
     if (width == width_ && height == height_ && samples == samples_) return true; // contents kept

@@ -14,6 +14,13 @@ namespace sr {
 inline constexpr int kMsaaSampleCounts[] = {1, 2, 4, 8};
 constexpr bool validMsaa(int samples) { return samples == 1 || samples == 2 || samples == 4 || samples == 8; }
 
+// Most samples a multisampled target may hold: as many as the largest supersampled one
+// (FrameBuffer::kMaxDimension squared, 67M samples, 512 MiB of colour and depth).
+inline constexpr std::int64_t kMaxMsaaSamples = std::int64_t(FrameBuffer::kMaxDimension) * FrameBuffer::kMaxDimension;
+constexpr bool msaaFits(int width, int height, int samples) {
+    return std::int64_t(width) * height * samples <= kMaxMsaaSamples;
+}
+
 // A sample's offset from its pixel centre in 1/256 pixel (the snapping grid), y down.
 struct SampleOffset {
     Fixed x = 0, y = 0;
@@ -31,8 +38,8 @@ const SampleOffset* msaaPattern(int samples);
 // and count are unchanged.
 class MsaaBuffer {
 public:
-    // Returns false (and leaves the buffer as it was) for a size FrameBuffer would refuse or a
-    // count validMsaa rejects.
+    // Returns false (and leaves the buffer as it was) for a size FrameBuffer would refuse, a
+    // count validMsaa rejects, or more than kMaxMsaaSamples samples.
     [[nodiscard]] bool resize(int width, int height, int samples);
     void release(); // gives the memory back
 

@@ -37,10 +37,8 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& v
     const bool supersample = factor > 1 && !out.empty();
     const bool multisample = !supersample && settings.msaa > 1 && !out.empty();
     if (!multisample && !ctx.msaa.empty()) ctx.msaa.release(); // memory only while multisampling
-    if (multisample) {
+    if (multisample && ctx.msaa.resize(out.width(), out.height(), settings.msaa)) {
         if (!ctx.samples.empty()) ctx.samples = FrameBuffer{};
-        [[maybe_unused]] const bool sized = ctx.msaa.resize(out.width(), out.height(), settings.msaa);
-        assert(sized); // the target's own size, a valid count
         ctx.multisampling = true;
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, settings, textureOverride);
@@ -54,11 +52,13 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& v
     }
     if (!supersample || !ctx.samples.resize(out.width() * factor, out.height() * factor)) {
         if (!ctx.samples.empty()) ctx.samples = FrameBuffer{}; // no SSAA: give the sample memory back
+        if (!ctx.msaa.empty()) ctx.msaa.release();
         RenderSettings plain = settings;
         plain.ssaa = 1; // drawn at the output size (also what the wireframe width follows)
+        plain.msaa = 1;
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, plain, textureOverride);
-        return factor <= 1 || out.empty();
+        return (factor <= 1 && !multisample) || out.empty();
     }
     // The same view: clip space does not depend on the target size, only the viewport does.
     ctx.setTarget(ctx.samples);

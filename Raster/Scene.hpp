@@ -42,7 +42,8 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
 // be made: the frame is then drawn without supersampling and false is returned (true otherwise).
 // With settings.msaa = 2, 4 or 8 (and ssaa 1; supersampling wins when both are asked for) the
 // frame is drawn multisampled into ctx.msaa and resolved the same way (Raster/Msaa.hpp,
-// MsaaFill.hpp); the sample memory is released by the next frame without multisampling.
+// MsaaFill.hpp); the sample memory is released by the next frame without multisampling. A target
+// above kMaxMsaaSamples samples is drawn with one sample and false is returned.
 bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                       const Texture* textureOverride = nullptr, Pixel clearColour = packBgra(0, 0, 0));
 

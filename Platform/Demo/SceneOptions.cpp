@@ -228,6 +228,10 @@ std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
     if (o.ssaa > 1 && o.msaa > 1)
         return "--ssaa " + std::to_string(o.ssaa) + " and --msaa " + std::to_string(o.msaa) +
                ": choose one way of anti-aliasing (the other must be 1)";
+    if (!msaaFits(o.width, o.height, o.msaa))
+        return "--msaa " + std::to_string(o.msaa) + " at " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+               " needs more than " + std::to_string(kMaxMsaaSamples) + " samples (the limit): use fewer samples or a "
+               "smaller image";
     if (const int f = ssaaFactor(o.ssaa); f > 1 && (o.width > FrameBuffer::kMaxDimension / f ||
                                                    o.height > FrameBuffer::kMaxDimension / f))
         return "--ssaa " + std::to_string(o.ssaa) + " renders " + std::to_string(o.width) + "x" +

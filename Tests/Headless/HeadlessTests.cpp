@@ -99,6 +99,7 @@ TEST_CASE("every bad flag or value gives one clear line and exit code 2", "[head
         {{"render", "--msaa", "16"}, "bad value for --msaa: '16' (expected 1, 2, 4 or 8 samples per pixel)"},
         {{"bench", "--msaa", "3"}, "bad value for --msaa: '3'"},
         {{"render", "--msaa", "4", "--ssaa", "4"}, "--ssaa 4 and --msaa 4: choose one way of anti-aliasing"},
+        {{"render", "--msaa", "8", "--width", "8192", "--height", "1025"}, "--msaa 8 at 8192x1025 needs more than"},
         // The sample target must fit FrameBuffer::kMaxDimension (8192) per side.
         {{"render", "--ssaa", "16", "--width", "2049"}, "--ssaa 16 renders 2049x600 at 4x4 the size"},
         {{"report", "--out-dir", "d", "--ssaa", "4", "--height", "4097"}, "at most 4096 per side"},

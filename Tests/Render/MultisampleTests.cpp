@@ -243,6 +243,19 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
         if (n == 1) CHECK(differing == 96 * 64); // --msaa 1 is the plain path, bit for bit
         else CHECK(differing < 96 * 64);         // edges change
     }
+    // A target above kMaxMsaaSamples: drawn with one sample, reported, no sample memory.
+    {
+        FrameBuffer wide(FrameBuffer::kMaxDimension, FrameBuffer::kMaxDimension / 8 + 1);
+        RenderContext cw(wide);
+        RenderSettings big;
+        big.msaa = 8;
+        FrameView v;
+        v.viewProj = Mat4::identity();
+        CHECK_FALSE(renderSceneFrame(cw, Scene{}, v, big));
+        CHECK(cw.msaa.empty());
+        CHECK_FALSE(cw.msaa.resize(FrameBuffer::kMaxDimension, FrameBuffer::kMaxDimension / 8 + 1, 8));
+        CHECK(msaaFits(FrameBuffer::kMaxDimension, FrameBuffer::kMaxDimension / 8, 8));
+    }
     // Supersampling wins when both are asked for; no multisample memory then.
     settings.msaa = 4;
     settings.ssaa = 4;
