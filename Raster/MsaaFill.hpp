@@ -15,7 +15,7 @@ namespace sr {
 // Pixels [x0, x1) of row y, to be shaded at their centres moved by (dx, dy) pixels: (0, 0) for
 // runs of pixels whose centre the triangle covers, the centroid's offset for a single pixel whose
 // centre it does not. A moved point is evaluated as the plane with its origin moved the other
-// way (shiftedSetup), so the span loops and kernels need no other change.
+// way (moveOrigin), so the span loops and kernels need no other change.
 struct SpanRun {
     int y = 0, x0 = 0, x1 = 0;
     double dx = 0.0, dy = 0.0;

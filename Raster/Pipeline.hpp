@@ -201,7 +201,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     // perspective mode resolved once per triangle (without varyings only Exact exists: nothing
     // to interpolate, which keeps the number of instantiated loops down).
     // Multisampled: coverage and depth per sample, the program's fragments once per pixel (at the
-    // centre through its run shader, or the scalar loop; at the centroid through fragment()).
+    // centre or the centroid) through its run shader, or else the scalar loop.
     auto fillSamples = [&](auto depthTag, const Scissor& scissor, auto perspTag) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
         constexpr PerspectiveMode kPersp = decltype(perspTag)::value;
