@@ -150,16 +150,26 @@ TEST_CASE("render writes the image at the requested size and prints its path", "
     CHECK(std::unique(colours.begin(), colours.end()) - colours.begin() > 50);
 }
 
+namespace {
+
+// `softraster render` of the built-in scene at 96x64 with extra flags into dir/name; its RGBA bytes.
+std::vector<std::uint8_t> renderBuiltIn96x64(const std::string& dir, const std::vector<std::string>& extra,
+                                             const std::string& name) {
+    std::vector<std::string> args{"render", "--width", "96", "--height", "64", "--quiet", "--out", dir + "/" + name};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const Run r = run(args);
+    REQUIRE(r.rc == kExitOk);
+    auto img = loadImage(dir + "/" + name);
+    REQUIRE(img.ok());
+    return img.value().rgba;
+}
+
+} // namespace
+
 TEST_CASE("--ssaa 1 is today's image; --ssaa 4 and 16 change only edge pixels, a little", "[headless][ssaa]") {
     const std::string dir = tempDir("ssaa");
     auto render = [&](const std::vector<std::string>& extra, const std::string& name) {
-        std::vector<std::string> args{"render", "--width", "96", "--height", "64", "--quiet", "--out", dir + "/" + name};
-        args.insert(args.end(), extra.begin(), extra.end());
-        const Run r = run(args);
-        REQUIRE(r.rc == kExitOk);
-        auto img = loadImage(dir + "/" + name);
-        REQUIRE(img.ok());
-        return img.value().rgba;
+        return renderBuiltIn96x64(dir, extra, name);
     };
     const auto plain = render({}, "plain.png");
     CHECK(render({"--ssaa", "1"}, "ssaa1.png") == plain);
@@ -197,13 +207,7 @@ TEST_CASE("--ssaa 1 is today's image; --ssaa 4 and 16 change only edge pixels, a
 TEST_CASE("--msaa 1 is today's image; --msaa 2, 4, 8 come closer to the 16-sample image", "[headless][msaa]") {
     const std::string dir = tempDir("msaa");
     auto render = [&](const std::vector<std::string>& extra, const std::string& name) {
-        std::vector<std::string> args{"render", "--width", "96", "--height", "64", "--quiet", "--out", dir + "/" + name};
-        args.insert(args.end(), extra.begin(), extra.end());
-        const Run r = run(args);
-        REQUIRE(r.rc == kExitOk);
-        auto img = loadImage(dir + "/" + name);
-        REQUIRE(img.ok());
-        return img.value().rgba;
+        return renderBuiltIn96x64(dir, extra, name);
     };
     auto distance = [](const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
         double sum = 0;

@@ -95,4 +95,25 @@ inline EdgeError coverageError(int ssaa, const std::vector<std::pair<double, dou
     return e;
 }
 
+// Two screen-filling quads on a 64-pixel-wide target with the identity view: red nearer left of
+// x = c (pixels), green nearer right of it (z_red - z_green = (c - x) / 64; reversed-Z, larger is
+// nearer: red 0.5 + (c - x) / 128, green 0.5 - (c - x) / 128). Unlit colours.
+inline Scene crossingPlanes(double c) {
+    Scene scene;
+    auto quad = [&](double zLeft, double zRight) {
+        Mesh m;
+        for (auto [x, y] : {std::pair{-1.0, -1.0}, std::pair{1.0, -1.0}, std::pair{1.0, 1.0}, std::pair{-1.0, 1.0}}) {
+            const double px = (x + 1.0) * 32.0; // pixels, on a 64-wide target
+            m.positions.push_back({float(x), float(y), float(zLeft + (zRight - zLeft) * px / 64.0)});
+        }
+        m.indices = {0, 1, 2, 0, 2, 3};
+        return m;
+    };
+    scene.meshes.push_back(quad(0.5 + c / 128.0, 0.5 + (c - 64.0) / 128.0));
+    scene.meshes.push_back(quad(0.5 - c / 128.0, 0.5 - (c - 64.0) / 128.0));
+    scene.draws.push_back(SceneDraw{0, 0, 6, -1, Color{1, 0, 0, 1}});
+    scene.draws.push_back(SceneDraw{1, 0, 6, -1, Color{0, 1, 0, 1}});
+    return scene;
+}
+
 } // namespace sr::test

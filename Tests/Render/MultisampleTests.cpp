@@ -21,6 +21,26 @@
 using namespace sr;
 using namespace sr::test;
 
+namespace {
+
+// The built-in scene (the demo's) and its auto-fitted view at width x height.
+demo::LoadedScene builtInScene(int width, int height) {
+    demo::SceneOptions options;
+    options.width = width;
+    options.height = height;
+    auto scene = demo::loadScene(options);
+    REQUIRE(scene.ok());
+    return std::move(scene.value());
+}
+FrameView builtInView(const demo::LoadedScene& scene, int width, int height) {
+    demo::SceneOptions options;
+    options.width = width;
+    options.height = height;
+    return demo::makeFrameView(demo::resolveCamera(options, scene), width, height, options.light);
+}
+
+} // namespace
+
 TEST_CASE("resolveMsaaRows: each channel the rounded mean of the samples, depth the nearest", "[msaa]") {
     std::mt19937 rng(99);
     for (int n : {1, 2, 4, 8}) {
@@ -105,20 +125,7 @@ TEST_CASE("MSAA: depth per sample resolves the intersection line of two interpen
     // As the SSAA case: red nearer left of x = c, green right of it; per pixel the red share is
     // the share of its samples left of c, counted here from the sample pattern.
     const double c = 20.3;
-    Scene scene;
-    auto quad = [&](double zLeft, double zRight) {
-        Mesh m;
-        for (auto [x, y] : {std::pair{-1.0, -1.0}, std::pair{1.0, -1.0}, std::pair{1.0, 1.0}, std::pair{-1.0, 1.0}}) {
-            const double px = (x + 1.0) * 32.0;
-            m.positions.push_back({float(x), float(y), float(zLeft + (zRight - zLeft) * px / 64.0)});
-        }
-        m.indices = {0, 1, 2, 0, 2, 3};
-        return m;
-    };
-    scene.meshes.push_back(quad(0.5 + c / 128.0, 0.5 + (c - 64.0) / 128.0));
-    scene.meshes.push_back(quad(0.5 - c / 128.0, 0.5 - (c - 64.0) / 128.0));
-    scene.draws.push_back(SceneDraw{0, 0, 6, -1, Color{1, 0, 0, 1}});
-    scene.draws.push_back(SceneDraw{1, 0, 6, -1, Color{0, 1, 0, 1}});
+    const Scene scene = crossingPlanes(c);
     FrameView view;
     view.viewProj = Mat4::identity();
     RenderSettings settings;
@@ -217,22 +224,18 @@ TEST_CASE("MSAA: lines cover all samples of their pixels; the wireframe keeps it
 }
 
 TEST_CASE("MSAA: the same image on every thread count; sample memory only while multisampling", "[msaa]") {
-    demo::SceneOptions options;
-    options.width = 96;
-    options.height = 64;
-    auto scene = demo::loadScene(options);
-    REQUIRE(scene.ok());
-    const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 96, 64, options.light);
+    const auto scene = builtInScene(96, 64);
+    const FrameView view = builtInView(scene, 96, 64);
     FrameBuffer one(96, 64), two(96, 64), plain(96, 64);
     RenderContext c1(one), c2(two), c0(plain);
     c2.setThreads(2);
     RenderSettings settings;
-    demo::renderFrame(c0, scene.value(), view, settings); // the plain path
+    demo::renderFrame(c0, scene, view, settings); // the plain path
     for (int n : {1, 2, 4, 8, 1}) {
         CAPTURE(n);
         settings.msaa = n;
-        demo::renderFrame(c1, scene.value(), view, settings);
-        demo::renderFrame(c2, scene.value(), view, settings);
+        demo::renderFrame(c1, scene, view, settings);
+        demo::renderFrame(c2, scene, view, settings);
         CHECK(std::equal(one.colorData(), one.colorData() + 96 * 64, two.colorData()));
         CHECK(std::equal(one.depthData(), one.depthData() + 96 * 64, two.depthData()));
         CHECK(c1.msaa.width() == (n > 1 ? 96 : 0));
@@ -259,18 +262,14 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
     // Supersampling wins when both are asked for; no multisample memory then.
     settings.msaa = 4;
     settings.ssaa = 4;
-    demo::renderFrame(c1, scene.value(), view, settings);
+    demo::renderFrame(c1, scene, view, settings);
     CHECK(c1.msaa.empty());
     CHECK(c1.samples.width() == 2 * 96);
 }
 
 TEST_CASE("MSAA: every kernel ISA gives the scalar reference's image, for every program and filter", "[msaa]") {
-    demo::SceneOptions options;
-    options.width = 80;
-    options.height = 56;
-    auto scene = demo::loadScene(options);
-    REQUIRE(scene.ok());
-    const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 80, 56, options.light);
+    const auto scene = builtInScene(80, 56);
+    const FrameView view = builtInView(scene, 80, 56);
     for (ShadingMode shading : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
         for (TextureFilter filter : {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear})
             for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine}) {
@@ -282,14 +281,14 @@ TEST_CASE("MSAA: every kernel ISA gives the scalar reference's image, for every 
                 settings.isa = Isa::Scalar;
                 FrameBuffer reference(80, 56);
                 RenderContext cr(reference);
-                demo::renderFrame(cr, scene.value(), view, settings);
+                demo::renderFrame(cr, scene, view, settings);
                 for (Isa isa : kAllIsas) {
                     if (isa == Isa::Scalar || !isaAvailable(isa)) continue;
                     CAPTURE(shadingModeName(shading), filterName(filter), perspectiveModeName(persp), isaName(isa));
                     settings.isa = isa;
                     FrameBuffer fb(80, 56);
                     RenderContext ctx(fb);
-                    demo::renderFrame(ctx, scene.value(), view, settings);
+                    demo::renderFrame(ctx, scene, view, settings);
                     CHECK(std::equal(fb.colorData(), fb.colorData() + 80 * 56, reference.colorData()));
                 }
             }

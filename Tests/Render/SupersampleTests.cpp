@@ -195,21 +195,7 @@ TEST_CASE("SSAA: depth per sample resolves the intersection line of two interpen
     // 20 + (i + 0.5) / k: 0 of 1 (k = 1: the centre 20.5 is right of it), 1 of 2 (20.25; 20.75 is
     // right), 1 of 4 (20.125; 20.375 is right).
     const double c = 20.3;
-    Scene scene;
-    auto quad = [&](double zLeft, double zRight) {
-        Mesh m;
-        for (auto [x, y] : {std::pair{-1.0, -1.0}, std::pair{1.0, -1.0}, std::pair{1.0, 1.0}, std::pair{-1.0, 1.0}}) {
-            const double px = (x + 1.0) * 32.0; // pixels, on a 64-wide target
-            m.positions.push_back({float(x), float(y), float(zLeft + (zRight - zLeft) * px / 64.0)});
-        }
-        m.indices = {0, 1, 2, 0, 2, 3};
-        return m;
-    };
-    // Reversed-Z: larger is nearer. Red: 0.5 + (c - x) / 128, green: 0.5 - (c - x) / 128.
-    scene.meshes.push_back(quad(0.5 + c / 128.0, 0.5 + (c - 64.0) / 128.0));
-    scene.meshes.push_back(quad(0.5 - c / 128.0, 0.5 - (c - 64.0) / 128.0));
-    scene.draws.push_back(SceneDraw{0, 0, 6, -1, Color{1, 0, 0, 1}});
-    scene.draws.push_back(SceneDraw{1, 0, 6, -1, Color{0, 1, 0, 1}});
+    const Scene scene = crossingPlanes(c);
     FrameView view;
     view.viewProj = Mat4::identity();
     RenderSettings settings;
