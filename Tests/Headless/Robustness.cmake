@@ -11,6 +11,7 @@ foreach(mode errors unicode)
                    -DWORK=${CMAKE_CURRENT_BINARY_DIR}/robustness-${mode} -P ${_script})
   # Wine turns Unix arguments into UTF-16 with the locale's charset: make it UTF-8.
   set_tests_properties(headless_${mode} PROPERTIES ENVIRONMENT "LC_ALL=C.UTF-8;WINEDEBUG=-all")
+  sr_wine_test(headless_${mode})
 endforeach()
 if(NOT CMAKE_CROSSCOMPILING)
   # Under ASan freed memory sits in quarantine (RSS grows by design): fewer frames, NaN check only.

@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# The wine_server CTest fixture of the mingw build: `start` before the Wine console tests,
+# `stop` after them.
+#
+# Why: a wineserver exits a few seconds after its last client. When the next test's Wine process
+# connects while the server is shutting down, Wine fails with "wine client error:0: recvmsg:
+# Connection reset by peer" (CI failed headless_errors this way under ctest -j2). A server
+# started with -p (persistent) does not exit while idle, so the console tests never race it;
+# `stop` ends it. The end-to-end tests use copies of the prefix with servers of their own
+# (xsession.sh) and do not depend on this one.
+# Usage: wineserver.sh start|stop   (WINEPREFIX as for the tests; default ~/.wine)
+set -uo pipefail
+export WINEDEBUG=${WINEDEBUG:--all}
+export WINEDLLOVERRIDES=${WINEDLLOVERRIDES:-"mscoree,mshtml="}
+prefix=${WINEPREFIX:-$HOME/.wine}
+
+case "${1:-}" in
+start)
+  # A fresh prefix is made first (wineboot), as the first Wine program would.
+  if [[ ! -f "$prefix/system.reg" ]]; then
+    wineboot -i </dev/null >/dev/null 2>&1 || true
+    wineserver -w </dev/null >/dev/null 2>&1 || true
+  fi
+  # A server already running (a test run that was interrupted before `stop`, or the user's own
+  # Wine programs) is not killed: wait briefly for it to exit, else use it as it is.
+  # The server daemonizes: its standard streams must not be CTest's pipes, or the test would
+  # not end before the server does.
+  if ! wineserver -p </dev/null >/dev/null 2>&1; then
+    timeout 10 wineserver -w </dev/null >/dev/null 2>&1 || true
+    if ! wineserver -p </dev/null >/dev/null 2>&1; then
+      echo "wineserver.sh: using the wineserver already running for $prefix"
+      exit 0
+    fi
+  fi
+  # Wine's services (services.exe, winedevice.exe, ...) start with the first program and then
+  # live as long as the server: start them here, with no CTest pipe to inherit.
+  wine cmd.exe /c exit 0 </dev/null >/dev/null 2>&1 || true
+  echo "wineserver.sh: persistent wineserver started for $prefix"
+  ;;
+stop)
+  wineserver -k </dev/null >/dev/null 2>&1 || true
+  echo "wineserver.sh: wineserver for $prefix stopped"
+  ;;
+*)
+  echo "usage: wineserver.sh start|stop" >&2
+  exit 2
+  ;;
+esac
