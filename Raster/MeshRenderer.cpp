@@ -50,7 +50,9 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
         withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
     }
-    drawProgram<Program::kVaryings>(ctx, state, d.mesh.vertexCount(), d.indices, indexCount, withKernel);
+    // The programs' vertex() reads only the mesh and the view (never the material): draws of one
+    // mesh share their vertex stage inside a VertexReuseScope (renderScene).
+    drawProgram<Program::kVaryings>(ctx, state, d.mesh.vertexCount(), d.indices, indexCount, withKernel, &d.mesh);
 }
 
 template <bool kTextured>

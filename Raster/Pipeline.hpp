@@ -362,9 +362,13 @@ void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, 
 }
 
 // drawProgram's body: `lanes` lanes (1 = on the calling thread only).
+// A distinct address per Program type: the vertex-cache key's program identity.
+template <class Program>
+inline constexpr char kVertexProgramTag = 0;
+
 template <int kVaryings, class Program>
 void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
-               std::size_t indexCount, Program& program, int lanes) {
+               std::size_t indexCount, Program& program, int lanes, const void* vertexSource = nullptr) {
     static_assert(kVaryings >= 0 && kVaryings <= kMaxVaryings, "too many varyings");
     assert(indexCount % 3 == 0);
     FrameBuffer& fb = ctx.target();
@@ -384,9 +388,18 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     params.varyingCount = kVaryings;
     const Clipper clipper(params);
 
+    // The vertex stage is skipped when the cache already holds these vertices through this
+    // vertex program for this viewport (RenderContext::vertexCache, inside a VertexReuseScope).
+    RenderContext::VertexCacheKey key;
+    if (vertexSource && ctx.vertexReuse)
+        key = {vertexSource, &kVertexProgramTag<Program>, vertexCount, fb.width(), fb.height(), state.clipFar};
+    const bool transformed = key.source && ctx.vertexCache == key;
+    ctx.vertexCache = key;
+    if (!transformed) ctx.stats.verticesTransformed += vertexCount;
+
     if (lanes <= 1) {
         LaneState lane;
-        vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program);
+        if (!transformed) vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program);
         rasterLane<kVaryings>(ctx, state, clipper, LaneBands{0, 1, fb.height()}, lane, indices, indexCount, program);
         ctx.stats += lane.stats;
         return;
@@ -395,7 +408,9 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     //    there are too few vertices to pay for waking the workers (tens of microseconds, against
     //    about 20 ns per vertex): then the calling thread transforms them all.
     ThreadPool& pool = *ctx.pool();
-    if (vertexCount < kMinVerticesPerLane * std::size_t(lanes)) {
+    if (transformed) {
+        // Reused from an earlier draw of the same vertices.
+    } else if (vertexCount < kMinVerticesPerLane * std::size_t(lanes)) {
         vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program);
     } else {
         auto vertexJob = [&](int l) {
@@ -443,11 +458,15 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
 // plane when needed), then the divide (cached per vertex for accepted triangles), cull and
 // setup in one pass, and the fill.
 // Precondition (asserted): every index < vertexCount and indexCount % 3 == 0.
+// `vertexSource`, when not null, names the vertex data (e.g. the Mesh) for the shared vertex
+// stage: inside a VertexReuseScope, a draw of the same source with the same Program type reuses
+// the previous draw's transformed vertices (so Program::vertex must depend only on the source
+// and the scope's constant view, not on per-draw state such as the material).
 template <int kVaryings, class Program>
 void drawProgram(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
-                 std::size_t indexCount, Program& program) {
+                 std::size_t indexCount, Program& program, const void* vertexSource = nullptr) {
     const int lanes = state.wireframe || !ctx.pool() ? 1 : ctx.pool()->lanes();
-    detail::drawLanes<kVaryings>(ctx, state, vertexCount, indices, indexCount, program, lanes);
+    detail::drawLanes<kVaryings>(ctx, state, vertexCount, indices, indexCount, program, lanes, vertexSource);
 }
 
 // The same with three callables (always on the calling thread: they may share state):

@@ -23,6 +23,7 @@ struct RenderStats {
     std::uint64_t rasterized = 0;       // triangle setups handed to the fill
     std::uint64_t nonFinite = 0;        // dropped for a NaN/Inf position (part of trivialRejected)
     std::uint64_t fragmentsShaded = 0;  // pixels that passed the depth test and were shaded
+    std::uint64_t verticesTransformed = 0; // vertex-stage runs (not counting reused vertices)
 
     RenderStats& operator+=(const RenderStats& o) {
         trianglesIn += o.trianglesIn;
@@ -32,6 +33,7 @@ struct RenderStats {
         rasterized += o.rasterized;
         nonFinite += o.nonFinite;
         fragmentsShaded += o.fragmentsShaded;
+        verticesTransformed += o.verticesTransformed;
         return *this;
     }
 };
@@ -56,6 +58,25 @@ public:
     std::vector<ScreenVertex> screenVertices;
     std::vector<std::uint8_t> usable;
     std::vector<unsigned> clipCodes; // Clipper::vertexCode of each vertex
+
+    // What the cache above holds, so that the next draw of the same vertices with the same vertex
+    // program reuses it instead of transforming them again: one vertex stage per mesh, shared by
+    // its draws (a mesh with many materials costs one transform, not one per material). Reuse is
+    // only allowed inside a VertexReuseScope (renderScene: the meshes and the view are constant
+    // there); every draw outside one runs its vertex stage and leaves `source` null.
+    struct VertexCacheKey {
+        const void* source = nullptr;  // the vertex data (a Mesh); null: nothing reusable
+        const void* program = nullptr; // identifies the vertex program's type (its output layout)
+        std::size_t count = 0;
+        int width = 0, height = 0;     // the viewport the screen vertices were made for
+        bool clipFar = false;
+        bool operator==(const VertexCacheKey& o) const {
+            return source == o.source && program == o.program && count == o.count && width == o.width &&
+                   height == o.height && clipFar == o.clipFar;
+        }
+    };
+    VertexCacheKey vertexCache;
+    bool vertexReuse = false; // set by VertexReuseScope only
 
     // Render threads (1..kMaxRenderThreads; 0 or less means 1). More than one starts a
     // persistent pool that drawProgram() splits its work over; the image is the same.
@@ -123,6 +144,26 @@ public:
 private:
     FrameBuffer* target_;
     std::unique_ptr<ThreadPool> pool_;
+};
+
+// Allows draws to share the post-transform vertex cache while it lives (see
+// RenderContext::vertexCache); the caller promises that the vertex data and the view do not
+// change meanwhile. The cache is forgotten when the scope opens and closes.
+class VertexReuseScope {
+public:
+    explicit VertexReuseScope(RenderContext& ctx) : ctx_(ctx) {
+        ctx_.vertexCache = {};
+        ctx_.vertexReuse = true;
+    }
+    ~VertexReuseScope() {
+        ctx_.vertexCache = {};
+        ctx_.vertexReuse = false;
+    }
+    VertexReuseScope(const VertexReuseScope&) = delete;
+    VertexReuseScope& operator=(const VertexReuseScope&) = delete;
+
+private:
+    RenderContext& ctx_;
 };
 
 } // namespace sr

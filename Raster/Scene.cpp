@@ -16,6 +16,9 @@ std::size_t Scene::triangleCount() const {
 
 void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                  const Texture* textureOverride) {
+    // The meshes and the view are constant during the loop: draws of one mesh with the same
+    // shading program transform its vertices once (issue 14: cost linear in material switches).
+    const VertexReuseScope reuse(ctx);
     for (const SceneDraw& d : scene.draws) {
         assert(d.mesh >= 0 && std::size_t(d.mesh) < scene.meshes.size());
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];

@@ -17,21 +17,41 @@
 namespace sr::demo {
 namespace {
 
-// Splits a model into one compact mesh per draw range, so each draw transforms only the
-// vertices it uses. One remap array serves every range (compactRange leaves it clear).
+// Splits a model into at most two compact meshes: the vertices of its textured ranges and those
+// of its untextured ones. Every draw of one mesh runs the same vertex program, so renderScene
+// transforms each mesh once per frame whatever the number of materials (its draws share the
+// vertex stage), and a vertex that two materials share (the corners of a checkerboard of
+// materials) is stored and transformed once. Each mesh holds only the vertices its ranges use.
+// One remap array serves both meshes (cleared after each).
 Scene sceneFromModel(Model&& model, Color kd) {
     Scene scene;
     for (const Image& img : model.textures)
         scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
     const Mesh& src = model.mesh;
     std::vector<std::uint32_t> remap(src.vertexCount(), kNoVertex);
-    for (const DrawRange& range : model.ranges) {
+    std::vector<std::uint32_t> firstIndex(model.ranges.size(), 0);
+    std::vector<int> meshOf(model.ranges.size(), -1);
+    for (const bool textured : {true, false}) {
+        Mesh part;
+        for (std::size_t r = 0; r < model.ranges.size(); ++r) {
+            const DrawRange& range = model.ranges[r];
+            if ((range.texture >= 0) != textured) continue;
+            firstIndex[r] = appendRange(part, src, range.firstIndex, range.indexCount, remap);
+            meshOf[r] = int(scene.meshes.size());
+        }
+        for (const DrawRange& range : model.ranges)
+            if ((range.texture >= 0) == textured) clearRange(src, range.firstIndex, range.indexCount, remap);
+        if (!part.indices.empty()) scene.meshes.push_back(std::move(part));
+    }
+    for (std::size_t r = 0; r < model.ranges.size(); ++r) {
+        const DrawRange& range = model.ranges[r];
+        if (range.indexCount == 0) continue;
         SceneDraw d;
-        d.mesh = int(scene.meshes.size());
+        d.mesh = meshOf[r];
+        d.firstIndex = firstIndex[r];
         d.indexCount = range.indexCount;
         d.texture = range.texture;
         d.kd = kd;
-        scene.meshes.push_back(compactRange(src, range.firstIndex, range.indexCount, remap));
         scene.draws.push_back(d);
     }
     scene.boundsMin = model.boundsMin;
@@ -89,13 +109,13 @@ double usableNear(double nearZ) {
 
 } // namespace
 
-Mesh compactRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
-                  std::vector<std::uint32_t>& remap) {
+std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
+                          std::vector<std::uint32_t>& remap) {
     assert(remap.size() == src.vertexCount());
     assert(std::size_t(firstIndex) + indexCount <= src.indices.size());
+    const auto first = std::uint32_t(part.indices.size());
     const std::uint32_t* indices = src.indices.data() + firstIndex;
-    Mesh part;
-    part.indices.reserve(indexCount);
+    part.indices.reserve(part.indices.size() + indexCount);
     for (std::uint32_t k = 0; k < indexCount; ++k) {
         const std::uint32_t v = indices[k];
         assert(v < remap.size());
@@ -107,9 +127,21 @@ Mesh compactRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t index
         }
         part.indices.push_back(remap[v]);
     }
-    // Clear only the entries this range set: the work is O(indexCount), not O(model) (a full
-    // reset per range made a model of R ranges cost R x its vertex count).
+    return first;
+}
+
+void clearRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount, std::vector<std::uint32_t>& remap) {
+    // Only the entries this range set: the work is O(indexCount), not O(model) (a full reset per
+    // range made a model of R ranges cost R x its vertex count).
+    const std::uint32_t* indices = src.indices.data() + firstIndex;
     for (std::uint32_t k = 0; k < indexCount; ++k) remap[indices[k]] = kNoVertex;
+}
+
+Mesh compactRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
+                  std::vector<std::uint32_t>& remap) {
+    Mesh part;
+    appendRange(part, src, firstIndex, indexCount, remap);
+    clearRange(src, firstIndex, indexCount, remap);
     return part;
 }
 

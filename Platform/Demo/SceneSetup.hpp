@@ -36,6 +36,15 @@ inline constexpr std::uint32_t kNoVertex = UINT32_MAX;
 Mesh compactRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
                   std::vector<std::uint32_t>& remap);
 
+// compactRange's two halves, for several ranges compacted into one mesh: appendRange appends the
+// range's triangles to `part` (a vertex already in `part` through this remap is reused; new ones
+// are appended in order of first use) and returns the index in part.indices where they start; it
+// leaves the range's remap entries set, so that later ranges share those vertices.
+// clearRange resets them to kNoVertex. Both are O(indexCount).
+std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
+                          std::vector<std::uint32_t>& remap);
+void clearRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount, std::vector<std::uint32_t>& remap);
+
 struct CameraSetup {
     Vec3 eye, target, up;
     double fovDegrees = 60.0;

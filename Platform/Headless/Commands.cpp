@@ -127,7 +127,8 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"transform_clip_cull\":" + jsonNumber(positive(geometry.median - clearOnly.median));
     j += ",\"setup\":" + jsonNumber(positive(setup.median - geometry.median));
     j += ",\"fill_shade\":" + jsonNumber(positive(full.median - setup.median)) + "}";
-    j += ",\"counters\":{\"triangles_in\":" + std::to_string(counters.trianglesIn);
+    j += ",\"counters\":{\"vertices_transformed\":" + std::to_string(counters.verticesTransformed);
+    j += ",\"triangles_in\":" + std::to_string(counters.trianglesIn);
     j += ",\"trivially_rejected\":" + std::to_string(counters.trivialRejected);
     j += ",\"clipped\":" + std::to_string(counters.clipped);
     j += ",\"culled\":" + std::to_string(counters.culled);

@@ -1,0 +1,207 @@
+// One vertex stage per mesh, shared by its draws inside renderScene (issue 14, item 6): same images, fewer transforms.
+#include "TestFramework.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "Platform/Demo/SceneSetup.hpp"
+#include "Resources/Image.hpp"
+#include "Resources/ObjTestUtil.hpp" // Tests/Resources: the OBJ tests' temporary files
+
+using namespace sr;
+
+namespace {
+
+// The scene with each draw cut into `pieces` consecutive draws of the same mesh whose flat
+// colours alternate between two materials (a model whose faces switch material often). The
+// triangles and their order are unchanged.
+Scene splitDraws(const Scene& in, int pieces) {
+    Scene out = in;
+    out.draws.clear();
+    for (const SceneDraw& d : in.draws) {
+        const std::uint32_t triangles = d.indexCount / 3;
+        for (int p = 0; p < pieces; ++p) {
+            const std::uint32_t t0 = triangles * std::uint32_t(p) / std::uint32_t(pieces);
+            const std::uint32_t t1 = triangles * std::uint32_t(p + 1) / std::uint32_t(pieces);
+            if (t0 == t1) continue;
+            SceneDraw piece = d;
+            piece.firstIndex = d.firstIndex + 3 * t0;
+            piece.indexCount = 3 * (t1 - t0);
+            if (p % 2 == 1) piece.kd = Color{0.2f, 0.7f, 0.3f, 1.0f};
+            out.draws.push_back(piece);
+        }
+    }
+    return out;
+}
+
+// The same draws with no reuse: drawMesh per draw outside renderScene, so each transforms the
+// whole mesh (the behaviour before the shared stage).
+void renderEachDrawAlone(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings) {
+    ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+    for (const SceneDraw& d : scene.draws) {
+        const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+        SurfaceMaterial material;
+        material.kd = d.kd;
+        if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
+        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
+    }
+}
+
+int differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
+    int n = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) n += a.pixel(x, y) != b.pixel(x, y) || a.depth(x, y) != b.depth(x, y);
+    return n;
+}
+
+// An n x n quad grid as OBJ text, every quad textured by material a, or by a and b in a
+// checkerboard ('usemtl' before every quad: a switch per quad).
+std::string gridObj(int n, bool alternate) {
+    std::string obj = "mtllib grid.mtl\n";
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x) obj += "v " + std::to_string(x) + " " + std::to_string(y) + " 0\n";
+    for (int y = 0; y <= n; ++y)
+        for (int x = 0; x <= n; ++x) obj += "vt " + std::to_string(x) + " " + std::to_string(y) + "\n";
+    auto at = [&](int x, int y) { return std::to_string(y * (n + 1) + x + 1); };
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            obj += std::string("usemtl ") + (alternate && (x + y) % 2 == 1 ? "b" : "a") + "\n";
+            const std::string c[4] = {at(x, y), at(x + 1, y), at(x + 1, y + 1), at(x, y + 1)};
+            obj += "f";
+            for (const std::string& v : c) obj += " " + v + "/" + v;
+            obj += "\n";
+        }
+    return obj;
+}
+
+demo::SceneOptions smallBuiltIn() {
+    demo::SceneOptions options;
+    options.width = 160;
+    options.height = 120;
+    return options;
+}
+
+} // namespace
+
+TEST_CASE("draws of one mesh share its vertex stage: the same image, the vertices transformed once",
+          "[render][vertexshare]") {
+    const demo::SceneOptions options = smallBuiltIn();
+    auto loaded = demo::loadScene(options);
+    REQUIRE(loaded.ok());
+    const Scene& whole = loaded.value().scene;
+    const Scene split = splitDraws(whole, 8);
+    REQUIRE(split.draws.size() > 4 * whole.draws.size()); // the split really made more draws
+    const FrameView view =
+        demo::makeFrameView(demo::resolveCamera(options, loaded.value()), options.width, options.height, options.light);
+    for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
+        for (int threads : {1, 2}) {
+            INFO(shadingModeName(mode) << ", " << threads << " thread(s)");
+            RenderSettings settings = demo::makeRenderSettings(options);
+            settings.shading = mode;
+            FrameBuffer shared(options.width, options.height), alone(options.width, options.height),
+                unsplit(options.width, options.height);
+            RenderContext cs(shared), ca(alone), cu(unsplit);
+            for (RenderContext* c : {&cs, &ca, &cu}) c->setThreads(threads);
+            renderSceneFrame(cs, split, view, settings);
+            renderEachDrawAlone(ca, split, view, settings);
+            renderSceneFrame(cu, whole, view, settings);
+            CHECK(differingPixels(shared, alone) == 0);
+            CHECK(cs.stats.fragmentsShaded == ca.stats.fragmentsShaded);
+            CHECK(cs.stats.rasterized == ca.stats.rasterized);
+            // Without sharing every piece transforms its whole mesh again; with it, cutting draws
+            // into pieces adds no vertex work at all.
+            std::uint64_t perDraw = 0;
+            for (const SceneDraw& d : split.draws) perDraw += split.meshes[std::size_t(d.mesh)].vertexCount();
+            CHECK(ca.stats.verticesTransformed == perDraw);
+            CHECK(cs.stats.verticesTransformed == cu.stats.verticesTransformed);
+            CHECK(cs.stats.verticesTransformed * 4 < perDraw);
+        }
+}
+
+TEST_CASE("the shared vertex stage never outlives renderScene: a new view is transformed anew", "[render][vertexshare]") {
+    // Same context, same scene, same program and viewport, a different camera each frame: were
+    // the cache kept across frames, the second frame would be drawn with the first one's vertices.
+    const demo::SceneOptions options = smallBuiltIn();
+    auto loaded = demo::loadScene(options);
+    REQUIRE(loaded.ok());
+    // One mesh only, so that the first draw of a frame meets the cache the last one left.
+    Scene split = splitDraws(loaded.value().scene, 4);
+    const int firstMesh = split.draws.front().mesh;
+    split.draws.erase(std::remove_if(split.draws.begin(), split.draws.end(),
+                                     [&](const SceneDraw& d) { return d.mesh != firstMesh; }),
+                      split.draws.end());
+    REQUIRE(split.draws.size() >= 2);
+    demo::CameraSetup camera = demo::resolveCamera(options, loaded.value());
+    const RenderSettings settings = demo::makeRenderSettings(options);
+    FrameBuffer fb(options.width, options.height);
+    RenderContext ctx(fb);
+    for (int frame = 0; frame < 3; ++frame) {
+        INFO("frame " << frame);
+        camera.eye = camera.eye + Vec3{0.3f, 0.1f * float(frame), -0.2f};
+        const FrameView view = demo::makeFrameView(camera, options.width, options.height, options.light);
+        renderSceneFrame(ctx, split, view, settings);
+        FrameBuffer fresh(options.width, options.height);
+        RenderContext cf(fresh);
+        renderSceneFrame(cf, split, view, settings);
+        CHECK(differingPixels(fb, fresh) == 0);
+    }
+    // Outside renderScene nothing is reused, even for the very same draw twice.
+    const FrameView view = demo::makeFrameView(camera, options.width, options.height, options.light);
+    const SceneDraw& d = split.draws.front();
+    const Mesh& mesh = split.meshes[std::size_t(d.mesh)];
+    ctx.stats = {};
+    for (int i = 0; i < 2; ++i)
+        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, SurfaceMaterial{});
+    CHECK(ctx.stats.verticesTransformed == 2 * mesh.vertexCount());
+}
+
+TEST_CASE("a model's materials share one mesh: a checkerboard of two materials costs the vertices of one",
+          "[render][vertexshare][obj]") {
+    // The corners of the grid belong to quads of both materials. Split into one mesh per material
+    // they were stored and transformed twice; in one mesh of the textured ranges, once.
+    using namespace sr::objtest;
+    const std::string dir = freshDir("vertex-share-grid");
+    REQUIRE(writeImage(dir + "/a.png", rampImage(4, 4)).ok());
+    REQUIRE(writeImage(dir + "/b.png", rampImage(8, 2)).ok());
+    writeText(dir, "grid.mtl", "newmtl a\nmap_Kd a.png\nnewmtl b\nmap_Kd b.png\n");
+    const int n = 24;
+    writeText(dir, "alternate.obj", gridObj(n, true));
+    writeText(dir, "one.obj", gridObj(n, false));
+    demo::SceneOptions options;
+    options.width = 96;
+    options.height = 96;
+    options.obj = dir + "/alternate.obj";
+    auto alternate = demo::loadScene(options);
+    options.obj = dir + "/one.obj";
+    auto one = demo::loadScene(options);
+    REQUIRE(alternate.ok());
+    REQUIRE(one.ok());
+    const Scene& sa = alternate.value().scene;
+    const Scene& so = one.value().scene;
+    REQUIRE(sa.draws.size() == 2); // one per material
+    REQUIRE(sa.meshes.size() == 1);
+    CHECK(sa.draws[0].mesh == 0);
+    CHECK(sa.draws[1].mesh == 0);
+    CHECK(sa.meshes[0].vertexCount() == std::size_t((n + 1) * (n + 1)));
+    CHECK(sa.meshes[0].vertexCount() == so.meshes[0].vertexCount());
+    CHECK(sa.triangleCount() == so.triangleCount());
+
+    const FrameView view =
+        demo::makeFrameView(demo::resolveCamera(options, one.value()), options.width, options.height, options.light);
+    for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Phong}) {
+        INFO(shadingModeName(mode));
+        RenderSettings settings = demo::makeRenderSettings(options);
+        settings.shading = mode;
+        FrameBuffer fa(options.width, options.height), fo(options.width, options.height),
+            alone(options.width, options.height);
+        RenderContext ca(fa), co(fo), cal(alone);
+        renderSceneFrame(ca, sa, view, settings);
+        renderSceneFrame(co, so, view, settings);
+        renderEachDrawAlone(cal, sa, view, settings);
+        CHECK(differingPixels(fa, alone) == 0);
+        CHECK(ca.stats.verticesTransformed == co.stats.verticesTransformed);
+        CHECK(cal.stats.verticesTransformed == 2 * co.stats.verticesTransformed);
+        CHECK(ca.stats.fragmentsShaded == co.stats.fragmentsShaded);
+    }
+}
