@@ -9,8 +9,9 @@
 #  (b) every project SoftRaster.sln names exists with the same GUID, every .vcxproj under the
 #      module folders is in the .sln, every ProjectReference exists;
 #  (c) every static library / executable target of the CMake build maps to a .vcxproj;
-#  (d) each .vcxproj keeps the agreed settings (x64 Debug/Release, v143, stdcpp17, /W4, vcpkg
-#      manifest mode).
+#  (d) each .vcxproj keeps x64 Debug/Release and imports the shared sheets cmake/vs/
+#      SoftRaster.Configuration.props and SoftRaster.Compile.props in their places, setting none of
+#      their settings itself; the sheets hold the agreed ones (v143, stdcpp17, /W4, vcpkg manifest).
 cmake_minimum_required(VERSION 3.25)
 
 foreach(var SR_SOURCE_ROOT SR_SOURCE_LISTS)
@@ -100,24 +101,57 @@ foreach(proj IN LISTS all_vcxproj)
   else()
     problem("${proj}: no <ProjectGuid>")
   endif()
-  # The settings every project keeps (x64 Debug/Release, VS 2022 toolset, C++17, /W4, vcpkg):
-  # each setting appears once per configuration (at least twice) and never with another value.
-  foreach(required "<ProjectConfiguration Include=\"Debug|x64\">" "<ProjectConfiguration Include=\"Release|x64\">"
-                   "<VcpkgEnableManifest>true</VcpkgEnableManifest>")
+  # The settings every project keeps (x64 Debug/Release; the shared sheets, imported where they
+  # belong; none of the sheets' agreed settings set again by the project itself).
+  foreach(required "<ProjectConfiguration Include=\"Debug|x64\">" "<ProjectConfiguration Include=\"Release|x64\">")
     string(FIND "${xml}" "${required}" at)
     if(at EQUAL -1)
       problem("${proj}: missing ${required}")
     endif()
   endforeach()
-  foreach(setting PlatformToolset=v143 LanguageStandard=stdcpp17 WarningLevel=Level4)
-    string(REPLACE "=" ";" kv ${setting})
-    list(GET kv 0 tag)
-    list(GET kv 1 want)
-    string(REGEX MATCHALL "<${tag}>[^<]*</${tag}>" found "${xml}")
-    list(LENGTH found count)
-    list(REMOVE_ITEM found "<${tag}>${want}</${tag}>")
-    if(count LESS 2 OR found)
-      problem("${proj}: missing <${tag}>${want}</${tag}> in a configuration (found ${count}, others: ${found})")
+  # Import order: Microsoft.Cpp.Default.props < Configuration sheet < Microsoft.Cpp.props <
+  # Compile sheet < Microsoft.Cpp.targets (each once).
+  set(positions "")
+  foreach(import "$(VCTargetsPath)\\Microsoft.Cpp.Default.props" "cmake\\vs\\SoftRaster.Configuration.props"
+                 "$(VCTargetsPath)\\Microsoft.Cpp.props" "cmake\\vs\\SoftRaster.Compile.props"
+                 "$(VCTargetsPath)\\Microsoft.Cpp.targets")
+    string(REGEX MATCHALL "<Import Project=\"[^\"]*\"" imports "${xml}")
+    set(at -1)
+    set(count 0)
+    foreach(line IN LISTS imports)
+      string(FIND "${line}" "${import}\"" hit)
+      if(NOT hit EQUAL -1)
+        string(FIND "${xml}" "${line}" at)
+        math(EXPR count "${count} + 1")
+        # The sheet's relative path must reach the repository's cmake/vs from this project.
+        if(line MATCHES "\\$\\(MSBuildThisFileDirectory\\)([^\"]*cmake\\\\vs\\\\[^\"]*)\"$")
+          set(sheet_path "${CMAKE_MATCH_1}")
+          sr_rel(sheet "${sheet_path}" ${proj_dir} ${project_root})
+          if(NOT EXISTS ${project_root}/${sheet} OR NOT sheet MATCHES "^cmake/vs/")
+            string(REPLACE "\\" "/" sheet_path "${sheet_path}")
+            problem("${proj}: imports ${sheet_path}, which is not the shared sheet (resolves to ${sheet})")
+          endif()
+        endif()
+      endif()
+    endforeach()
+    if(NOT count EQUAL 1)
+      string(REPLACE "\\" "/" import_name "${import}") # (problem is a macro: no backslashes)
+      problem("${proj}: must import ${import_name} exactly once (found ${count})")
+    endif()
+    list(APPEND positions ${at})
+  endforeach()
+  set(previous -2)
+  foreach(at IN LISTS positions)
+    if(at GREATER -1 AND at LESS previous)
+      problem("${proj}: imports out of order (Microsoft.Cpp.Default.props, SoftRaster.Configuration.props, Microsoft.Cpp.props, SoftRaster.Compile.props, Microsoft.Cpp.targets)")
+      break()
+    endif()
+    set(previous ${at})
+  endforeach()
+  foreach(tag PlatformToolset CharacterSet UseDebugLibraries WholeProgramOptimization LanguageStandard WarningLevel
+              ConformanceMode VcpkgEnableManifest VcpkgManifestRoot OutDir IntDir)
+    if(xml MATCHES "<${tag}>")
+      problem("${proj}: sets <${tag}> itself (shared settings live in cmake/vs/*.props)")
     endif()
   endforeach()
   string(REGEX MATCHALL "<ProjectReference Include=\"[^\"]*\"" refs "${xml}")
@@ -129,6 +163,26 @@ foreach(proj IN LISTS all_vcxproj)
     endif()
   endforeach()
 endforeach()
+# The shared sheets hold the agreed settings (VS 2022 toolset, C++17, /W4, vcpkg manifest mode),
+# each once and with no other value.
+foreach(sheet_setting "SoftRaster.Configuration.props;PlatformToolset;v143"
+                      "SoftRaster.Compile.props;LanguageStandard;stdcpp17"
+                      "SoftRaster.Compile.props;WarningLevel;Level4"
+                      "SoftRaster.Compile.props;VcpkgEnableManifest;true")
+  list(GET sheet_setting 0 sheet)
+  list(GET sheet_setting 1 tag)
+  list(GET sheet_setting 2 want)
+  if(NOT EXISTS ${project_root}/cmake/vs/${sheet})
+    problem("cmake/vs/${sheet} not found (the settings every project shares)")
+    continue()
+  endif()
+  file(READ ${project_root}/cmake/vs/${sheet} sheet_xml)
+  string(REGEX MATCHALL "<${tag}>[^<]*</${tag}>" found "${sheet_xml}")
+  if(NOT found STREQUAL "<${tag}>${want}</${tag}>")
+    problem("cmake/vs/${sheet}: expected <${tag}>${want}</${tag}> once, found: ${found}")
+  endif()
+endforeach()
+
 foreach(proj IN LISTS sln_projects)
   if(NOT proj IN_LIST all_vcxproj AND EXISTS ${project_root}/${proj})
     problem("SoftRaster.sln names ${proj}, outside the module folders (${module_dirs})")

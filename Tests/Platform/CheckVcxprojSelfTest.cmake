@@ -7,11 +7,13 @@ cmake_minimum_required(VERSION 3.25)
 set(module_dirs Math Raster Platform Resources Tests)
 set(failures 0)
 
-# Copies SoftRaster.sln and every .vcxproj under the module folders into <dir>, same layout.
+# Copies SoftRaster.sln, the shared sheets (cmake/vs) and every .vcxproj under the module folders
+# into <dir>, same layout.
 function(sr_copy_project_files dir)
   file(REMOVE_RECURSE ${dir})
   file(MAKE_DIRECTORY ${dir})
   file(COPY ${SR_SOURCE_ROOT}/SoftRaster.sln DESTINATION ${dir})
+  file(COPY ${SR_SOURCE_ROOT}/cmake/vs DESTINATION ${dir}/cmake)
   foreach(module IN LISTS module_dirs)
     file(GLOB_RECURSE projects RELATIVE ${SR_SOURCE_ROOT} ${SR_SOURCE_ROOT}/${module}/*.vcxproj)
     foreach(p IN LISTS projects)
@@ -94,11 +96,39 @@ function(sr_mutate_missing_project dir)
 endfunction()
 sr_expect_failure(missing_project "names project 'MathTests' at Tests/Math/MathTests.vcxproj, which does not exist")
 
-# A setting the team agreed on is changed.
+# A setting the team agreed on is changed in the shared sheet.
 function(sr_mutate_wrong_standard dir)
-  sr_mutate(${dir} Platform/Demo/Demo.vcxproj "stdcpp17" "stdcpp14")
+  sr_mutate(${dir} cmake/vs/SoftRaster.Compile.props "stdcpp17" "stdcpp14")
 endfunction()
-sr_expect_failure(wrong_standard "Demo.vcxproj: missing <LanguageStandard>stdcpp17")
+sr_expect_failure(wrong_standard "SoftRaster.Compile.props: expected <LanguageStandard>stdcpp17</LanguageStandard> once")
+
+# A project overrides a shared setting itself.
+function(sr_mutate_local_override dir)
+  sr_mutate(${dir} Platform/Demo/Demo.vcxproj "<ConfigurationType>StaticLibrary</ConfigurationType>"
+            "<ConfigurationType>StaticLibrary</ConfigurationType>\n    <PlatformToolset>v142</PlatformToolset>")
+endfunction()
+sr_expect_failure(local_override "Demo.vcxproj: sets <PlatformToolset> itself")
+
+# A project that does not import the compile settings.
+function(sr_mutate_missing_sheet dir)
+  sr_mutate(${dir} Math/Math.vcxproj "  <Import Project=\"[^\"]*SoftRaster.Compile.props\" />\n" "")
+endfunction()
+sr_expect_failure(missing_sheet "Math.vcxproj: must import cmake/vs/SoftRaster.Compile.props exactly once .found 0.")
+
+# The configuration sheet imported after Microsoft.Cpp.props (too late: the toolset is chosen there).
+function(sr_mutate_sheet_order dir)
+  sr_mutate(${dir} Raster/Raster.vcxproj "  <Import Project=\"[^\"]*SoftRaster.Configuration.props\" />\n" "")
+  sr_mutate(${dir} Raster/Raster.vcxproj "  <Import Project=\"\\$\\(VCTargetsPath\\)[^\"]*Microsoft.Cpp.props\" />\n"
+            "  <Import Project=\"$(VCTargetsPath)\\Microsoft.Cpp.props\" />\n  <Import Project=\"$(MSBuildThisFileDirectory)..\\cmake\\vs\\SoftRaster.Configuration.props\" />\n")
+endfunction()
+sr_expect_failure(sheet_order "Raster.vcxproj: imports out of order")
+
+# A sheet path that does not reach the repository's cmake/vs (one ..\\ too few).
+function(sr_mutate_wrong_sheet_path dir)
+  sr_mutate(${dir} Tests/Math/MathTests.vcxproj "\\)\\.\\.\\\\\\.\\.\\\\cmake\\\\vs\\\\SoftRaster.Compile.props"
+            ")..\\cmake\\vs\\SoftRaster.Compile.props")
+endfunction()
+sr_expect_failure(wrong_sheet_path "MathTests.vcxproj: imports [^ ]*SoftRaster.Compile.props, which is not the shared sheet")
 
 if(failures GREATER 0)
   message(FATAL_ERROR "CheckVcxproj self-test: ${failures} mutation(s) went unnoticed")
