@@ -361,11 +361,11 @@ void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, 
     }
 }
 
-// drawProgram's body: `lanes` lanes (1 = on the calling thread only).
 // A distinct address per Program type: the vertex-cache key's program identity.
 template <class Program>
 inline constexpr char kVertexProgramTag = 0;
 
+// drawProgram's body: `lanes` lanes (1 = on the calling thread only).
 template <int kVaryings, class Program>
 void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
                std::size_t indexCount, Program& program, int lanes, const void* vertexSource = nullptr) {
