@@ -137,14 +137,6 @@ void clearRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCo
     for (std::uint32_t k = 0; k < indexCount; ++k) remap[indices[k]] = kNoVertex;
 }
 
-Mesh compactRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
-                  std::vector<std::uint32_t>& remap) {
-    Mesh part;
-    appendRange(part, src, firstIndex, indexCount, remap);
-    clearRange(src, firstIndex, indexCount, remap);
-    return part;
-}
-
 Result<LoadedScene> loadScene(const SceneOptions& options) {
     LoadedScene out;
     if (options.obj.empty()) {

@@ -27,20 +27,15 @@ struct LoadedScene {
 // Loads options.obj (or builds the default scene when empty). Errors name the file.
 Result<LoadedScene> loadScene(const SceneOptions& options);
 
-// The triangles indices[firstIndex .. firstIndex + indexCount) of `src` as a mesh of their own
-// (vertices in order of first use, with their normals and uvs). `remap` maps a vertex of src to
-// its index in the result: it holds src.vertexCount() entries, those of the range's vertices
-// kNoVertex on entry, and they are left so. No other entry is read or written: splitting a model
-// into ranges costs O(its indices) whatever the number of ranges (one remap serves them all).
+// Compacting ranges of a model's mesh into meshes of their own. appendRange appends the triangles
+// indices[firstIndex .. firstIndex + indexCount) of `src` to `part`, with their vertices (normals
+// and uvs too) in order of first use, and returns where they start in part.indices. `remap` maps
+// a vertex of src to its index in `part`: it holds src.vertexCount() entries, kNoVertex for the
+// range's vertices not yet in `part`; appendRange leaves the range's entries set, so that later
+// ranges appended to the same `part` share those vertices, and clearRange resets them to
+// kNoVertex. No other entry is read or written: splitting a model costs O(its indices) whatever
+// the number of ranges (one remap serves them all).
 inline constexpr std::uint32_t kNoVertex = UINT32_MAX;
-Mesh compactRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
-                  std::vector<std::uint32_t>& remap);
-
-// compactRange's two halves, for several ranges compacted into one mesh: appendRange appends the
-// range's triangles to `part` (a vertex already in `part` through this remap is reused; new ones
-// are appended in order of first use) and returns the index in part.indices where they start; it
-// leaves the range's remap entries set, so that later ranges share those vertices.
-// clearRange resets them to kNoVertex. Both are O(indexCount).
 std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
                           std::vector<std::uint32_t>& remap);
 void clearRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount, std::vector<std::uint32_t>& remap);

@@ -2,11 +2,11 @@
 # The wine_server CTest fixture of the mingw build: `start` before the Wine console tests,
 # `stop` after them.
 #
-# Why: a wineserver exits a few seconds after its last client. When the next test's Wine process
-# connects while the server is shutting down, Wine fails with "wine client error:0: recvmsg:
-# Connection reset by peer" (CI failed headless_errors this way under ctest -j2). A server
-# started with -p (persistent) does not exit while idle, so the console tests never race it;
-# `stop` ends it. The end-to-end tests use copies of the prefix with servers of their own
+# Why: a wineserver exits a few seconds after its last client, and a test's Wine process that
+# connects while it is shutting down loses the connection: the likely cause of CI failing
+# headless_errors under ctest -j2 with "wine client error:0: recvmsg: Connection reset by peer"
+# (not reproduced on demand). A server started with -p (persistent) does not exit while idle, so
+# no console test can meet it exiting; `stop` ends it. The end-to-end tests use copies of the prefix with servers of their own
 # (xsession.sh) and do not depend on this one.
 # Usage: wineserver.sh start|stop   (WINEPREFIX as for the tests; default ~/.wine)
 set -uo pipefail
@@ -21,10 +21,9 @@ start)
     wineboot -i </dev/null >/dev/null 2>&1 || true
     wineserver -w </dev/null >/dev/null 2>&1 || true
   fi
-  # A server already running (a test run that was interrupted before `stop`, or the user's own
-  # Wine programs) is not killed: wait briefly for it to exit, else use it as it is.
-  # The server daemonizes: its standard streams must not be CTest's pipes, or the test would
-  # not end before the server does.
+  # The server daemonizes: its standard streams must not be CTest's pipes, or this test would not
+  # end before the server does. A server already running (a run interrupted before `stop`, or the
+  # user's own Wine programs) is not killed: wait briefly for it to exit, else use it as it is.
   if ! wineserver -p </dev/null >/dev/null 2>&1; then
     timeout 10 wineserver -w </dev/null >/dev/null 2>&1 || true
     if ! wineserver -p </dev/null >/dev/null 2>&1; then

@@ -31,11 +31,14 @@ Mesh strip(int quads) {
 
 } // namespace
 
-TEST_CASE("compactRange keeps the range's vertices in order of first use", "[platform][scene]") {
+TEST_CASE("appendRange keeps the range's vertices in order of first use; clearRange resets the remap",
+          "[platform][scene]") {
     const Mesh src = strip(3);
     std::vector<std::uint32_t> remap(src.vertexCount(), kNoVertex);
     // The second quad: source vertices 2, 4, 5, 2, 5, 3.
-    const Mesh part = compactRange(src, 6, 6, remap);
+    Mesh part;
+    appendRange(part, src, 6, 6, remap);
+    clearRange(src, 6, 6, remap);
     REQUIRE(part.vertexCount() == 4);
     REQUIRE(part.hasNormals());
     REQUIRE(part.hasUvs());
@@ -50,10 +53,11 @@ TEST_CASE("compactRange keeps the range's vertices in order of first use", "[pla
     for (std::uint32_t r : remap) CHECK(r == kNoVertex);
 }
 
-// The work of a range is bounded by its size, not the model's: compactRange touches only the
-// remap entries of the range's own vertices. Every other entry holds a marker that a reset of
+// The work of a range is bounded by its size, not the model's: appendRange and clearRange touch
+// only the remap entries of the range's own vertices. Every other entry holds a marker that a reset of
 // the whole array per range (the old quadratic split: R ranges x V vertices) would overwrite.
-TEST_CASE("compactRange reads and writes only the remap entries of the range's vertices", "[platform][scene]") {
+TEST_CASE("appendRange and clearRange read and write only the remap entries of the range's vertices",
+          "[platform][scene]") {
     const int quads = 500;
     const Mesh src = strip(quads);
     constexpr std::uint32_t kMarker = 0xC0FFEEu;
@@ -63,7 +67,9 @@ TEST_CASE("compactRange reads and writes only the remap entries of the range's v
         // This quad's four vertices are clear on entry; every other entry keeps the marker.
         const std::uint32_t first = 2 * std::uint32_t(q);
         for (std::uint32_t v = first; v < first + 4; ++v) remap[v] = kNoVertex;
-        const Mesh part = compactRange(src, std::uint32_t(q) * 6, 6, remap);
+        Mesh part;
+        appendRange(part, src, std::uint32_t(q) * 6, 6, remap);
+        clearRange(src, std::uint32_t(q) * 6, 6, remap);
         REQUIRE(part.triangleCount() == 2);
         vertices += part.vertexCount();
         std::size_t markers = 0, clear = 0;

@@ -35,17 +35,16 @@ Scene splitDraws(const Scene& in, int pieces) {
     return out;
 }
 
-// The same draws with no reuse: drawMesh per draw outside renderScene, so each transforms the
-// whole mesh (the behaviour before the shared stage).
-void renderEachDrawAlone(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings) {
-    ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
-    for (const SceneDraw& d : scene.draws) {
-        const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
-        SurfaceMaterial material;
-        material.kd = d.kd;
-        if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
-        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
+// The same draws with nothing to share: each draw gets a copy of its mesh of its own, so
+// renderScene transforms the whole mesh once per draw (the behaviour before the shared stage).
+Scene meshPerDraw(const Scene& in) {
+    Scene out = in;
+    out.meshes.clear();
+    for (SceneDraw& d : out.draws) {
+        out.meshes.push_back(in.meshes[std::size_t(d.mesh)]);
+        d.mesh = int(out.meshes.size()) - 1;
     }
+    return out;
 }
 
 int differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
@@ -104,7 +103,7 @@ TEST_CASE("draws of one mesh share its vertex stage: the same image, the vertice
             RenderContext cs(shared), ca(alone), cu(unsplit);
             for (RenderContext* c : {&cs, &ca, &cu}) c->setThreads(threads);
             renderSceneFrame(cs, split, view, settings);
-            renderEachDrawAlone(ca, split, view, settings);
+            renderSceneFrame(ca, meshPerDraw(split), view, settings);
             renderSceneFrame(cu, whole, view, settings);
             CHECK(differingPixels(shared, alone) == 0);
             CHECK(cs.stats.fragmentsShaded == ca.stats.fragmentsShaded);
@@ -198,7 +197,7 @@ TEST_CASE("a model's materials share one mesh: a checkerboard of two materials c
         RenderContext ca(fa), co(fo), cal(alone);
         renderSceneFrame(ca, sa, view, settings);
         renderSceneFrame(co, so, view, settings);
-        renderEachDrawAlone(cal, sa, view, settings);
+        renderSceneFrame(cal, meshPerDraw(sa), view, settings);
         CHECK(differingPixels(fa, alone) == 0);
         CHECK(ca.stats.verticesTransformed == co.stats.verticesTransformed);
         CHECK(cal.stats.verticesTransformed == 2 * co.stats.verticesTransformed);
