@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "Raster/Mesh.hpp"
 #include "Raster/Pipeline.hpp" // DrawState
@@ -37,11 +38,14 @@ struct DrawContext {
     const Mesh& mesh;
     const std::uint32_t* indices;
     const Texture* texture; // non-null only when the draw is textured
-    Color kd;
+    Color kd;               // the surface colour; when textured, the texel's multiplier (tint)
+    Specular specular;
 };
 
-// Diffuse colour at a fragment whose varyings 0 and 1 are (u, v). Trilinear filtering needs the
-// screen-space uv derivatives, taken analytically from the triangle's planes (no quad shading).
+// Diffuse colour at a fragment whose varyings 0 and 1 are (u, v): the texel times the draw's kd
+// (the reference's uKd * texture(uTex, vUV); kd 1 leaves the texel as it is). Trilinear
+// filtering needs the screen-space uv derivatives, taken analytically from the triangle's planes
+// (no quad shading).
 template <int kVaryings>
 inline Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
     const Vec2 uv{f.varyings[0], f.varyings[1]};
@@ -54,7 +58,8 @@ inline Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fr
                                     : uvDerivatives(*setup, kU, kV, f.invW, uv.x, uv.y);
         lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, d.texture->width(), d.texture->height());
     }
-    return d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
+    const Color texel = d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
+    return {d.kd.r * texel.r, d.kd.g * texel.g, d.kd.b * texel.b, 1.0f};
 }
 
 inline DrawState drawStateFor(const DrawContext& d) {
@@ -127,12 +132,12 @@ struct FlatProgram {
         const Vec3 p0 = d->mesh.positions[d->indices[3 * tri]], p1 = d->mesh.positions[d->indices[3 * tri + 1]],
                    p2 = d->mesh.positions[d->indices[3 * tri + 2]];
         const Vec3 centroid = (p0 + p1 + p2) / 3.0f;
-        terms = blinnPhong(d->view.lighting, faceNormal(p0, p1, p2), normalize(d->view.eye - centroid));
-        if constexpr (!kTextured) flat = packBgra8(applyTerms(d->kd, terms));
+        terms = blinnPhong(d->view.lighting, d->specular, faceNormal(p0, p1, p2), normalize(d->view.eye - centroid));
+        if constexpr (!kTextured) flat = packBgra8(applyTerms(d->kd, d->specular.ks, terms));
     }
     Pixel fragment(const Fragment<kVaryings>& f) const {
         ensureLit();
-        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), terms));
+        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, terms));
         else return flat;
     }
 };
@@ -148,18 +153,26 @@ struct GouraudProgram {
     const DrawContext* d;
     const TriangleSetup* setup = nullptr;
     explicit GouraudProgram(const DrawContext* dc) : d(dc) {}
+    // vertex() depends on the specular constants besides the mesh and view: part of the vertex
+    // cache's key (Pipeline.hpp), so draws of one mesh with different exponents do not share.
+    std::uint64_t vertexVariant() const {
+        std::uint32_t bits = 0;
+        std::memcpy(&bits, &d->specular.shininess, sizeof bits);
+        return d->specular.on() ? (std::uint64_t(1) << 32) | bits : 0;
+    }
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kTextured>(*d, i, out);
         const Vec3 p = d->mesh.positions[i];
-        const LightTerms t = blinnPhong(d->view.lighting, normalize(d->mesh.normals[i]), normalize(d->view.eye - p));
+        const LightTerms t =
+            blinnPhong(d->view.lighting, d->specular, normalize(d->mesh.normals[i]), normalize(d->view.eye - p));
         out.varyings[kT] = t.diffuse;
         out.varyings[kT + 1] = t.specular;
     }
     void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
     Pixel fragment(const Fragment<kVaryings>& f) const {
         const LightTerms t{f.varyings[kT], f.varyings[kT + 1]};
-        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), t));
-        else return packBgra8(applyTerms(d->kd, t));
+        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
+        else return packBgra8(applyTerms(d->kd, d->specular.ks, t));
     }
 };
 
@@ -188,9 +201,9 @@ struct PhongProgram {
     Pixel fragment(const Fragment<kVaryings>& f) const {
         const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
         const Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
-        const LightTerms t = blinnPhong(d->view.lighting, n, normalize(d->view.eye - p));
-        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), t));
-        else return packBgra8(applyTerms(d->kd, t));
+        const LightTerms t = blinnPhong(d->view.lighting, d->specular, n, normalize(d->view.eye - p));
+        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
+        else return packBgra8(applyTerms(d->kd, d->specular.ks, t));
     }
 };
 

@@ -35,23 +35,24 @@ struct KernelProgram : Base {
 };
 
 // The vector kernels evaluate shininessPow's whole-number exponentiation only (per pixel, in
-// Phong; flat and Gouraud light per triangle / vertex in the scalar program).
-bool kernelsCoverLighting(const Lighting& l) {
-    const float s = l.shininess;
-    return s >= 0.0f && s <= 1024.0f && s == float(int(s));
+// Phong; flat and Gouraud light per triangle / vertex in the scalar program). A surface without
+// a specular term raises nothing to a power.
+bool kernelsCoverSpecular(const Specular& s) {
+    return !s.on() || (s.shininess <= 1024.0f && s.shininess == float(int(s.shininess)));
 }
 
 template <class Program>
 void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, Program program) {
     const DrawState state = programs::drawStateFor(d);
     KernelProgram<Program> withKernel{program};
-    if (Program::kMode != ShadingMode::Phong || kernelsCoverLighting(d.view.lighting)) {
+    if (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular)) {
         const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
         withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
     }
-    // The programs' vertex() reads only the mesh and the view (never the material): draws of one
-    // mesh share their vertex stage inside a VertexReuseScope (renderScene).
+    // The programs' vertex() reads the mesh, the view and (Gouraud) the specular constants, which
+    // it names in vertexVariant(): draws of one mesh share their vertex stage inside a
+    // VertexReuseScope (renderScene) when those agree.
     drawProgram<Program::kVaryings>(ctx, state, d.mesh.vertexCount(), d.indices, indexCount, withKernel, &d.mesh);
 }
 
@@ -72,7 +73,8 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& s
     const bool textured = material.texture != nullptr && mesh.hasUvs();
     ShadingMode mode = settings.shading;
     if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong)) mode = ShadingMode::Flat;
-    const DrawContext d{view, settings, mesh, indices, textured ? material.texture : nullptr, material.kd};
+    const DrawContext d{view,     settings, mesh, indices, textured ? material.texture : nullptr,
+                        textured ? material.tint : material.kd, material.specular};
     if (textured) drawShaded<true>(ctx, d, mode, indexCount);
     else drawShaded<false>(ctx, d, mode, indexCount);
 }

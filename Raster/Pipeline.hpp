@@ -365,6 +365,19 @@ void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, 
 template <class Program>
 inline constexpr char kVertexProgramTag = 0;
 
+// A program whose vertex() also reads per-draw constants (Gouraud: the specular exponent)
+// returns them packed in vertexVariant(); the vertex-cache key includes it (0 otherwise).
+template <class Program, class = void>
+struct HasVertexVariant : std::false_type {};
+template <class Program>
+struct HasVertexVariant<Program, std::void_t<decltype(std::declval<const Program&>().vertexVariant())>>
+    : std::true_type {};
+template <class Program>
+std::uint64_t vertexVariantOf(const Program& program) {
+    if constexpr (HasVertexVariant<Program>::value) return program.vertexVariant();
+    else return 0;
+}
+
 // drawProgram's body: `lanes` lanes (1 = on the calling thread only).
 template <int kVaryings, class Program>
 void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCount, const std::uint32_t* indices,
@@ -392,7 +405,8 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     // vertex program for this viewport (RenderContext::vertexCache, inside a VertexReuseScope).
     RenderContext::VertexCacheKey key;
     if (vertexSource && ctx.vertexReuse)
-        key = {vertexSource, &kVertexProgramTag<Program>, vertexCount, fb.width(), fb.height(), state.clipFar};
+        key = {vertexSource,          &kVertexProgramTag<Program>, vertexVariantOf(program), vertexCount, fb.width(),
+               fb.height(), state.clipFar};
     const bool transformed = key.source && ctx.vertexCache == key;
     ctx.vertexCache = key;
     if (!transformed) ctx.stats.verticesTransformed += vertexCount;

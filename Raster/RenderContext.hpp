@@ -67,11 +67,13 @@ public:
     struct VertexCacheKey {
         const void* source = nullptr;  // the vertex data (a Mesh); null: nothing reusable
         const void* program = nullptr; // identifies the vertex program's type (its output layout)
+        std::uint64_t variant = 0;     // the per-draw constants its vertex() reads (vertexVariantOf)
         std::size_t count = 0;
         int width = 0, height = 0;     // the viewport the screen vertices were made for
         bool clipFar = false;
         bool operator==(const VertexCacheKey& o) const {
-            return source == o.source && program == o.program && count == o.count && width == o.width &&
+            return source == o.source && program == o.program && variant == o.variant && count == o.count &&
+                   width == o.width &&
                    height == o.height && clipFar == o.clipFar;
         }
     };

@@ -31,10 +31,13 @@ struct FrameView {
     Lighting lighting;
 };
 
-// The surface of one draw: a texture (used when the mesh has uvs) or the flat colour kd.
+// The surface of one draw: a texture (used when the mesh has uvs) times `tint`, or the flat
+// colour kd; and its specular constants.
 struct SurfaceMaterial {
     const Texture* texture = nullptr;
-    Color kd{0.8f, 0.8f, 0.8f, 1.0f};
+    Color kd{0.8f, 0.8f, 0.8f, 1.0f};   // untextured colour
+    Color tint{1.0f, 1.0f, 1.0f, 1.0f}; // multiplies the texel when textured (MTL Kd; 1: the texel alone)
+    Specular specular;
 };
 
 } // namespace sr

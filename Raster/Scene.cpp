@@ -25,6 +25,8 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         assert(std::size_t(d.firstIndex) + d.indexCount <= mesh.indices.size());
         SurfaceMaterial material;
         material.kd = d.kd;
+        material.tint = d.tint;
+        material.specular = d.specular;
         if (textureOverride) material.texture = textureOverride;
         else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
         drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);

@@ -16,7 +16,9 @@ struct SceneDraw {
     std::uint32_t firstIndex = 0;
     std::uint32_t indexCount = 0;
     int texture = -1;                    // index into Scene::textures, or -1 for kd
-    Color kd{0.8f, 0.8f, 0.8f, 1.0f};
+    Color kd{0.8f, 0.8f, 0.8f, 1.0f};    // the colour when untextured
+    Color tint{1.0f, 1.0f, 1.0f, 1.0f};  // multiplies the texel when textured (1: the texel alone)
+    Specular specular;                   // ks and shininess (default: white 0.5, 32)
 };
 
 // Static geometry is stored in world space, prepared once (no per-frame vertex work besides

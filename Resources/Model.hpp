@@ -6,29 +6,35 @@
 #include <string>
 #include <vector>
 
+#include "Math/Color.hpp"
 #include "Math/Vec.hpp"
 #include "Raster/Mesh.hpp"
 #include "Resources/Image.hpp"
 
 namespace sr {
 
-// One OBJ material as the renderer uses it: only the diffuse map matters (MTL Kd/Ka/Ks/Ns are
-// ignored, as in the llvmpipe reference; untextured faces use kd = 0.8 grey at render time).
+// One OBJ material as the renderer uses it: its diffuse map and the MTL values the shading reads
+// (Kd, Ks, Ns; Ka, Ke, d, illum and the rest are ignored, as in the llvmpipe reference). Values
+// are tinyobjloader's, with its defaults where a line is missing (Kd = Ks = 0, Ns = 1; a
+// material with map_Kd and no Kd line gets Kd 0.6). How they are used: sceneFromModel
+// (Platform/Demo/SceneSetup.cpp) and README "Materials".
 struct Material {
     std::string name;
-    int texture = -1; // index into Model::textures, or -1 = untextured
+    int texture = -1;     // index into Model::textures, or -1 = untextured
+    bool fromMtl = false; // read from an MTL file (false: the --texture override's stand-in)
+    bool hasMap = false;  // the MTL names a map_Kd (whether or not it loads)
+    Color kd{0.0f, 0.0f, 0.0f, 1.0f}, ks{0.0f, 0.0f, 0.0f, 1.0f};
+    float shininess = 1.0f;
 };
 
-// The triangles of one texture: one draw call. Ranges are keyed by TEXTURE (as glref splits its
-// runs), so `material` is the material of the range's first triangle in the file; every triangle
-// in the range has a material whose texture equals `texture` (faces without a material count as
-// texture -1). One range per texture, in the order of each texture's first face in the file,
-// the faces of a range in file order (ObjLoader.hpp: "Draw order"); together the ranges cover
-// Mesh::indices once, in order.
+// The triangles of one material: one draw call. One range per material (faces without one form
+// the material -1 range), in the order of each material's first face in the file, the faces of a
+// range in file order (ObjLoader.hpp: "Draw order"); together the ranges cover Mesh::indices
+// once, in order.
 struct DrawRange {
     std::uint32_t firstIndex = 0, indexCount = 0; // into Mesh::indices (3 per triangle)
     int material = -1;                            // index into Model::materials, or -1
-    int texture = -1; // == (material >= 0 ? materials[material].texture : -1), for convenience
+    int texture = -1; // == (material >= 0 && hasUvs ? materials[material].texture : -1), for convenience
 };
 
 struct Model {

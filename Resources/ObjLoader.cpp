@@ -182,31 +182,27 @@ Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, con
     auto overrideMaterial = assignMaterials(model, materials, path, options, anyFaceWithoutMaterial);
     if (!overrideMaterial) return R::failure(overrideMaterial.error());
 
-    // 7a. Draw ranges: one per texture (faces without one form the texture -1 range), ordered by
-    //     the texture's first face in the file (ObjLoader.hpp: "Draw order"). A counting pass
+    // 7a. Draw ranges: one per material (faces without one form the material -1 range), ordered
+    //     by the material's first face in the file (ObjLoader.hpp: "Draw order"). A counting pass
     //     sizes the ranges, so every face is written straight into its range below: O(faces)
-    //     whatever the material order (issue 14, item 6: a range per texture SWITCH made a
+    //     whatever the material order (issue 14, item 6: a range per material SWITCH made a
     //     checkerboard of two materials one draw per quad).
-    const auto textureOfFace = [&](const tinyobj::shape_t& sh, std::size_t f, int& material) {
-        int mid = f < sh.mesh.material_ids.size() ? sh.mesh.material_ids[f] : -1;
-        if (mid < 0 || std::size_t(mid) >= materials.size()) mid = overrideMaterial.value();
-        material = mid;
-        const int tex = model.hasUvs && mid >= 0 ? model.materials[std::size_t(mid)].texture : -1;
-        assert(tex >= -1 && tex < int(model.textures.size()));
-        return tex;
+    const auto materialOfFace = [&](const tinyobj::shape_t& sh, std::size_t f) {
+        const int mid = f < sh.mesh.material_ids.size() ? sh.mesh.material_ids[f] : -1;
+        return mid < 0 || std::size_t(mid) >= materials.size() ? overrideMaterial.value() : mid;
     };
-    std::vector<int> rangeOfTexture(model.textures.size() + 1, -1); // [texture + 1] -> range
+    std::vector<int> rangeOfMaterial(model.materials.size() + 1, -1); // [material + 1] -> range
     for (const auto& sh : shapes) {
         const std::size_t nf = sh.mesh.indices.size() / 3;
         for (std::size_t f = 0; f < nf; ++f) {
-            int mid = -1;
-            const int tex = textureOfFace(sh, f, mid);
-            int& range = rangeOfTexture[std::size_t(tex + 1)];
+            const int mid = materialOfFace(sh, f);
+            int& range = rangeOfMaterial[std::size_t(mid + 1)];
             if (range < 0) {
                 range = int(model.ranges.size());
                 DrawRange r;
                 r.material = mid;
-                r.texture = tex;
+                r.texture = model.hasUvs && mid >= 0 ? model.materials[std::size_t(mid)].texture : -1;
+                assert(r.texture >= -1 && r.texture < int(model.textures.size()));
                 model.ranges.push_back(r);
             }
             model.ranges[std::size_t(range)].indexCount += 3;
@@ -228,9 +224,8 @@ Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, con
         const auto& idx = sh.mesh.indices;
         const std::size_t nf = idx.size() / 3;
         for (std::size_t f = 0; f < nf; ++f) {
-            int mid = -1;
-            const int tex = textureOfFace(sh, f, mid);
-            std::uint32_t& out = cursor[std::size_t(rangeOfTexture[std::size_t(tex + 1)])];
+            const int mid = materialOfFace(sh, f);
+            std::uint32_t& out = cursor[std::size_t(rangeOfMaterial[std::size_t(mid + 1)])];
             for (int k = 0; k < 3; ++k) {
                 const tinyobj::index_t& ix = idx[f * 3 + std::size_t(k)];
                 const Key key{ix.vertex_index, ix.normal_index >= 0 ? ix.normal_index : -1,

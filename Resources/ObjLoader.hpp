@@ -16,18 +16,18 @@ namespace sr {
 //    the area-weighted vertex normal (sum of (p1-p0)x(p2-p0) over the triangles using that
 //    position, normalised in double; zero -> (0,0,1));
 //  - uvs only if the file has any 'vt'; a face-vertex without one gets (0,0);
-//  - map_Kd per material (resolved as glref).
-// Draw order: ONE draw range per texture (faces without a texture, or without uvs, share the
-// texture -1 range). Ranges come in the order of each texture's first face in the file; inside a
-// range the faces keep their file order. Vertices are numbered in file order of first use.
+//  - map_Kd per material (resolved as glref), and each material's Kd, Ks and Ns (Model.hpp).
+// Draw order: ONE draw range per material (faces without one share the material -1 range).
+// Ranges come in the order of each material's first face in the file; inside a range the faces
+// keep their file order. Vertices are numbered in file order of first use.
 // The load and the draws are linear in the faces whatever the material order (a checkerboard of
 // two materials is two ranges, not one per quad). The image can differ from file order (and from
-// glref, which draws runs of faces sharing a texture in file order) only where two faces of
-// different textures give the SAME depth at a pixel centre: the depth test (reversed-Z, GREATER)
-// keeps the first drawn, i.e. the face whose texture appears first in the file (faces of one
-// texture tie in file order). A model whose faces of each texture already form one run of the
-// file draws exactly in file order (the bunny); the spider's 6 runs are 4 ranges, and its
-// images did not change (scripts/perf-identity.sh).
+// glref, which draws runs of faces sharing a texture and material in file order) only where two
+// faces of different materials give the SAME depth at a pixel centre: the depth test
+// (reversed-Z, GREATER) keeps the first drawn, i.e. the face whose material appears first in the
+// file (faces of one material tie in file order). A model whose faces of each material already
+// form one run of the file draws exactly in file order (the bunny); the spider's runs are one
+// range per material, and its images did not change (scripts/perf-identity.sh).
 // Deliberate differences from glref: a texture that cannot be loaded gets defaultCheckerTexture()
 // (glref draws those faces grey), a UTF-8 BOM is skipped (glref would lose the first line), what
 // glref would read out of bounds or silently misread (bad indices, "nan" coordinates) is an

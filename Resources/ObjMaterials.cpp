@@ -89,7 +89,16 @@ Result<int> assignMaterials(Model& model, const std::vector<tinyobj::material_t>
                             const std::string& objPath, const ObjOptions& options, bool anyFaceWithoutMaterial) {
     const std::string objDir = objDirectory(objPath);
     model.materials.clear();
-    for (const auto& m : materials) model.materials.push_back(Material{m.name, -1});
+    for (const auto& m : materials) {
+        Material q;
+        q.name = m.name;
+        q.fromMtl = true;
+        q.hasMap = !m.diffuse_texname.empty();
+        q.kd = Color{float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]), 1.0f};
+        q.ks = Color{float(m.specular[0]), float(m.specular[1]), float(m.specular[2]), 1.0f};
+        q.shininess = float(m.shininess);
+        model.materials.push_back(q);
+    }
 
     // Without 'vt' nothing is textured and no image is read (glref does the same).
     if (!model.hasUvs) {
@@ -117,7 +126,10 @@ Result<int> assignMaterials(Model& model, const std::vector<tinyobj::material_t>
         const int slot = slotFor(options.textureOverride);
         for (auto& m : model.materials) m.texture = slot;
         if (anyFaceWithoutMaterial) {
-            model.materials.push_back(Material{"(texture override)", slot});
+            Material stand;
+            stand.name = "(texture override)";
+            stand.texture = slot;
+            model.materials.push_back(stand);
             overrideMaterial = int(model.materials.size()) - 1;
         }
     } else {

@@ -3,12 +3,13 @@
 # renderer in ../shared/tools/llvmpipe-ref, built into a temporary folder; it is a development
 # aid, not a dependency). Prints Markdown tables for docs/PERFORMANCE.md.
 # Usage: scripts/compare-llvmpipe.sh [frames=100] [reps=5] [threads="1 2"] [culls="none cw"] [sizes="800x600 1920x1080"]
-# The reference runs with --materials fixed: the material rule SoftRaster renders today (kd 0.8 or
-# the texel, ks 0.5, shininess 32), so both do the same work and draw the same image.
+# Both run with their default material rule, --materials mtl (the MTL's Kd, Ks, Ns), so both do
+# the same work and draw the same image (MATERIALS=fixed runs both with the old fixed values).
 # Needs: a native build (build/native/bin/softraster, or $SOFTRASTER), g++ libosmesa6-dev libegl-dev.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
+MATERIALS=${MATERIALS:-mtl}
 FRAMES=${1:-100}; REPS=${2:-5}; THREADS=${3:-"1 2"}; CULLS=${4:-"none cw"}; SIZES=${5:-"800x600 1920x1080"}
 ref_src="$root/../shared/tools/llvmpipe-ref"
 [[ -d "$ref_src" ]] || { echo "compare-llvmpipe: $ref_src not found" >&2; exit 1; }
@@ -51,9 +52,9 @@ for cfg in "bunny|$BUNNY|" "spider close-up|$SPIDER|--eye 60,60,60 --target 0,0,
         g=(); s=(); r=()
         for _ in $(seq "$REPS"); do
           # shellcheck disable=SC2086
-          gl=$("$glref" --quiet --materials fixed --obj "$obj" $cam --width "$w" --height "$h" --cull "$cull" --threads "$lp_threads" --frames "$FRAMES" --warmup 10)
+          gl=$("$glref" --quiet --materials "$MATERIALS" --obj "$obj" $cam --width "$w" --height "$h" --cull "$cull" --threads "$lp_threads" --frames "$FRAMES" --warmup 10)
           # shellcheck disable=SC2086
-          so=$("$sr" bench --quiet --obj "$obj" $cam --width "$w" --height "$h" --cull "$cull" --threads "$t" --frames "$FRAMES" --warmup 10)
+          so=$("$sr" bench --quiet --materials "$MATERIALS" --obj "$obj" $cam --width "$w" --height "$h" --cull "$cull" --threads "$t" --frames "$FRAMES" --warmup 10)
           g+=("$(field ms_per_frame_median "$gl")"); s+=("$(field ms_per_frame_median "$so")")
           r+=("$(awk -v a="${g[-1]}" -v b="${s[-1]}" 'BEGIN{printf "%.3f", a/b}')")
         done
@@ -73,9 +74,9 @@ for cfg in "bunny|$BUNNY|--eye 0,0,2.69185406 --target 0,0,0 --near 1.33246776 -
            "spider close-up|$SPIDER|--eye 60,60,60 --target 0,0,-10 --near 1 --far 500"; do
   IFS='|' read -r name obj cam <<<"$cfg"
   # shellcheck disable=SC2086
-  "$glref" --quiet --materials fixed --obj "$obj" $cam --frames 1 --warmup 0 --out "$work/ref.ppm" >/dev/null
+  "$glref" --quiet --materials "$MATERIALS" --obj "$obj" $cam --frames 1 --warmup 0 --out "$work/ref.ppm" >/dev/null
   # shellcheck disable=SC2086
-  "$sr" render --quiet --obj "$obj" $cam --out "$work/new.ppm" >/dev/null
+  "$sr" render --quiet --materials "$MATERIALS" --obj "$obj" $cam --out "$work/new.ppm" >/dev/null
   c=$("$imgcmp" "$work/ref.ppm" "$work/new.ppm")
   echo "| $name | $(field differing "$c") | $(field max_abs "$c") | $(sed -E 's/.*"psnr_db":"?([0-9.inf]+)"?.*/\1/' <<<"$c") | $(field coverage_mismatch "$c") |"
 done

@@ -58,6 +58,14 @@ std::optional<Quality> parseQuality(const std::string& text) {
     return std::nullopt;
 }
 
+const char* materialRuleName(MaterialRule rule) { return rule == MaterialRule::Mtl ? "mtl" : "fixed"; }
+
+std::optional<MaterialRule> parseMaterialRule(const std::string& text) {
+    for (MaterialRule r : {MaterialRule::Mtl, MaterialRule::Fixed})
+        if (text == materialRuleName(r)) return r;
+    return std::nullopt;
+}
+
 std::optional<Vec3> parseVec3(const std::string& text) {
     double v[3];
     std::size_t start = 0;
@@ -84,7 +92,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     static const char* const kFlags[] = {"--obj",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
-                                         "--isa",   "--ssaa",   "--msaa",   "--quality"};
+                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
@@ -153,6 +161,10 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         if (!m) return bad("unlit, flat, gouraud or phong");
         o.shading = *m;
         o.explicitShading = true;
+    } else if (flag == "--materials") {
+        const auto m = parseMaterialRule(value);
+        if (!m) return bad("mtl or fixed");
+        o.materials = *m;
     } else if (flag == "--cull") {
         const auto m = parseCullMode(value);
         if (!m) return bad("none, cw or ccw");
@@ -271,7 +283,9 @@ std::string sceneFlagsHelp() {
            "                        pixel (centre, or centroid on edges), box-filtered; not with --ssaa\n"
            "  --isa I               auto | scalar | sse2 | avx2 | avx512: span kernels (default auto, the\n"
            "                        widest this CPU has; scalar = the reference loop; same image for all)\n"
-           "  --kd r,g,b            colour of untextured surfaces (default 0.8,0.8,0.8)\n"
+           "  --kd r,g,b            colour of untextured surfaces without a material (default 0.8,0.8,0.8)\n"
+           "  --materials M         mtl | fixed: use the MTL's Kd, Ks and Ns (default mtl), or kd = --kd\n"
+           "                        or the texel, white ks 0.5 and shininess 32 everywhere (fixed)\n"
            "  --wireframe           overlay triangle edges\n";
 }
 

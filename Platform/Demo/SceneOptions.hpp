@@ -39,6 +39,15 @@ QualitySettings qualitySettings(Quality quality);
 const char* qualityName(Quality quality);
 std::optional<Quality> parseQuality(const std::string& text);
 
+// How an OBJ's MTL values are used (the reference renderer's --materials). Mtl: kd = Kd (times
+// the texel when textured; a textured material with a black Kd counts as Kd 1), ks = Ks,
+// shininess = Ns, no specular term when Ks is black or Ns <= 0. Fixed: every material is kd
+// = --kd or the texel alone, white ks 0.5, shininess 32 (the rule before MTL values were read).
+// Faces without a material use the fixed values under both.
+enum class MaterialRule { Mtl, Fixed };
+const char* materialRuleName(MaterialRule rule);
+std::optional<MaterialRule> parseMaterialRule(const std::string& text);
+
 struct SceneOptions {
     std::string obj;                 // empty: the built-in default scene
     int width = 800, height = 600;
@@ -59,6 +68,7 @@ struct SceneOptions {
     int msaa = 1;        // --msaa: multisampling samples per pixel, 1, 2, 4 or 8 (Raster/Msaa.hpp)
     Isa isa = bestIsa(); // --isa: which span kernels fill (auto = the widest this CPU has)
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
+    MaterialRule materials = MaterialRule::Mtl; // --materials
     bool wireframe = false;
     std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).

@@ -23,7 +23,9 @@ namespace {
 // vertex stage), and a vertex that two materials share (the corners of a checkerboard of
 // materials) is stored and transformed once. Each mesh holds only the vertices its ranges use.
 // One remap array serves both meshes (cleared after each).
-Scene sceneFromModel(Model&& model, Color kd) {
+// Each range is one draw with its material's values under `rule` (SceneOptions.hpp, MaterialRule);
+// a range without an MTL material (or under Fixed) gets kd = `kd`, the texel alone, ks 0.5, 32.
+Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
     Scene scene;
     for (const Image& img : model.textures)
         scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
@@ -52,6 +54,14 @@ Scene sceneFromModel(Model&& model, Color kd) {
         d.indexCount = range.indexCount;
         d.texture = range.texture;
         d.kd = kd;
+        const Material* m = range.material >= 0 ? &model.materials[std::size_t(range.material)] : nullptr;
+        if (rule == MaterialRule::Mtl && m && m->fromMtl) {
+            // The reference's rule: a material with a map_Kd and a black Kd is "the texture alone".
+            const bool black = m->kd.r == 0.0f && m->kd.g == 0.0f && m->kd.b == 0.0f;
+            d.kd = m->hasMap && black ? Color{1.0f, 1.0f, 1.0f, 1.0f} : m->kd;
+            d.tint = d.kd;
+            d.specular = Specular{m->ks, m->shininess};
+        }
         scene.draws.push_back(d);
     }
     scene.boundsMin = model.boundsMin;
@@ -166,7 +176,7 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         out.description = options.obj + ": " + std::to_string(m.mesh.triangleCount()) + " triangles, " +
                           std::to_string(m.textures.size()) + " textures, normals " +
                           (m.normalsFromFile ? "from OBJ" : "computed (area-weighted)");
-        out.scene = sceneFromModel(std::move(m), options.kd);
+        out.scene = sceneFromModel(std::move(m), options.kd, options.materials);
     }
     return Result<LoadedScene>(std::move(out));
 }

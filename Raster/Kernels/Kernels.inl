@@ -69,15 +69,17 @@ struct Terms {
 // blinnPhong (Shading.hpp) for unit n and v, with a whole-number shininess in [0, 1024] (the
 // table only offers kernels for such lighting; shininessPow's binary exponentiation, the same
 // multiplications in the same order).
-SR_SIMD_INLINE Terms blinnPhong(const Lighting& lighting, const V3& n, const V3& v, M& ok) {
+SR_SIMD_INLINE Terms blinnPhong(const Lighting& lighting, const Specular& material, const V3& n, const V3& v, M& ok) {
     F diffuse = fset(lighting.ambient);
     F specular = fzero();
-    const unsigned exponent = unsigned(lighting.shininess);
+    const bool specularOn = material.on();
+    const unsigned exponent = unsigned(material.shininess);
     for (const Vec3& l : lighting.toLight) {
         const V3 lv{fset(l.x), fset(l.y), fset(l.z)};
         const F ndl = dot3(n, lv);
         const M lit = ndl > fzero();
         diffuse = select(lit, diffuse + ndl, diffuse);
+        if (!specularOn) continue; // no half vector (the scalar blinnPhong forms none either)
         M hOk = ok;
         const V3 h = normalizeFast({lv.x + v.x, lv.y + v.y, lv.z + v.z}, hOk);
         ok = (lit & hOk) | andNot(ok, lit); // a bad half vector matters only where it is used
@@ -92,12 +94,13 @@ SR_SIMD_INLINE Terms blinnPhong(const Lighting& lighting, const V3& n, const V3&
         }
         specular = select(lit, specular + result, specular);
     }
-    return {diffuse, specular * fset(lighting.ks)};
+    return {diffuse, specular};
 }
 
-// applyTerms (Shading.hpp): kd * diffuse + specular per channel.
-SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, const Terms& t) {
-    return {kd.r * t.diffuse + t.specular, kd.g * t.diffuse + t.specular, kd.b * t.diffuse + t.specular};
+// applyTerms (Shading.hpp): kd * diffuse + ks * specular per channel.
+SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, Color ks, const Terms& t) {
+    return {kd.r * t.diffuse + fset(ks.r) * t.specular, kd.g * t.diffuse + fset(ks.g) * t.specular,
+            kd.b * t.diffuse + fset(ks.b) * t.specular};
 }
 
 // --- Texture sampling (TextureSampling.cpp's fast paths, lane by lane) -----------------------
@@ -340,21 +343,24 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
     const DrawContext& d = *p.d;
     M ok = mAll();
     Rgb kd{fset(d.kd.r), fset(d.kd.g), fset(d.kd.b)};
-    if constexpr (Prog::kIsTextured) kd = sampleTexture<kPersp, kFilter, kWrap>(p, v[0], v[1], invW, triangleLod);
+    if constexpr (Prog::kIsTextured) {
+        const Rgb texel = sampleTexture<kPersp, kFilter, kWrap>(p, v[0], v[1], invW, triangleLod);
+        kd = {kd.r * texel.r, kd.g * texel.g, kd.b * texel.b}; // sampleKd: the draw's kd times the texel
+    }
     constexpr int kT = Prog::kIsTextured ? 2 : 0; // the first varying after the uv
     I out;
     if constexpr (Prog::kMode == ShadingMode::Unlit) {
         out = packBgra8(kd);
     } else if constexpr (Prog::kMode == ShadingMode::Flat) {
         p.ensureLit(); // FlatProgram lights on its first shaded fragment
-        out = packBgra8(applyTerms(kd, Terms{fset(p.terms.diffuse), fset(p.terms.specular)}));
+        out = packBgra8(applyTerms(kd, d.specular.ks, Terms{fset(p.terms.diffuse), fset(p.terms.specular)}));
     } else if constexpr (Prog::kMode == ShadingMode::Gouraud) {
-        out = packBgra8(applyTerms(kd, Terms{v[kT], v[kT + 1]}));
+        out = packBgra8(applyTerms(kd, d.specular.ks, Terms{v[kT], v[kT + 1]}));
     } else {
         const V3 n = normalizeFast({v[kT + 3], v[kT + 4], v[kT + 5]}, ok);
         const Vec3 eye = d.view.eye;
         const V3 toEye = normalizeFast({fset(eye.x) - v[kT], fset(eye.y) - v[kT + 1], fset(eye.z) - v[kT + 2]}, ok);
-        out = packBgra8(applyTerms(kd, blinnPhong(d.view.lighting, n, toEye, ok)));
+        out = packBgra8(applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, toEye, ok)));
     }
     if (bits(ok) != bits(mAll())) {
         alignas(64) std::int32_t pixels[kLanes], x[kLanes], y[kLanes];

@@ -13,6 +13,15 @@
 
 namespace sr::test {
 
+// A draw of mesh `mesh`'s first `indexCount` indices in the flat colour kd (untextured).
+inline SceneDraw untexturedDraw(int mesh, std::uint32_t indexCount, Color kd) {
+    SceneDraw d;
+    d.mesh = mesh;
+    d.indexCount = indexCount;
+    d.kd = kd;
+    return d;
+}
+
 // Area of the triangle (a, b, c) inside the unit pixel square [px, px + 1] x [py, py + 1]:
 // Sutherland-Hodgman clipping of the triangle against the square's four sides, then the shoelace
 // formula, in double.
@@ -58,7 +67,7 @@ inline Scene whiteTriangle(const std::vector<std::pair<double, double>>& tri, in
         m.positions.push_back({float(2.0 * x / width - 1.0), float(1.0 - 2.0 * y / height), 0.5f});
     m.indices = {0, 1, 2};
     scene.meshes.push_back(m);
-    scene.draws.push_back(SceneDraw{0, 0, 3, -1, Color{1, 1, 1, 1}});
+    scene.draws.push_back(untexturedDraw(0, 3, Color{1, 1, 1, 1}));
     return scene;
 }
 
@@ -111,8 +120,8 @@ inline Scene crossingPlanes(double c) {
     };
     scene.meshes.push_back(quad(0.5 + c / 128.0, 0.5 + (c - 64.0) / 128.0));
     scene.meshes.push_back(quad(0.5 - c / 128.0, 0.5 - (c - 64.0) / 128.0));
-    scene.draws.push_back(SceneDraw{0, 0, 6, -1, Color{1, 0, 0, 1}});
-    scene.draws.push_back(SceneDraw{1, 0, 6, -1, Color{0, 1, 0, 1}});
+    scene.draws.push_back(untexturedDraw(0, 6, Color{1, 0, 0, 1}));
+    scene.draws.push_back(untexturedDraw(1, 6, Color{0, 1, 0, 1}));
     return scene;
 }
 

@@ -50,7 +50,7 @@ inline void drawMeshGeneral(RenderContext& ctx, const FrameView& view, const Ren
             const Vec3 n = hasNormals ? mesh.normals[i] : Vec3{0, 0, 1};
             const Vec2 uv = mesh.hasUvs() ? mesh.uvs[i] : Vec2{0, 0};
             out.position = view.viewProj * Vec4(p, 1.0f);
-            const LightTerms t = blinnPhong(view.lighting, normalize(n), normalize(view.eye - p));
+            const LightTerms t = blinnPhong(view.lighting, material.specular, normalize(n), normalize(view.eye - p));
             const float v[kGeneralVaryings] = {uv.x, uv.y, p.x, p.y, p.z, n.x, n.y, n.z, t.diffuse, t.specular};
             for (int k = 0; k < kGeneralVaryings; ++k) out.varyings[std::size_t(k)] = v[k];
         },
@@ -63,6 +63,7 @@ inline void drawMeshGeneral(RenderContext& ctx, const FrameView& view, const Ren
         },
         [&](const Fragment<kGeneralVaryings>& f) {
             Color kd = material.kd;
+            const Color ks = material.specular.ks;
             if (textured) {
                 const Vec2 uv{f.varyings[0], f.varyings[1]};
                 float lod = 0.0f;
@@ -74,17 +75,18 @@ inline void drawMeshGeneral(RenderContext& ctx, const FrameView& view, const Ren
                             : uvDerivatives(*setup, kPlaneVarying0, kPlaneVarying0 + 1, f.invW, uv.x, uv.y);
                     lod = mipLevel(g, material.texture->width(), material.texture->height());
                 }
-                kd = material.texture->sample(uv, lod, settings.filter, settings.wrap);
+                const Color texel = material.texture->sample(uv, lod, settings.filter, settings.wrap);
+                kd = {material.tint.r * texel.r, material.tint.g * texel.g, material.tint.b * texel.b, 1.0f};
             }
             switch (mode) {
             case ShadingMode::Unlit: return packBgra8(kd);
             case ShadingMode::Flat:
-                return packBgra8(applyTerms(kd, blinnPhong(view.lighting, faceN, normalize(view.eye - centroid))));
-            case ShadingMode::Gouraud: return packBgra8(applyTerms(kd, LightTerms{f.varyings[8], f.varyings[9]}));
+                return packBgra8(applyTerms(kd, ks, blinnPhong(view.lighting, material.specular, faceN, normalize(view.eye - centroid))));
+            case ShadingMode::Gouraud: return packBgra8(applyTerms(kd, ks, LightTerms{f.varyings[8], f.varyings[9]}));
             case ShadingMode::Phong: {
                 const Vec3 p{f.varyings[2], f.varyings[3], f.varyings[4]};
                 const Vec3 n = normalize(Vec3{f.varyings[5], f.varyings[6], f.varyings[7]});
-                return packBgra8(applyTerms(kd, blinnPhong(view.lighting, n, normalize(view.eye - p))));
+                return packBgra8(applyTerms(kd, ks, blinnPhong(view.lighting, material.specular, n, normalize(view.eye - p))));
             }
             }
             return packBgra8(kd);
@@ -98,6 +100,8 @@ inline void renderSceneGeneral(RenderContext& ctx, const Scene& scene, const Fra
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
         SurfaceMaterial material;
         material.kd = d.kd;
+        material.tint = d.tint;
+        material.specular = d.specular;
         if (textureOverride) material.texture = textureOverride;
         else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
         drawMeshGeneral(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);

@@ -13,7 +13,8 @@ using namespace sr;
 // All cases use the reference constants unless stated: ambient 0.1, ks 0.5, shininess 32
 // (shared/tools/llvmpipe-ref/README.md "Shading"):
 //   diffuse  = 0.1 + sum_l max(N.L_l, 0)
-//   specular = 0.5 * sum_l (N.L_l > 0 ? max(N.H_l, 0)^32 : 0),  H = normalize(L + V)
+//   specular = sum_l (N.L_l > 0 ? max(N.H_l, 0)^32 : 0),  H = normalize(L + V)
+//   colour   = kd * diffuse + ks * specular (applyTerms)
 // N = +Z throughout, so N.X is just X.z.
 namespace {
 
@@ -24,14 +25,21 @@ Lighting oneLight(Vec3 toLight) {
 }
 
 constexpr Vec3 kN{0.0f, 0.0f, 1.0f};
+const Specular kRef; // ks 0.5 white, shininess 32
+
+Specular withShininess(float s) {
+    Specular sp;
+    sp.shininess = s;
+    return sp;
+}
 
 } // namespace
 
 TEST_CASE("Blinn-Phong: light straight on, viewer straight on", "[render][shading]") {
-    // L = V = N: N.L = 1, H = N, N.H = 1 -> diffuse 0.1 + 1 = 1.1, specular 0.5 * 1^32 = 0.5.
-    const LightTerms t = blinnPhong(oneLight(kN), kN, kN);
+    // L = V = N: N.L = 1, H = N, N.H = 1 -> diffuse 0.1 + 1 = 1.1, specular 1^32 = 1.
+    const LightTerms t = blinnPhong(oneLight(kN), kRef, kN, kN);
     CHECK(t.diffuse == Approx(1.1f).margin(1e-7));
-    CHECK(t.specular == 0.5f);
+    CHECK(t.specular == 1.0f);
 }
 
 TEST_CASE("Blinn-Phong: grazing light, N.L = 1e-3 and exactly 0", "[render][shading]") {
@@ -40,18 +48,17 @@ TEST_CASE("Blinn-Phong: grazing light, N.L = 1e-3 and exactly 0", "[render][shad
         // diffuse = 0.1 + 0.001 = 0.101.
         // L + V = (0.9999995, 0, 1.001); |L + V|^2 = (1 - 1e-6) + 1.002001 = 2.002 (exactly).
         // N.H^2 = 1.001^2 / 2.002 = 1.002001 / 2.002 = 0.5005, so N.H^32 = 0.5005^16
-        //       = 2^-16 * 1.001^16 = 1.52587890625e-5 * 1.0160120... = 1.5504769e-5.
-        // specular = 0.5 * 1.5504769e-5 = 7.7523847e-6.
+        //       = 2^-16 * 1.001^16 = 1.52587890625e-5 * 1.0160120... = 1.5504769e-5 = specular.
         const Vec3 l{std::sqrt(1.0f - 1e-6f), 0.0f, 1e-3f};
-        const LightTerms t = blinnPhong(oneLight(l), kN, kN);
+        const LightTerms t = blinnPhong(oneLight(l), kRef, kN, kN);
         CHECK(t.diffuse == Approx(0.101).epsilon(1e-6));
         // Relative 1e-4: float rounding of N.H (~1e-7 relative) grows 32x through the power.
-        CHECK(t.specular == Approx(7.7523847e-6).epsilon(1e-4));
+        CHECK(t.specular == Approx(1.5504769e-5).epsilon(1e-4));
     }
     SECTION("N.L = 0 exactly: no diffuse and no specular, although N.H = 0.707") {
         // L = +X, V = N: N.L = 0 -> the one-sided rule drops the light entirely. Without it the
-        // specular would be 0.5 * (1/sqrt 2)^32 = 0.5 * 2^-16 = 7.63e-6 (a non-zero value).
-        const LightTerms t = blinnPhong(oneLight({1.0f, 0.0f, 0.0f}), kN, kN);
+        // specular would be (1/sqrt 2)^32 = 2^-16 = 1.53e-5 (a non-zero value).
+        const LightTerms t = blinnPhong(oneLight({1.0f, 0.0f, 0.0f}), kRef, kN, kN);
         CHECK(t.diffuse == 0.1f);
         CHECK(t.specular == 0.0f);
     }
@@ -60,7 +67,7 @@ TEST_CASE("Blinn-Phong: grazing light, N.L = 1e-3 and exactly 0", "[render][shad
 TEST_CASE("Blinn-Phong: light behind the surface gives ambient only", "[render][shading]") {
     SECTION("light straight behind (L + V = 0 never normalised)") {
         // L = -N, V = N: N.L = -1 -> diffuse 0.1, specular 0 (and no NaN from normalize(0)).
-        const LightTerms t = blinnPhong(oneLight({0.0f, 0.0f, -1.0f}), kN, kN);
+        const LightTerms t = blinnPhong(oneLight({0.0f, 0.0f, -1.0f}), kRef, kN, kN);
         CHECK(t.diffuse == 0.1f);
         CHECK(t.specular == 0.0f);
     }
@@ -68,10 +75,10 @@ TEST_CASE("Blinn-Phong: light behind the surface gives ambient only", "[render][
         // L = normalize(1, 0, -0.01) = (0.99995, 0, -0.0099995): N.L = -0.0099995 < 0.
         // V = (-0.9, 0, sqrt(0.19)) = (-0.9, 0, 0.4358899).
         // L + V = (0.09995, 0, 0.4258904) -> N.H = 0.4258904 / 0.4374617 = 0.9735493, and
-        // 0.9735493^32 = 0.424086: without the one-sided rule specular would be 0.212.
+        // 0.9735493^32 = 0.424086: without the one-sided rule that would be the specular.
         const Vec3 l = normalize(Vec3{1.0f, 0.0f, -0.01f});
         const Vec3 v{-0.9f, 0.0f, std::sqrt(0.19f)};
-        const LightTerms t = blinnPhong(oneLight(l), kN, v);
+        const LightTerms t = blinnPhong(oneLight(l), kRef, kN, v);
         CHECK(t.diffuse == 0.1f);
         CHECK(t.specular == 0.0f);
     }
@@ -85,21 +92,35 @@ TEST_CASE("Blinn-Phong: zero specular", "[render][shading]") {
         // N.H^32 = (N.H^2)^16 = (7.99680e-4)^16 = 2.8e-50 < 2^-149 (1.4e-45, the smallest float):
         // the repeated squaring underflows to exactly 0. diffuse = 0.1 + 0.02 = 0.12.
         const float e = 0.02f, s = std::sqrt(1.0f - e * e);
-        const LightTerms t = blinnPhong(oneLight({s, 0.0f, e}), kN, {0.0f, s, e});
+        const LightTerms t = blinnPhong(oneLight({s, 0.0f, e}), kRef, kN, {0.0f, s, e});
         CHECK(t.diffuse == Approx(0.12).epsilon(1e-6));
         CHECK(t.specular == 0.0f);
         // The same through std::pow (non-integer shininess): 0.0282786^31.5 = 1.7e-49 -> 0.
-        Lighting lp = oneLight({s, 0.0f, e});
-        lp.shininess = 31.5f;
-        CHECK(blinnPhong(lp, kN, {0.0f, s, e}).specular == 0.0f);
+        CHECK(blinnPhong(oneLight({s, 0.0f, e}), withShininess(31.5f), kN, {0.0f, s, e}).specular == 0.0f);
     }
-    SECTION("ks = 0") {
-        // L = V = N: diffuse 1.1 as before; specular 0 * 1 = 0 (not 0.5).
-        Lighting l = oneLight(kN);
-        l.ks = 0.0f;
-        const LightTerms t = blinnPhong(l, kN, kN);
+    SECTION("ks black: no specular term") {
+        // L = V = N: diffuse 1.1 as before; N.H = 1 would give 1^32 = 1, but the term is off.
+        Specular black;
+        black.ks = {0.0f, 0.0f, 0.0f};
+        CHECK_FALSE(black.on());
+        const LightTerms t = blinnPhong(oneLight(kN), black, kN, kN);
         CHECK(t.diffuse == Approx(1.1f).margin(1e-7));
         CHECK(t.specular == 0.0f);
+        // One channel of ks is enough to keep it (ks = (0, 0, 0.25): specular 1).
+        black.ks.b = 0.25f;
+        CHECK(blinnPhong(oneLight(kN), black, kN, kN).specular == 1.0f);
+    }
+    SECTION("shininess 0 or below (MTL Ns 0): no specular term, although x^0 = 1 everywhere") {
+        // V far from H: N.H = 0.9 (as below), 0.9^0 = 1 would light the pixel with ks; the
+        // reference draws no specular term for Ns <= 0.
+        for (const float s : {0.0f, -3.0f}) {
+            INFO("shininess " << s);
+            CHECK_FALSE(withShininess(s).on());
+            const LightTerms t = blinnPhong(oneLight(kN), withShininess(s), kN, {0.7846018f, 0.0f, 0.62f});
+            CHECK(t.diffuse == Approx(1.1f).margin(1e-7));
+            CHECK(t.specular == 0.0f);
+        }
+        CHECK(shininessPow(0.9f, 0.0f) == 1.0f); // what the rule avoids
     }
 }
 
@@ -109,25 +130,21 @@ TEST_CASE("Blinn-Phong: very high and non-integer shininess", "[render][shading]
         // Choose cos(b/2) = 0.999: cos b = 2 * 0.999^2 - 1 = 0.996002,
         // sin b = 2 sin(b/2) cos(b/2) = 2 * sqrt(1 - 0.998001) * 0.999 = 2 * 0.0447102 * 0.999
         //       = 0.0893309. V = (0.0893309, 0, 0.996002).
-        // 0.999^1000 = exp(1000 ln 0.999) = exp(1000 * -0.00100050033) = exp(-1.0005003) = 0.3676954.
-        // specular = 0.5 * 0.3676954 = 0.1838477; diffuse = 0.1 + 1 = 1.1.
-        Lighting l = oneLight(kN);
-        l.shininess = 1000.0f;
-        const LightTerms t = blinnPhong(l, kN, {0.0893309f, 0.0f, 0.996002f});
+        // 0.999^1000 = exp(1000 ln 0.999) = exp(1000 * -0.00100050033) = exp(-1.0005003) = 0.3676954
+        // = specular; diffuse = 0.1 + 1 = 1.1.
+        const LightTerms t = blinnPhong(oneLight(kN), withShininess(1000.0f), kN, {0.0893309f, 0.0f, 0.996002f});
         CHECK(t.diffuse == Approx(1.1f).margin(1e-7));
         // Relative 1e-3: an error of 1e-7 in N.H (float rounding of V, H) grows 1000x.
-        CHECK(t.specular == Approx(0.1838477).epsilon(1e-3));
+        CHECK(t.specular == Approx(0.3676954).epsilon(1e-3));
     }
     SECTION("shininess 31.5 (std::pow), between the 31st and 32nd powers") {
         // N.H = 0.9 exactly as in the 1000 case: cos(b/2) = 0.9 -> cos b = 2 * 0.81 - 1 = 0.62,
         // sin b = 2 * sqrt(0.19) * 0.9 = 2 * 0.4358899 * 0.9 = 0.7846018.
         // 0.9^31.5 = exp(31.5 * ln 0.9) = exp(31.5 * -0.1053605) = exp(-3.3188556) = 0.0361942
         // (between 0.9^32 = 0.0343368 and 0.9^31 = 0.0381520: neither truncated nor rounded).
-        // specular = 0.5 * 0.0361942 = 0.0180971.
-        Lighting l = oneLight(kN);
-        l.shininess = 31.5f;
-        const LightTerms t = blinnPhong(l, kN, {0.7846018f, 0.0f, 0.62f});
-        CHECK(t.specular == Approx(0.0180971).epsilon(1e-4));
+        // = specular.
+        const LightTerms t = blinnPhong(oneLight(kN), withShininess(31.5f), kN, {0.7846018f, 0.0f, 0.62f});
+        CHECK(t.specular == Approx(0.0361942).epsilon(1e-4));
         CHECK(shininessPow(0.9f, 31.5f) == Approx(0.0361942).epsilon(1e-5));
         CHECK(shininessPow(0.9f, 31.5f) > shininessPow(0.9f, 32.0f));
         CHECK(shininessPow(0.9f, 31.5f) < shininessPow(0.9f, 31.0f));
@@ -141,22 +158,30 @@ TEST_CASE("Blinn-Phong: several lights add up, and the pixel they make", "[rende
     //                     N.H^2 = 0.9 -> N.H^32 = 0.9^16 = 0.1853020        -> spec 0.1853020
     //  L3 = -N:           behind                                           -> nothing
     // diffuse  = 0.1 + 1 + 0.8 = 1.9
-    // specular = 0.5 * (1 + 0.1853020) = 0.5926510
+    // specular = 1 + 0.1853020 = 1.1853020
     Lighting l;
     l.toLight = {kN, {0.6f, 0.0f, 0.8f}, {0.0f, 0.0f, -1.0f}};
-    const LightTerms t = blinnPhong(l, kN, kN);
+    const LightTerms t = blinnPhong(l, kRef, kN, kN);
     CHECK(t.diffuse == Approx(1.9).epsilon(1e-6));
-    CHECK(t.specular == Approx(0.5926510).epsilon(1e-5));
-    // kd = (0.1, 0.2, 0): c = kd * 1.9 + 0.592651
+    CHECK(t.specular == Approx(1.1853020).epsilon(1e-5));
+    // kd = (0.1, 0.2, 0), ks 0.5: c = kd * 1.9 + 0.5 * 1.185302 = kd * 1.9 + 0.592651
     //   r = 0.19 + 0.592651 = 0.782651 -> * 255 = 199.576 -> 200
     //   g = 0.38 + 0.592651 = 0.972651 -> * 255 = 248.026 -> 248
     //   b = 0.00 + 0.592651 = 0.592651 -> * 255 = 151.126 -> 151
-    const Pixel p = packBgra8(applyTerms({0.1f, 0.2f, 0.0f}, t));
+    const Pixel p = packBgra8(applyTerms({0.1f, 0.2f, 0.0f}, kRef.ks, t));
     CHECK(int(pixelR(p)) == 200);
     CHECK(int(pixelG(p)) == 248);
     CHECK(int(pixelB(p)) == 151);
+    // A coloured ks (an MTL Ks) scales the specular per channel: ks = (0.2, 0, 0.4):
+    //   r = 0.19 + 0.2 * 1.185302 = 0.19 + 0.2370604 = 0.4270604 -> * 255 = 108.90 -> 109
+    //   g = 0.38 + 0                                 = 0.38      -> * 255 =  96.90 ->  97
+    //   b = 0.00 + 0.4 * 1.185302 = 0.4741208        -> * 255 = 120.90 -> 121
+    const Pixel q = packBgra8(applyTerms({0.1f, 0.2f, 0.0f}, {0.2f, 0.0f, 0.4f}, t));
+    CHECK(int(pixelR(q)) == 109);
+    CHECK(int(pixelG(q)) == 97);
+    CHECK(int(pixelB(q)) == 121);
     // Clamping: kd = 1 gives 1.9 + 0.59 > 1 -> 255.
-    CHECK(packBgra8(applyTerms({1.0f, 1.0f, 1.0f}, t)) == packBgra(255, 255, 255));
+    CHECK(packBgra8(applyTerms({1.0f, 1.0f, 1.0f}, kRef.ks, t)) == packBgra(255, 255, 255));
 }
 
 TEST_CASE("drawMesh: a flat quad facing the light has the same colour in flat, Gouraud and Phong",

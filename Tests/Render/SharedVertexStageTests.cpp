@@ -118,6 +118,40 @@ TEST_CASE("draws of one mesh share its vertex stage: the same image, the vertice
         }
 }
 
+TEST_CASE("Gouraud draws with different specular constants do not share vertices; other programs still do",
+          "[render][vertexshare][materials]") {
+    // Gouraud lights per vertex, so its vertex stage reads the material's shininess (and whether
+    // it has a specular term at all): a cache shared across a change of either would shade the
+    // second draw with the first one's exponent. Phong's vertices do not depend on it.
+    const demo::SceneOptions options = smallBuiltIn();
+    auto loaded = demo::loadScene(options);
+    REQUIRE(loaded.ok());
+    Scene split = splitDraws(loaded.value().scene, 8);
+    for (std::size_t i = 0; i < split.draws.size(); ++i) {
+        Specular& sp = split.draws[i].specular;
+        if (i % 3 == 1) sp.shininess = 5.0f;
+        if (i % 3 == 2) sp.ks = Color{0.0f, 0.0f, 0.0f, 1.0f}; // no specular term
+    }
+    const FrameView view =
+        demo::makeFrameView(demo::resolveCamera(options, loaded.value()), options.width, options.height, options.light);
+    std::uint64_t perDraw = 0;
+    for (const SceneDraw& d : split.draws) perDraw += split.meshes[std::size_t(d.mesh)].vertexCount();
+    for (ShadingMode mode : {ShadingMode::Gouraud, ShadingMode::Phong}) {
+        INFO(shadingModeName(mode));
+        RenderSettings settings = demo::makeRenderSettings(options);
+        settings.shading = mode;
+        FrameBuffer shared(options.width, options.height), alone(options.width, options.height);
+        RenderContext cs(shared), ca(alone);
+        renderSceneFrame(cs, split, view, settings);
+        renderSceneFrame(ca, meshPerDraw(split), view, settings);
+        CHECK(differingPixels(shared, alone) == 0);
+        // Consecutive draws always differ in their specular constants here: Gouraud transforms
+        // every draw, Phong far fewer.
+        if (mode == ShadingMode::Gouraud) CHECK(cs.stats.verticesTransformed == perDraw);
+        else CHECK(cs.stats.verticesTransformed * 4 < perDraw);
+    }
+}
+
 TEST_CASE("the shared vertex stage never outlives renderScene: a new view is transformed anew", "[render][vertexshare]") {
     // Same context, same scene, same program and viewport, a different camera each frame: were
     // the cache kept across frames, the second frame would be drawn with the first one's vertices.

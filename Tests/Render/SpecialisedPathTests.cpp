@@ -50,7 +50,7 @@ TEST_CASE("drawMesh renders the same image with every ISA's kernels and with the
     FrameView view =
         demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light);
     for (float shininess : {32.0f, 12.5f}) {
-        view.lighting.shininess = shininess;
+        for (SceneDraw& d : scene.value().scene.draws) d.specular.shininess = shininess;
         for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
             for (TextureFilter filter : {TextureFilter::Nearest, TextureFilter::Bilinear}) {
                 RenderSettings settings = demo::makeRenderSettings(options);

@@ -48,7 +48,9 @@ std::vector<Pixel> render(const Mesh& mesh, const Texture& texture, const Render
     fb.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
     RenderContext ctx(fb);
     const FrameView view = wallView();
-    drawMesh(ctx, view, settings, mesh, mesh.indices.data(), mesh.indices.size(), SurfaceMaterial{&texture, {}});
+    SurfaceMaterial material;
+    material.texture = &texture;
+    drawMesh(ctx, view, settings, mesh, mesh.indices.data(), mesh.indices.size(), material);
     std::vector<Pixel> pixels;
     for (int y = 0; y < H; ++y)
         for (int x = 0; x < W; ++x) pixels.push_back(fb.pixel(x, y));

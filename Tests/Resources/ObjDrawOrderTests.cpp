@@ -100,7 +100,7 @@ TEST_CASE("OBJ alternating-material grid: one draw range per material, not one p
     }
 }
 
-TEST_CASE("OBJ draw ranges come in order of each texture's first face, faces in file order", "[resources][obj][ranges]") {
+TEST_CASE("OBJ draw ranges come in order of each material's first face, faces in file order", "[resources][obj][ranges]") {
     const std::string dir = freshDir("range-order");
     REQUIRE(writeImage(dir + "/a.png", rampImage(2, 2)).ok());
     REQUIRE(writeImage(dir + "/b.png", rampImage(3, 1)).ok());
@@ -115,23 +115,24 @@ TEST_CASE("OBJ draw ranges come in order of each texture's first face, faces in 
     auto r = loadObj(writeText(dir, "m.obj", obj));
     REQUIRE(r.ok());
     const Model& m = r.value();
-    // b.png first (face 1), then a.png (face 2; A2 is the same texture), then no texture (face
-    // 4: an unknown material; Plain has no map).
-    REQUIRE(m.ranges.size() == 3);
-    const std::vector<std::vector<int>> expected{{1, 3}, {2, 5, 7}, {4, 6}};
-    const int expectedMaterial[] = {1, 0, -1};
-    for (std::size_t i = 0; i < 3; ++i) {
+    // One range per material (A, B, A2, Plain = 0..3; an unknown name is no material, -1), in the
+    // order of first use: B (face 1), A (face 2), none (face 4), A2 (face 5; the same texture as
+    // A, but a material of its own: its Kd, Ks, Ns may differ), Plain (face 6, untextured).
+    REQUIRE(m.ranges.size() == 5);
+    const std::vector<std::vector<int>> expected{{1, 3}, {2, 7}, {4}, {5}, {6}};
+    const int expectedMaterial[] = {1, 0, -1, 2, 3};
+    const int expectedTexture[] = {1, 0, -1, 0, -1};
+    for (std::size_t i = 0; i < 5; ++i) {
+        INFO("range " << i);
         const DrawRange& d = m.ranges[i];
         CHECK(d.material == expectedMaterial[i]);
+        CHECK(d.texture == expectedTexture[i]);
         CHECK(d.texture == (d.material >= 0 ? m.materials[std::size_t(d.material)].texture : -1));
         std::vector<int> faces;
         for (std::uint32_t k = 0; k < d.indexCount; k += 3)
             faces.push_back(int(m.mesh.positions[m.mesh.indices[d.firstIndex + k]].x));
         CHECK(faces == expected[i]);
     }
-    CHECK(m.ranges[0].texture == 1);
-    CHECK(m.ranges[1].texture == 0);
-    CHECK(m.ranges[2].texture == -1);
     // Vertices in file order of first use: face 1's three, then each later face's first vertex.
     REQUIRE(m.mesh.vertexCount() == 9);
     const float firstUse[] = {1, 0, 0, 2, 3, 4, 5, 6, 7};

@@ -159,17 +159,41 @@ TEST_CASE("OBJ textured quad: MTL with backslash paths, a subfolder texture, uvs
     CHECK(int(m.textures[0].texel(3, 1)[1]) == 40);
     CHECK(m.textures[1].width == 2);
     CHECK(m.textures[1].height == 3);
-    // One range per texture, in order of first use: A,A,C,A (tex.png) | B | Plain,Nope (none).
-    REQUIRE(m.ranges.size() == 3);
-    CHECK(m.ranges[0].indexCount == 12);
+    // The MTL values as tinyobjloader reads them: A's Kd line; B has a map and no Kd line, but
+    // tinyobjloader's "map_Kd without Kd gets 0.6" default does not apply once any earlier
+    // material of the file had a Kd line (its flag is per file), so B's Kd stays black (the
+    // reference renderer's "textured and black = the texture alone" rule covers this);
+    // Plain's Kd; no Ks or Ns lines anywhere (0 and 1).
+    CHECK(m.materials[0].kd.r == 1.0f);
+    CHECK(m.materials[0].kd.g == 0.0f);
+    CHECK(m.materials[1].kd.r == 0.0f);
+    CHECK(m.materials[1].kd.b == 0.0f);
+    CHECK(m.materials[3].kd.g == 1.0f);
+    CHECK(m.materials[3].kd.r == 0.0f);
+    for (const Material& mat : m.materials) {
+        CHECK(mat.fromMtl);
+        CHECK(mat.ks.r == 0.0f);
+        CHECK(mat.shininess == 1.0f);
+    }
+    CHECK(m.materials[0].hasMap);
+    CHECK_FALSE(m.materials[3].hasMap);
+    // One range per material, in order of first use: A,A,A (faces 1, 2, 7) | C | B | Plain | Nope (none).
+    REQUIRE(m.ranges.size() == 5);
+    CHECK(m.ranges[0].indexCount == 9);
     CHECK(m.ranges[0].material == 0);
-    CHECK(m.ranges[1].material == 1);
-    CHECK(m.ranges[1].firstIndex == 12);
-    CHECK(m.ranges[2].texture == -1);
-    CHECK(m.ranges[2].indexCount == 6);
+    CHECK(m.ranges[1].material == 2);
+    CHECK(m.ranges[1].firstIndex == 9);
+    CHECK(m.ranges[1].texture == 0);
+    CHECK(m.ranges[2].material == 1);
+    CHECK(m.ranges[2].firstIndex == 12);
+    CHECK(m.ranges[3].material == 3);
+    CHECK(m.ranges[3].texture == -1);
+    CHECK(m.ranges[4].material == -1);
+    CHECK(m.ranges[4].texture == -1);
+    CHECK(m.ranges[4].firstIndex + m.ranges[4].indexCount == 21);
     for (const DrawRange& d : m.ranges) CHECK(d.texture == (d.material >= 0 ? m.materials[std::size_t(d.material)].texture : -1));
     // The C face's third vertex has no vt: uv (0,0); its v4 with vt 4 elsewhere is another vertex.
-    const std::uint32_t noVt = m.mesh.indices[8];
+    const std::uint32_t noVt = m.mesh.indices[m.ranges[1].firstIndex + 2];
     CHECK(m.mesh.uvs[noVt].x == 0.0f);
     CHECK(m.mesh.uvs[noVt].y == 0.0f);
     CHECK(m.mesh.uvs[m.mesh.indices[5]].x == 0.0f);
@@ -227,10 +251,15 @@ TEST_CASE("OBJ texture override replaces every material, even for faces without 
     REQUIRE(m.textures.size() == 1);
     CHECK(m.textures[0].width == 3);
     CHECK(m.warnings.empty()); // the material's own missing map is never read
-    REQUIRE(m.ranges.size() == 1);
-    CHECK(m.ranges[0].texture == 0);
-    REQUIRE(m.ranges[0].material >= 0);
-    CHECK(m.materials[std::size_t(m.ranges[0].material)].texture == 0);
+    // Two ranges: the face without a material (the override's stand-in material, not from the
+    // MTL: the fixed values at render time), then material A; both with the override texture.
+    REQUIRE(m.ranges.size() == 2);
+    REQUIRE(m.materials.size() == 2);
+    CHECK(m.ranges[0].material == 1);
+    CHECK_FALSE(m.materials[1].fromMtl);
+    CHECK(m.ranges[1].material == 0);
+    CHECK(m.materials[0].fromMtl);
+    for (const DrawRange& d : m.ranges) CHECK(d.texture == 0);
     for (const Material& mat : m.materials) CHECK(mat.texture == 0);
 
     o.textureOverride = dir + "/nope.png";

@@ -133,6 +133,15 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
     view.eye = {0.3f, 0.4f, 3.0f};
     view.lighting.toLight = {normalize(Vec3(1, 1, 1)), normalize(Vec3(-0.3f, 0.2f, 1.0f))};
     const Texture textures[] = {randomTexture(rng, 13, 7), randomTexture(rng, 32, 16)}; // non-power-of-two, power-of-two
+    // Specular constants: the default (white 0.5, 32), an MTL-like coloured Ks with an odd
+    // exponent, and none (Ks black: the kernels skip the half vector). Textured draws take one
+    // per wrap mode (every filter, depth and perspective sees all three), untextured ones all.
+    Specular coloured;
+    coloured.ks = {0.3f, 0.6f, 0.1f};
+    coloured.shininess = 7.0f;
+    Specular none;
+    none.ks = {0.0f, 0.0f, 0.0f};
+    const Specular speculars[] = {Specular{}, coloured, none};
     std::vector<std::string> ran, skipped;
     Totals totals;
     for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
@@ -150,8 +159,11 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                         settings.wrap = wrap;
                         settings.perspective = persp;
                         const KernelKey key{depth, persp, filter, wrap};
+                        const Specular& specular = speculars[int(wrap)];
                         for (const Texture& texture : textures) {
-                            const DrawContext d{view, settings, mesh, mesh.indices.data(), &texture, Color{0.7f, 0.4f, 0.2f, 1.0f}};
+                            // kd here is the texel's tint (an MTL Kd).
+                            const DrawContext d{view,     settings, mesh, mesh.indices.data(), &texture, Color{0.7f, 0.4f, 0.2f, 1.0f},
+                                                specular};
                             compareKernel<UnlitProgram<true>>(isa, key, [&] { return UnlitProgram<true>(&d, 0); }, rng, totals);
                             compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<true>>(isa, key, [&] { return GouraudProgram<true>(&d); }, rng, totals);
@@ -159,11 +171,13 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                         }
                         // Untextured programs read neither filter nor wrap: once per depth and perspective.
                         if (filter != TextureFilter::Nearest || wrap != WrapMode::Repeat) continue;
-                        const DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}};
-                        compareKernel<UnlitProgram<false>>(isa, key, [&] { return UnlitProgram<false>(&d, packBgra8(d.kd)); }, rng, totals);
-                        compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&d); }, rng, totals);
-                        compareKernel<GouraudProgram<false>>(isa, key, [&] { return GouraudProgram<false>(&d); }, rng, totals);
-                        compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&d); }, rng, totals);
+                        for (const Specular& sp : speculars) {
+                            const DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}, sp};
+                            compareKernel<UnlitProgram<false>>(isa, key, [&] { return UnlitProgram<false>(&d, packBgra8(d.kd)); }, rng, totals);
+                            compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&d); }, rng, totals);
+                            compareKernel<GouraudProgram<false>>(isa, key, [&] { return GouraudProgram<false>(&d); }, rng, totals);
+                            compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&d); }, rng, totals);
+                        }
                     }
     }
     std::string ranList, skippedList;
