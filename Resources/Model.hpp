@@ -13,16 +13,17 @@
 
 namespace sr {
 
-// One OBJ material as the renderer uses it: its diffuse map and the MTL values the shading reads
-// (Kd, Ks, Ns; Ka, Ke, d, illum and the rest are ignored, as in the llvmpipe reference). Values
-// are tinyobjloader's, with its defaults where a line is missing (Kd = Ks = 0, Ns = 1; a
-// material with map_Kd and no Kd line gets Kd 0.6). How they are used: sceneFromModel
-// (Platform/Demo/SceneSetup.cpp) and README "Materials".
+// One material as the renderer uses it: its diffuse map and the values the shading reads. From
+// an MTL: Kd, Ks, Ns (Ka, Ke, d, illum and the rest are ignored, as in the llvmpipe reference),
+// tinyobjloader's values with its defaults where a line is missing (Kd = Ks = 0, Ns = 1; a
+// material with map_Kd and no Kd line gets Kd 0.6). From glTF: metallic-roughness mapped to
+// these (GltfLoader.hpp). How they are used: sceneFromModel (Platform/Demo/SceneSetup.cpp) and
+// README "Materials".
 struct Material {
     std::string name;
-    int texture = -1;     // index into Model::textures, or -1 = untextured
-    bool fromMtl = false; // read from an MTL file (false: the --texture override's stand-in)
-    bool hasMap = false;  // the MTL names a map_Kd (whether or not it loads)
+    int texture = -1;      // index into Model::textures, or -1 = untextured
+    bool fromFile = false; // read from the model's file (false: the --texture override's stand-in)
+    bool hasMap = false;   // an MTL that names a map_Kd (whether or not it loads); false for glTF
     Color kd{0.0f, 0.0f, 0.0f, 1.0f}, ks{0.0f, 0.0f, 0.0f, 1.0f};
     float shininess = 1.0f;
 };
@@ -61,6 +62,8 @@ struct ObjLimits {
     std::size_t maxPolygonWork = std::size_t(1) << 28;     // sum of n^2 over polygons with n > 4
     std::size_t maxMemoryBytes = std::size_t(4) << 30;     // estimated peak while loading (upper bound)
     std::size_t maxTextureBytes = std::size_t(1) << 30;    // decoded RGBA of all textures
+    std::size_t maxNodes = 65536;                          // glTF: nodes in the file
+    std::size_t maxNodeDepth = 64;                         // glTF: levels of the node hierarchy
 };
 
 struct ObjOptions {

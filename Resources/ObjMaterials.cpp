@@ -92,7 +92,7 @@ Result<int> assignMaterials(Model& model, const std::vector<tinyobj::material_t>
     for (const auto& m : materials) {
         Material q;
         q.name = m.name;
-        q.fromMtl = true;
+        q.fromFile = true;
         q.hasMap = !m.diffuse_texname.empty();
         q.kd = Color{float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]), 1.0f};
         q.ks = Color{float(m.specular[0]), float(m.specular[1]), float(m.specular[2]), 1.0f};

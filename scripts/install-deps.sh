@@ -3,11 +3,12 @@
 # Usage: scripts/install-deps.sh [build|test|demo]...   (default: test, which includes build)
 set -euo pipefail
 
-build_pkgs=(cmake ninja-build g++ catch2 libstb-dev libtinyobjloader-dev
+build_pkgs=(cmake ninja-build g++ catch2 libstb-dev libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev
             g++-mingw-w64-x86-64-posix)
 wine_pkgs=(wine wine64)
 x11_pkgs=(xvfb xdotool imagemagick x11-utils openbox)
-test_pkgs=(clang libclang-rt-14-dev)   # libFuzzer for the fuzz targets
+test_pkgs=(clang libclang-rt-14-dev   # libFuzzer for the fuzz targets
+           assimp-utils assimp-testmodels)   # glTF test files and an independent loader to check ours
 
 want=()
 for what in "${@:-test}"; do

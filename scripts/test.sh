@@ -89,7 +89,7 @@ elif ! cmake --build --preset fuzz -j "$jobs" >build/fuzz/build.log 2>&1; then
 else
   rm -rf build/fuzz/corpus build/fuzz/run && mkdir -p build/fuzz/run build/fuzz/crashes
   build/fuzz/bin/sr_fuzz_seeds build/fuzz/corpus || fuzz_fail=$((fuzz_fail + 1))
-  for spec in obj:4096 image:65536; do
+  for spec in obj:4096 gltf:8192 image:65536; do
     target=${spec%%:*}; max_len=${spec#*:}
     cp -r "build/fuzz/corpus/$target" "build/fuzz/run/$target"
     echo "=== [fuzz] sr_fuzz_$target: ${fuzz_seconds} s, seed 1, max_len $max_len"

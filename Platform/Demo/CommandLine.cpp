@@ -86,7 +86,7 @@ ParseResult parseCommandLine(const std::vector<std::string>& args) {
             continue;
         }
 
-        // A positional argument is the model (the same as --obj PATH).
+        // A positional argument is the model (the same as --model PATH): .obj, .gltf or .glb.
         if (arg[0] != '-' && arg != "/?") {
             if (modelGiven || !o.scene.obj.empty())
                 return failure("more than one model given: '" + arg + "'");
@@ -128,9 +128,10 @@ int defaultDemoThreads() {
 
 std::string usageText(const std::string& programName) {
     std::string text = "Usage: " + programName +
-                       " [model.obj] [--width W --height H] [scene and quality flags] [--frames N]\n"
+                       " [MODEL] [--width W --height H] [scene and quality flags] [--frames N]\n"
                        "       [--screenshot PATH] [--help]\n"
-                       "  model.obj            the model to fly around (default: the built-in scene)\n"
+                       "  MODEL                the model to fly around: .obj, .gltf or .glb (default: the\n"
+                       "                       built-in scene)\n"
                        "  --width W --height H initial client size in pixels (default 960 x 540 at 96 DPI)\n"
                        "  --frames N           exit with code 0 after N rendered frames (for scripts and tests)\n"
                        "  --screenshot PATH    save the last frame before exiting (or the first frame\n"

@@ -89,7 +89,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         inlineValue = flag.substr(eq + 1);
         flag = flag.substr(0, eq);
     }
-    static const char* const kFlags[] = {"--obj",   "--width",   "--height", "--eye",     "--target", "--up",
+    static const char* const kFlags[] = {"--obj",   "--model",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
                                          "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials"};
@@ -120,7 +120,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         return FlagResult::Error;
     };
 
-    if (flag == "--obj") {
+    if (flag == "--obj" || flag == "--model") {
         if (value.empty()) return bad("a file path");
         o.obj = value;
     } else if (flag == "--texture") {
@@ -255,7 +255,8 @@ std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
 
 std::string sceneFlagsHelp() {
     return "scene (same flags and defaults as the llvmpipe reference renderer):\n"
-           "  --obj PATH            Wavefront OBJ (+MTL) to render; default: the built-in scene\n"
+           "  --model PATH          model to render: Wavefront OBJ (+MTL), glTF 2.0 (.gltf, .glb);\n"
+           "                        default: the built-in scene (--obj PATH: the same)\n"
            "  --width N --height N  image size (default 800 x 600)\n"
            "  --eye x,y,z           camera position (default: auto-fit the model's bounding sphere)\n"
            "  --target x,y,z        look-at point (default: the bounding box centre)\n"

@@ -12,7 +12,7 @@
 #include "Raster/Camera.hpp"
 #include "Resources/DefaultScene.hpp"
 #include "Resources/Image.hpp"
-#include "Resources/ObjLoader.hpp"
+#include "Resources/GltfLoader.hpp"
 
 namespace sr::demo {
 namespace {
@@ -55,7 +55,7 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
         d.texture = range.texture;
         d.kd = kd;
         const Material* m = range.material >= 0 ? &model.materials[std::size_t(range.material)] : nullptr;
-        if (rule == MaterialRule::Mtl && m && m->fromMtl) {
+        if (rule == MaterialRule::Mtl && m && m->fromFile) {
             // The reference's rule: a material with a map_Kd and a black Kd is "the texture alone".
             const bool black = m->kd.r == 0.0f && m->kd.g == 0.0f && m->kd.b == 0.0f;
             d.kd = m->hasMap && black ? Color{1.0f, 1.0f, 1.0f, 1.0f} : m->kd;
@@ -161,7 +161,7 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
     } else {
         ObjOptions objOptions;
         objOptions.textureOverride = options.texture;
-        auto model = loadObj(options.obj, objOptions);
+        auto model = loadModel(options.obj, objOptions); // .gltf / .glb or OBJ
         if (!model) return Result<LoadedScene>::failure(model.error());
         Model& m = model.value();
         out.warnings = m.warnings;
@@ -175,7 +175,7 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         out.radius = r > 0.0 ? r : 1.0;
         out.description = options.obj + ": " + std::to_string(m.mesh.triangleCount()) + " triangles, " +
                           std::to_string(m.textures.size()) + " textures, normals " +
-                          (m.normalsFromFile ? "from OBJ" : "computed (area-weighted)");
+                          (m.normalsFromFile ? "from the file" : "computed (area-weighted)");
         out.scene = sceneFromModel(std::move(m), options.kd, options.materials);
     }
     return Result<LoadedScene>(std::move(out));

@@ -1,6 +1,7 @@
 // Writes the fuzz seed corpora: tiny OBJ/MTL texts and PNG/BMP/TGA/JPEG/PPM/PGM images made here (no third-party files).
-// Usage: sr_fuzz_seeds DIR   -> DIR/obj/* and DIR/image/* (the directories are created).
+// Usage: sr_fuzz_seeds DIR   -> DIR/obj/*, DIR/gltf/* and DIR/image/* (the directories are created).
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -52,7 +53,8 @@ int main(int argc, char** argv) {
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::u8path(dir + "/obj"), ec);
     std::filesystem::create_directories(std::filesystem::u8path(dir + "/image"), ec);
-    const std::string o = dir + "/obj/", im = dir + "/image/";
+    std::filesystem::create_directories(std::filesystem::u8path(dir + "/gltf"), ec);
+    const std::string o = dir + "/obj/", im = dir + "/image/", gl = dir + "/gltf/";
 
     // --- OBJ (+ MTL after the "%%MTL%%" line; see FuzzObj.cpp) ---
     const std::string tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
@@ -68,6 +70,36 @@ int main(int argc, char** argv) {
     put(o + "missing-mtl.obj", "mtllib none.mtl\nusemtl X\n" + tri + "vt 0 0\nf 1/1 2/1 3/1\n");
     put(o + "mtl-only.obj", "mtllib f.mtl\n" + tri + "vt 0 0\nusemtl M\nf 1/1 2/1 3/1\n%%MTL%%\n"
                             "newmtl M\nKa 0 0 0\nKs 1 1 1\nmap_Kd sub\\t.ppm\nmap_Ka t.ppm\nnewmtl N\n");
+
+    // --- glTF (FuzzGltf.cpp writes t.bin, a triangle: 36 bytes of positions, 6 of u16 indices) ---
+    const std::string views = "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":6}],"
+                              "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+                              "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]";
+    const std::string head = "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],";
+    const std::string mesh = "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"material\":0}]}],"
+                             "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0.5,0.25,1],\"metallicFactor\":0.5}}],";
+    put(gl + "external.gltf", head + "\"nodes\":[{\"translation\":[1,2,3],\"rotation\":[0,0,0.6,0.8],\"scale\":[1,2,-1],"
+                                     "\"children\":[1]},{\"matrix\":[1,0,0,0,0,1,0,0,0,0,1,0,0,0,5,1],\"mesh\":0}]," + mesh +
+                                     "\"buffers\":[{\"byteLength\":42,\"uri\":\"t.bin\"}]," + views + "}");
+    // The same buffer as a data URI (base64 of the 42 bytes), and a strip without indices.
+    const std::string b64 = "AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAABAAIA";
+    put(gl + "embedded.gltf", head + "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
+                                     "\"mode\":5}]}],\"buffers\":[{\"byteLength\":42,\"uri\":\"data:application/octet-stream;base64," +
+                                     b64 + "\"}]," + views + "}");
+    // A GLB with the triangle in its BIN chunk.
+    {
+        std::string json = head + "\"nodes\":[{\"mesh\":0}]," + mesh + "\"buffers\":[{\"byteLength\":42}]," + views + "}";
+        while (json.size() % 4) json += ' ';
+        std::string bin(42, '\0');
+        const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+        const unsigned short indices[3] = {0, 1, 2};
+        std::memcpy(&bin[0], positions, 36);
+        std::memcpy(&bin[36], indices, 6);
+        bin.resize(44, '\0');
+        const auto le32 = [](unsigned v) { return std::string{char(v & 255), char((v >> 8) & 255), char((v >> 16) & 255), char(v >> 24)}; };
+        put(gl + "binary.glb", "glTF" + le32(2) + le32(unsigned(12 + 8 + json.size() + 8 + bin.size())) + le32(unsigned(json.size())) +
+                                   "JSON" + json + le32(unsigned(bin.size())) + std::string("BIN\0", 4) + bin);
+    }
 
     // --- images ---
     for (int comp : {1, 3, 4}) {

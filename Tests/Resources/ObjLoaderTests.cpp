@@ -171,7 +171,7 @@ TEST_CASE("OBJ textured quad: MTL with backslash paths, a subfolder texture, uvs
     CHECK(m.materials[3].kd.g == 1.0f);
     CHECK(m.materials[3].kd.r == 0.0f);
     for (const Material& mat : m.materials) {
-        CHECK(mat.fromMtl);
+        CHECK(mat.fromFile);
         CHECK(mat.ks.r == 0.0f);
         CHECK(mat.shininess == 1.0f);
     }
@@ -256,9 +256,9 @@ TEST_CASE("OBJ texture override replaces every material, even for faces without 
     REQUIRE(m.ranges.size() == 2);
     REQUIRE(m.materials.size() == 2);
     CHECK(m.ranges[0].material == 1);
-    CHECK_FALSE(m.materials[1].fromMtl);
+    CHECK_FALSE(m.materials[1].fromFile);
     CHECK(m.ranges[1].material == 0);
-    CHECK(m.materials[0].fromMtl);
+    CHECK(m.materials[0].fromFile);
     for (const DrawRange& d : m.ranges) CHECK(d.texture == 0);
     for (const Material& mat : m.materials) CHECK(mat.texture == 0);
 

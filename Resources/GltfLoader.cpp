@@ -1,0 +1,628 @@
+// GltfLoader: tinygltf parses (JSON, GLB chunks, buffers, data URIs) through our file callbacks; everything it hands over is validated here before use.
+#include "Resources/GltfLoader.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <system_error>
+
+#include "Math/DoubleMath.hpp"
+#include "Resources/FileIO.hpp"
+#include "Resources/ObjLoader.hpp"
+#include "Resources/TinyGltf.hpp"
+
+namespace sr {
+
+namespace {
+
+using R = Result<Model>;
+
+// glTF constants (the glTF 2.0 specification, "Accessor", "Mesh").
+constexpr int kByte = 5120, kUnsignedByte = 5121, kShort = 5122, kUnsignedShort = 5123, kUnsignedInt = 5125,
+              kFloat = 5126;
+constexpr int kModePoints = 0, kModeTriangles = 4, kModeStrip = 5, kModeFan = 6;
+
+int componentSize(int componentType) {
+    switch (componentType) {
+    case kByte:
+    case kUnsignedByte: return 1;
+    case kShort:
+    case kUnsignedShort: return 2;
+    case kUnsignedInt:
+    case kFloat: return 4;
+    default: return 0;
+    }
+}
+
+int componentCount(int type) {
+    switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;
+    }
+}
+
+// What the file callbacks and the image loader share: the limits and the bytes read so far.
+struct LoadState {
+    const ObjLimits* limits = nullptr;
+    std::size_t bufferBytes = 0;  // external buffers read
+    std::size_t textureBytes = 0; // decoded RGBA of embedded images
+    std::string problem;          // the first problem a callback met (reported as the error)
+};
+
+bool fileExists(const std::string& path, void*) {
+    std::error_code ec;
+    return std::filesystem::is_regular_file(std::filesystem::u8path(path), ec);
+}
+std::string expandFilePath(const std::string& path, void*) { return path; } // no shell expansion (wordexp)
+bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    auto* state = static_cast<LoadState*>(user);
+    auto bytes = readFileBytes(path, state->limits->maxFileBytes);
+    if (!bytes) {
+        if (err) *err += bytes.error() + "\n";
+        if (state->problem.empty()) state->problem = bytes.error();
+        return false;
+    }
+    state->bufferBytes += bytes.value().size();
+    if (state->bufferBytes > state->limits->maxMemoryBytes) {
+        state->problem = path + ": the model's buffers would take more than " +
+                         std::to_string(state->limits->maxMemoryBytes >> 20) + " MiB";
+        if (err) *err += state->problem + "\n";
+        return false;
+    }
+    *out = std::move(bytes).value();
+    return true;
+}
+bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&, void*) {
+    if (err) *err = "writing is not supported";
+    return false;
+}
+
+// Embedded images (data URIs, GLB buffer views) decoded by our decoder (limits, hardened JPEG
+// tables), as RGBA8. External images are loaded by loadGltf itself (TINYGLTF_NO_EXTERNAL_IMAGE).
+bool loadImageData(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
+                   const unsigned char* bytes, int size, void* user) {
+    auto* state = static_cast<LoadState*>(user);
+    auto decoded = decodeImage(bytes, std::size_t(std::max(size, 0)), "image " + std::to_string(index));
+    if (!decoded) {
+        // Not fatal: the material gets the checkerboard (a warning, as for OBJ).
+        image->width = image->height = 0;
+        image->image.clear();
+        if (err) err->clear();
+        image->name = decoded.error();
+        return true;
+    }
+    state->textureBytes += decoded.value().rgba.size();
+    if (state->textureBytes > state->limits->maxTextureBytes) {
+        state->problem = "textures would take more than " + std::to_string(state->limits->maxTextureBytes >> 20) + " MiB in total";
+        return false;
+    }
+    image->width = decoded.value().width;
+    image->height = decoded.value().height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = kUnsignedByte;
+    image->image = std::move(decoded.value().rgba);
+    return true;
+}
+
+// A validated view of an accessor's elements inside its buffer.
+struct View {
+    const unsigned char* base = nullptr;
+    std::size_t stride = 0, count = 0;
+    int componentType = 0, components = 0;
+    bool normalized = false;
+};
+
+Result<View> accessorView(const tinygltf::Model& g, int index, const std::string& what) {
+    using RV = Result<View>;
+    if (index < 0 || std::size_t(index) >= g.accessors.size())
+        return RV::failure(what + ": accessor " + std::to_string(index) + " does not exist");
+    const tinygltf::Accessor& a = g.accessors[std::size_t(index)];
+    const std::string name = what + " (accessor " + std::to_string(index) + ")";
+    if (a.sparse.isSparse) return RV::failure(name + ": sparse accessors are not supported");
+    View v;
+    v.componentType = a.componentType;
+    v.components = componentCount(a.type);
+    v.normalized = a.normalized;
+    v.count = a.count;
+    const int csize = componentSize(a.componentType);
+    if (csize == 0 || v.components == 0) return RV::failure(name + ": unknown component or element type");
+    if (v.count == 0) return RV(v);
+    if (a.bufferView < 0 || std::size_t(a.bufferView) >= g.bufferViews.size())
+        return RV::failure(name + ": buffer view " + std::to_string(a.bufferView) + " does not exist");
+    const tinygltf::BufferView& bv = g.bufferViews[std::size_t(a.bufferView)];
+    if (bv.buffer < 0 || std::size_t(bv.buffer) >= g.buffers.size())
+        return RV::failure(name + ": buffer " + std::to_string(bv.buffer) + " does not exist");
+    const std::vector<unsigned char>& data = g.buffers[std::size_t(bv.buffer)].data;
+    const std::size_t element = std::size_t(csize) * std::size_t(v.components);
+    v.stride = bv.byteStride ? bv.byteStride : element;
+    // Sizes are checked in a way that cannot overflow: every term is bounded first.
+    if (bv.byteOffset > data.size() || bv.byteLength > data.size() - bv.byteOffset)
+        return RV::failure(name + ": buffer view " + std::to_string(a.bufferView) + " lies outside its buffer (" +
+                           std::to_string(data.size()) + " bytes)");
+    if (v.stride < element || v.stride > 252)
+        return RV::failure(name + ": byte stride " + std::to_string(v.stride) + " is invalid for " +
+                           std::to_string(element) + "-byte elements");
+    const std::size_t span = bv.byteLength;
+    if (a.byteOffset > span || v.count > (span - a.byteOffset) / v.stride + 1 ||
+        (v.count - 1) * v.stride + element > span - a.byteOffset)
+        return RV::failure(name + ": " + std::to_string(v.count) + " elements do not fit in buffer view " +
+                           std::to_string(a.bufferView) + " (" + std::to_string(span) + " bytes)");
+    v.base = data.data() + bv.byteOffset + a.byteOffset;
+    return RV(v);
+}
+
+// Component c of element i as a float (float, or a normalised integer type).
+float readFloat(const View& v, std::size_t i, int c) {
+    const unsigned char* p = v.base + i * v.stride;
+    switch (v.componentType) {
+    case kFloat: {
+        float f;
+        std::memcpy(&f, p + 4 * c, 4);
+        return f;
+    }
+    case kUnsignedByte: return float(p[c]) / 255.0f;
+    case kUnsignedShort: {
+        std::uint16_t s;
+        std::memcpy(&s, p + 2 * c, 2);
+        return float(s) / 65535.0f;
+    }
+    default: return 0.0f;
+    }
+}
+
+std::uint32_t readIndex(const View& v, std::size_t i) {
+    const unsigned char* p = v.base + i * v.stride;
+    switch (v.componentType) {
+    case kUnsignedByte: return p[0];
+    case kUnsignedShort: {
+        std::uint16_t s;
+        std::memcpy(&s, p, 2);
+        return s;
+    }
+    default: {
+        std::uint32_t u;
+        std::memcpy(&u, p, 4);
+        return u;
+    }
+    }
+}
+
+// The node's local transform (glTF: matrix, column-major, or T * R * S).
+Mat4d localMatrix(const tinygltf::Node& n) {
+    Mat4d m;
+    if (n.matrix.size() == 16) {
+        for (int c = 0; c < 4; ++c)
+            for (int r = 0; r < 4; ++r) m.m[r][c] = n.matrix[std::size_t(c * 4 + r)];
+        return m;
+    }
+    double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
+    if (n.translation.size() == 3) std::copy(n.translation.begin(), n.translation.end(), t);
+    if (n.rotation.size() == 4) std::copy(n.rotation.begin(), n.rotation.end(), q);
+    if (n.scale.size() == 3) std::copy(n.scale.begin(), n.scale.end(), s);
+    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    const double rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                              {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                              {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) m.m[r][c] = rot[r][c] * s[c];
+        m.m[r][3] = t[r];
+    }
+    m.m[3][3] = 1.0;
+    return m;
+}
+
+bool finite(const Mat4d& m) {
+    for (const auto& row : m.m)
+        for (double v : row)
+            if (!std::isfinite(v)) return false;
+    return true;
+}
+
+// The metallic-roughness to Blinn-Phong mapping of GltfLoader.hpp.
+Material materialFrom(const tinygltf::Material& gm) {
+    const auto& pbr = gm.pbrMetallicRoughness;
+    Material m;
+    m.name = gm.name;
+    m.fromFile = true;
+    const double metal = std::clamp(pbr.metallicFactor, 0.0, 1.0), rough = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
+    double base[3] = {1, 1, 1};
+    for (std::size_t c = 0; c < 3 && c < pbr.baseColorFactor.size(); ++c) base[c] = std::clamp(pbr.baseColorFactor[c], 0.0, 1.0);
+    m.kd = Color{float(base[0] * (1 - metal)), float(base[1] * (1 - metal)), float(base[2] * (1 - metal)), 1.0f};
+    m.ks = Color{float(0.04 * (1 - metal) + base[0] * metal), float(0.04 * (1 - metal) + base[1] * metal),
+                 float(0.04 * (1 - metal) + base[2] * metal), 1.0f};
+    const double alpha = rough * rough;
+    const double n = alpha > 0.0 ? 2.0 / (alpha * alpha) - 2.0 : 1024.0;
+    m.shininess = float(std::clamp(std::round(n), 1.0, 1024.0));
+    return m;
+}
+
+// Percent-decoding of a relative URI (glTF: "URIs are relative to the .gltf file").
+std::string decodeUri(const std::string& uri) {
+    std::string out;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+// Everything gathered while walking the scene: vertices in world space, triangles per material.
+struct Builder {
+    Model model;
+    std::vector<std::vector<std::uint32_t>> trianglesOf; // [material + 1] -> indices
+    std::vector<int> firstUse;                           // materials (+1) in order of first use
+    std::size_t skippedPrimitives = 0;
+    std::size_t triangles = 0; // in trianglesOf (the mesh's indices are filled at the end)
+    bool anyComputedNormal = false, anyFileNormal = false;
+};
+
+Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primitive& prim, const Mat4d& world,
+                    const std::string& what, const ObjLimits& limits) {
+    if (prim.extensions.count("KHR_draco_mesh_compression"))
+        return Status::failure(what + ": uses KHR_draco_mesh_compression (Draco-compressed meshes), which SoftRaster does not support");
+    if (prim.mode != kModeTriangles && prim.mode != kModeStrip && prim.mode != kModeFan) {
+        if (prim.mode < kModePoints || prim.mode > kModeFan) return Status::failure(what + ": unknown mode " + std::to_string(prim.mode));
+        ++b.skippedPrimitives;
+        return success();
+    }
+    const auto attribute = [&](const char* name) {
+        const auto it = prim.attributes.find(name);
+        return it == prim.attributes.end() ? -1 : it->second;
+    };
+    const int posIndex = attribute("POSITION");
+    if (posIndex < 0) return Status::failure(what + ": no POSITION attribute");
+    auto pos = accessorView(g, posIndex, what + " POSITION");
+    if (!pos) return Status::failure(pos.error());
+    if (pos.value().componentType != kFloat || pos.value().components != 3)
+        return Status::failure(what + " POSITION: must be float VEC3");
+    const std::size_t count = pos.value().count;
+    std::optional<View> normals, uvs;
+    if (const int ni = attribute("NORMAL"); ni >= 0) {
+        auto v = accessorView(g, ni, what + " NORMAL");
+        if (!v) return Status::failure(v.error());
+        if (v.value().componentType != kFloat || v.value().components != 3) return Status::failure(what + " NORMAL: must be float VEC3");
+        if (v.value().count != count) return Status::failure(what + " NORMAL: count differs from POSITION's");
+        normals = v.value();
+    }
+    if (const int ti = attribute("TEXCOORD_0"); ti >= 0) {
+        auto v = accessorView(g, ti, what + " TEXCOORD_0");
+        if (!v) return Status::failure(v.error());
+        const View& t = v.value();
+        const bool ok = t.components == 2 && (t.componentType == kFloat ||
+                                              (t.normalized && (t.componentType == kUnsignedByte || t.componentType == kUnsignedShort)));
+        if (!ok) return Status::failure(what + " TEXCOORD_0: must be float or normalised unsigned byte/short VEC2");
+        if (t.count != count) return Status::failure(what + " TEXCOORD_0: count differs from POSITION's");
+        uvs = t;
+    }
+    // The primitive's vertex order: indices, or 0..count-1.
+    std::vector<std::uint32_t> order;
+    if (prim.indices >= 0) {
+        auto v = accessorView(g, prim.indices, what + " indices");
+        if (!v) return Status::failure(v.error());
+        const View& iv = v.value();
+        if (iv.components != 1 || (iv.componentType != kUnsignedByte && iv.componentType != kUnsignedShort &&
+                                   iv.componentType != kUnsignedInt))
+            return Status::failure(what + " indices: must be unsigned byte, short or int scalars");
+        if (iv.count > limits.maxTriangles * 3) return Status::failure(what + ": more indices than the triangle limit allows");
+        order.resize(iv.count);
+        for (std::size_t i = 0; i < iv.count; ++i) {
+            order[i] = readIndex(iv, i);
+            if (order[i] >= count)
+                return Status::failure(what + ": index " + std::to_string(order[i]) + " (entry " + std::to_string(i) +
+                                       ") is out of range (" + std::to_string(count) + " vertices)");
+        }
+    } else {
+        order.resize(count);
+        for (std::size_t i = 0; i < count; ++i) order[i] = std::uint32_t(i);
+    }
+    // Triangles of the mode, in the primitive's vertex numbering.
+    std::vector<std::uint32_t> tris;
+    const std::size_t n = order.size();
+    if (prim.mode == kModeTriangles) {
+        tris.assign(order.begin(), order.begin() + std::ptrdiff_t(n - n % 3));
+    } else if (prim.mode == kModeStrip) {
+        for (std::size_t i = 2; i < n; ++i) {
+            const bool even = i % 2 == 0; // glTF: triangle i - 2 is (i-2, i-1, i) or (i-1, i-2, i)
+            tris.insert(tris.end(), {order[even ? i - 2 : i - 1], order[even ? i - 1 : i - 2], order[i]});
+        }
+    } else {
+        for (std::size_t i = 2; i < n; ++i) tris.insert(tris.end(), {order[i - 1], order[i], order[0]});
+    }
+    if (b.triangles + tris.size() / 3 > limits.maxTriangles)
+        return Status::failure("more than " + std::to_string(limits.maxTriangles) + " triangles");
+    if (b.model.mesh.vertexCount() + count > limits.maxVertices)
+        return Status::failure("more than " + std::to_string(limits.maxVertices) + " vertices");
+
+    // Vertices in world space.
+    Mesh& mesh = b.model.mesh;
+    const auto base = std::uint32_t(mesh.positions.size());
+    std::vector<Vec3d> world3(count);
+    for (std::size_t i = 0; i < count; ++i) {
+        const double x = readFloat(pos.value(), i, 0), y = readFloat(pos.value(), i, 1), z = readFloat(pos.value(), i, 2);
+        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+            return Status::failure(what + " POSITION: vertex " + std::to_string(i) + " is not finite");
+        Vec3d p;
+        p.x = world.m[0][0] * x + world.m[0][1] * y + world.m[0][2] * z + world.m[0][3];
+        p.y = world.m[1][0] * x + world.m[1][1] * y + world.m[1][2] * z + world.m[1][3];
+        p.z = world.m[2][0] * x + world.m[2][1] * y + world.m[2][2] * z + world.m[2][3];
+        const Vec3 pf(float(p.x), float(p.y), float(p.z));
+        if (!std::isfinite(pf.x) || !std::isfinite(pf.y) || !std::isfinite(pf.z))
+            return Status::failure(what + " POSITION: vertex " + std::to_string(i) + " is not finite after the node transforms");
+        world3[i] = Vec3d(pf);
+        mesh.positions.push_back(pf);
+    }
+    // Normals: the inverse transpose of the upper 3x3 (its cofactor matrix; the scale drops out
+    // with the renormalisation), or area-weighted from the world-space triangles.
+    const double (*a)[4] = world.m;
+    const double cof[3][3] = {{a[1][1] * a[2][2] - a[1][2] * a[2][1], a[1][2] * a[2][0] - a[1][0] * a[2][2], a[1][0] * a[2][1] - a[1][1] * a[2][0]},
+                              {a[0][2] * a[2][1] - a[0][1] * a[2][2], a[0][0] * a[2][2] - a[0][2] * a[2][0], a[0][1] * a[2][0] - a[0][0] * a[2][1]},
+                              {a[0][1] * a[1][2] - a[0][2] * a[1][1], a[0][2] * a[1][0] - a[0][0] * a[1][2], a[0][0] * a[1][1] - a[0][1] * a[1][0]}};
+    const double det = a[0][0] * cof[0][0] + a[0][1] * cof[0][1] + a[0][2] * cof[0][2];
+    std::vector<Vec3d> accum;
+    if (!normals) {
+        accum.assign(count, Vec3d{});
+        for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
+            const Vec3d p0 = world3[tris[t]], p1 = world3[tris[t + 1]], p2 = world3[tris[t + 2]];
+            Vec3d fn = cross(p1 - p0, p2 - p0);
+            if (det < 0) fn = fn * -1.0; // the winding is reversed below
+            for (int k = 0; k < 3; ++k) accum[tris[t + std::size_t(k)]] = accum[tris[t + std::size_t(k)]] + fn;
+        }
+        b.anyComputedNormal = true;
+    } else {
+        b.anyFileNormal = true;
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+        Vec3d nv;
+        if (normals) {
+            const double x = readFloat(*normals, i, 0), y = readFloat(*normals, i, 1), z = readFloat(*normals, i, 2);
+            // cof = det x the inverse transpose: its sign flips with a mirror, the normal must not.
+            nv = Vec3d{cof[0][0] * x + cof[0][1] * y + cof[0][2] * z, cof[1][0] * x + cof[1][1] * y + cof[1][2] * z,
+                       cof[2][0] * x + cof[2][1] * y + cof[2][2] * z} *
+                 (det < 0 ? -1.0 : 1.0);
+        } else {
+            nv = accum[i];
+        }
+        const double l = length(nv);
+        nv = l > 0.0 && std::isfinite(l) ? nv / l : Vec3d{0, 0, 1};
+        mesh.normals.emplace_back(float(nv.x), float(nv.y), float(nv.z));
+    }
+    if (uvs) {
+        if (!b.model.hasUvs) {
+            mesh.uvs.assign(base, Vec2{}); // earlier vertices had none: (0, 0)
+            b.model.hasUvs = true;
+        }
+        for (std::size_t i = 0; i < count; ++i) {
+            const float u = readFloat(*uvs, i, 0), v = readFloat(*uvs, i, 1);
+            mesh.uvs.emplace_back(std::isfinite(u) ? u : 0.0f, std::isfinite(v) ? 1.0f - v : 0.0f);
+        }
+    } else if (b.model.hasUvs) {
+        mesh.uvs.resize(mesh.positions.size(), Vec2{});
+    }
+    // Triangles into their material's list.
+    const int material = prim.material >= 0 && std::size_t(prim.material) < g.materials.size() ? prim.material : -1;
+    if (prim.material >= 0 && material < 0) return Status::failure(what + ": material " + std::to_string(prim.material) + " does not exist");
+    auto& list = b.trianglesOf[std::size_t(material + 1)];
+    b.triangles += tris.size() / 3;
+    if (list.empty() && !tris.empty()) b.firstUse.push_back(material + 1);
+    for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
+        const std::uint32_t i0 = base + tris[t], i1 = base + tris[t + 1], i2 = base + tris[t + 2];
+        if (det < 0) list.insert(list.end(), {i0, i2, i1});
+        else list.insert(list.end(), {i0, i1, i2});
+    }
+    return success();
+}
+
+} // namespace
+
+bool isGltfPath(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    return ext == ".gltf" || ext == ".glb";
+}
+
+Result<Model> loadModel(const std::string& utf8Path, const ObjOptions& options) {
+    return isGltfPath(utf8Path) ? loadGltf(utf8Path, options) : loadObj(utf8Path, options);
+}
+
+Result<Model> loadGltf(const std::string& path, const ObjOptions& options) {
+    auto bytes = readFileBytes(path, options.limits.maxFileBytes);
+    if (!bytes) return R::failure(bytes.error());
+    return loadGltfFromMemory(bytes.value().data(), bytes.value().size(), path, options);
+}
+
+Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& path,
+                                 const ObjOptions& options) {
+    const ObjLimits& limits = options.limits;
+    if (size > limits.maxFileBytes)
+        return R::failure(path + ": " + std::to_string(size) + " bytes, above the limit of " + std::to_string(limits.maxFileBytes));
+    LoadState state;
+    state.limits = &limits;
+    tinygltf::TinyGLTF loader;
+    loader.SetFsCallbacks(tinygltf::FsCallbacks{&fileExists, &expandFilePath, &readWholeFile, &writeWholeFile, &state});
+    loader.SetImageLoader(&loadImageData, &state);
+    tinygltf::Model g;
+    std::string err, warn;
+    const std::string dir = parentDirectory(path);
+    const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+    const bool loaded = binary ? loader.LoadBinaryFromMemory(&g, &err, &warn, data, unsigned(size), dir)
+                               : loader.LoadASCIIFromString(&g, &err, &warn, reinterpret_cast<const char*>(data), unsigned(size), dir);
+    if (!loaded) {
+        std::string why = !state.problem.empty() ? state.problem : err.empty() ? std::string("not a glTF 2.0 asset") : err;
+        while (!why.empty() && (why.back() == '\n' || why.back() == ' ')) why.pop_back();
+        std::replace(why.begin(), why.end(), '\n', ';');
+        // tinygltf stops at a Draco primitive's accessors (they have no buffer view): say why.
+        static const std::string kDraco = "KHR_draco_mesh_compression";
+        if (std::search(data, data + size, kDraco.begin(), kDraco.end()) != data + size)
+            why += " (the file uses KHR_draco_mesh_compression: Draco-compressed meshes are not supported)";
+        return R::failure(path + ": " + why);
+    }
+    for (const std::string& ext : g.extensionsRequired) {
+        if (ext == "KHR_draco_mesh_compression")
+            return R::failure(path + ": requires KHR_draco_mesh_compression (Draco-compressed meshes), which SoftRaster does not support");
+        return R::failure(path + ": requires the extension " + ext + ", which SoftRaster does not support");
+    }
+    if (g.scenes.empty()) return R::failure(path + ": no scene to render (the file defines no 'scenes')");
+    const int sceneIndex = g.defaultScene >= 0 ? g.defaultScene : 0;
+    if (std::size_t(sceneIndex) >= g.scenes.size()) return R::failure(path + ": scene " + std::to_string(sceneIndex) + " does not exist");
+    if (g.nodes.size() > limits.maxNodes)
+        return R::failure(path + ": " + std::to_string(g.nodes.size()) + " nodes, above the limit of " + std::to_string(limits.maxNodes));
+    if (g.materials.size() > limits.maxMaterials)
+        return R::failure(path + ": " + std::to_string(g.materials.size()) + " materials, above the limit of " +
+                          std::to_string(limits.maxMaterials));
+
+    Builder b;
+    b.trianglesOf.resize(g.materials.size() + 2); // [material + 1]; the last slot: the override stand-in
+    // Depth-first over the scene's node trees; a node met twice makes the graph not a tree.
+    std::vector<std::uint8_t> seen(g.nodes.size(), 0);
+    struct Item {
+        int node;
+        Mat4d parent;
+        std::size_t depth;
+    };
+    Mat4d identity;
+    for (int i = 0; i < 4; ++i) identity.m[i][i] = 1.0;
+    std::vector<Item> stack;
+    const auto& roots = g.scenes[std::size_t(sceneIndex)].nodes;
+    for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, identity, 1});
+    while (!stack.empty()) {
+        const Item item = stack.back();
+        stack.pop_back();
+        if (item.node < 0 || std::size_t(item.node) >= g.nodes.size())
+            return R::failure(path + ": node " + std::to_string(item.node) + " does not exist");
+        if (seen[std::size_t(item.node)])
+            return R::failure(path + ": node " + std::to_string(item.node) +
+                              " is reached twice (the node graph must be a tree: recursive or shared nodes)");
+        seen[std::size_t(item.node)] = 1;
+        if (item.depth > limits.maxNodeDepth)
+            return R::failure(path + ": the node hierarchy is deeper than " + std::to_string(limits.maxNodeDepth) + " levels");
+        const tinygltf::Node& node = g.nodes[std::size_t(item.node)];
+        const Mat4d world = item.parent * localMatrix(node);
+        if (!finite(world)) return R::failure(path + ": node " + std::to_string(item.node) + " has a transform that is not finite");
+        if (node.mesh >= 0) {
+            if (std::size_t(node.mesh) >= g.meshes.size())
+                return R::failure(path + ": node " + std::to_string(item.node) + ": mesh " + std::to_string(node.mesh) + " does not exist");
+            const tinygltf::Mesh& gm = g.meshes[std::size_t(node.mesh)];
+            for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
+                const std::string what = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p);
+                const Status s = addPrimitive(b, g, gm.primitives[p], world, what, limits);
+                if (!s) return R::failure(path + ": " + s.error());
+            }
+        }
+        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, world, item.depth + 1});
+    }
+    Model& model = b.model;
+    if (b.triangles == 0) return R::failure(path + ": the scene has no triangles to draw");
+    if (b.skippedPrimitives > 0)
+        model.warnings.push_back(path + ": " + std::to_string(b.skippedPrimitives) +
+                                 " point or line primitive(s) not drawn (only triangles, strips and fans are)");
+    model.normalsFromFile = b.anyFileNormal && !b.anyComputedNormal;
+
+    // Materials and their base colour textures (one slot per image).
+    for (const tinygltf::Material& gm : g.materials) model.materials.push_back(materialFrom(gm));
+    std::map<int, int> slotOfImage;
+    std::vector<int> imageOfSlot;
+    const auto slotForTexture = [&](int textureIndex) {
+        if (textureIndex < 0 || std::size_t(textureIndex) >= g.textures.size()) return -1;
+        const int image = g.textures[std::size_t(textureIndex)].source;
+        if (image < 0 || std::size_t(image) >= g.images.size()) return -1;
+        const auto found = slotOfImage.find(image);
+        if (found != slotOfImage.end()) return found->second;
+        const int slot = int(imageOfSlot.size());
+        imageOfSlot.push_back(image);
+        slotOfImage.emplace(image, slot);
+        return slot;
+    };
+    if (model.hasUvs) {
+        if (!options.textureOverride.empty()) {
+            model.texturePaths.push_back(options.textureOverride);
+            for (Material& m : model.materials) m.texture = 0;
+            if (!b.trianglesOf[0].empty()) {
+                Material stand;
+                stand.name = "(texture override)";
+                stand.texture = 0;
+                model.materials.push_back(stand);
+                // Faces without a material move to the stand-in (the OBJ rule).
+                b.trianglesOf.back() = std::move(b.trianglesOf[0]);
+                b.trianglesOf[0].clear();
+                std::replace(b.firstUse.begin(), b.firstUse.end(), 0, int(b.trianglesOf.size() - 1));
+            }
+        } else {
+            for (std::size_t i = 0; i < g.materials.size(); ++i)
+                model.materials[i].texture = slotForTexture(g.materials[i].pbrMetallicRoughness.baseColorTexture.index);
+            for (int image : imageOfSlot) {
+                const tinygltf::Image& img = g.images[std::size_t(image)];
+                model.texturePaths.push_back(img.uri.empty() || img.uri.rfind("data:", 0) == 0
+                                                 ? path + " (image " + std::to_string(image) + ")"
+                                                 : dir + "/" + decodeUri(img.uri));
+            }
+        }
+    }
+    model.textures.resize(model.texturePaths.size());
+    std::size_t totalBytes = 0;
+    for (std::size_t slot = 0; slot < model.textures.size() && options.loadTextures; ++slot) {
+        std::string problem;
+        Image image;
+        const tinygltf::Image* gi = options.textureOverride.empty() ? &g.images[std::size_t(imageOfSlot[slot])] : nullptr;
+        if (gi && !gi->image.empty()) { // embedded, decoded by loadImageData
+            image.width = gi->width;
+            image.height = gi->height;
+            image.rgba = gi->image;
+        } else if (gi && (gi->uri.empty() || gi->uri.rfind("data:", 0) == 0)) {
+            problem = gi->name.empty() ? "the embedded image could not be decoded" : gi->name;
+        } else {
+            auto loadedImage = loadImage(model.texturePaths[slot]);
+            if (loadedImage) image = std::move(loadedImage).value();
+            else problem = loadedImage.error();
+        }
+        if (problem.empty() && totalBytes + image.rgba.size() > limits.maxTextureBytes)
+            problem = model.texturePaths[slot] + ": textures would take more than " + std::to_string(limits.maxTextureBytes >> 20) +
+                      " MiB in total";
+        if (!problem.empty()) {
+            if (!options.textureOverride.empty()) return R::failure("texture override: " + problem);
+            model.warnings.push_back(path + ": " + problem + "; using the default checkerboard texture");
+            model.textures[slot] = defaultCheckerTexture();
+            continue;
+        }
+        totalBytes += image.rgba.size();
+        model.textures[slot] = std::move(image);
+    }
+
+    // One range per material in order of first use.
+    for (const int key : b.firstUse) {
+        std::vector<std::uint32_t>& list = b.trianglesOf[std::size_t(key)];
+        DrawRange r;
+        r.firstIndex = std::uint32_t(model.mesh.indices.size());
+        r.indexCount = std::uint32_t(list.size());
+        r.material = key - 1;
+        r.texture = model.hasUvs && r.material >= 0 ? model.materials[std::size_t(r.material)].texture : -1;
+        model.mesh.indices.insert(model.mesh.indices.end(), list.begin(), list.end());
+        model.ranges.push_back(r);
+    }
+    // Bounds of the drawn vertices (world space).
+    model.boundsMin = model.boundsMax = model.mesh.positions.front();
+    for (const Vec3& p : model.mesh.positions) {
+        model.boundsMin = Vec3(std::min(model.boundsMin.x, p.x), std::min(model.boundsMin.y, p.y), std::min(model.boundsMin.z, p.z));
+        model.boundsMax = Vec3(std::max(model.boundsMax.x, p.x), std::max(model.boundsMax.y, p.y), std::max(model.boundsMax.z, p.z));
+    }
+    if (!warn.empty()) {
+        std::string w = warn;
+        while (!w.empty() && w.back() == '\n') w.pop_back();
+        model.warnings.push_back(path + ": " + w.substr(0, w.find('\n')));
+    }
+    return R(std::move(model));
+}
+
+} // namespace sr

@@ -1,0 +1,49 @@
+// GltfLoader: loads a glTF 2.0 scene (.gltf with external or embedded buffers, .glb) into a Model, with tinygltf.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "Resources/Model.hpp"
+#include "Resources/Result.hpp"
+
+namespace sr {
+
+// Loads the default scene of a glTF 2.0 asset (its `scene`, or scene 0 when none is named) into
+// the same Model an OBJ gives, in world space:
+//  - nodes: the hierarchy's TRS or matrix transforms, nested, applied to POSITION (in double,
+//    rounded once to float); NORMAL by the inverse transpose, renormalised; a node whose
+//    transform mirrors (negative determinant) has its triangles' winding reversed, so front
+//    faces stay counter-clockwise;
+//  - primitives: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN, indexed (u8/u16/u32) or not;
+//    POSITION (float VEC3), NORMAL (float VEC3; without it, the area-weighted vertex normal of
+//    the primitive's triangles, as for OBJ), TEXCOORD_0 (float, or normalised u8/u16, VEC2; v is
+//    flipped to OBJ's convention, v = 0 the image's bottom row). POINTS and LINES primitives are
+//    not drawn yet: a warning names how many were skipped;
+//  - materials (pbrMetallicRoughness mapped to Blinn-Phong; README "Materials"): with base =
+//    baseColorFactor, m = metallicFactor, r = roughnessFactor: kd = base x (1 - m) (times the
+//    baseColorTexture texel when textured), ks = 0.04 (1 - m) + base x m, shininess =
+//    2 / r^4 - 2 rounded and clamped to [1, 1024]. Primitives without a material get the fixed
+//    values of OBJ faces without one;
+//  - one draw range per material, in order of first use (node order, depth first; primitives in
+//    order).
+// Errors (one line, "PATH: problem", exit 1 at the command line): JSON that is not glTF, no
+// scene, accessors or buffer views out of their buffers, indices out of range, a missing .bin,
+// node graphs that are not trees (recursive or shared nodes), a hierarchy deeper than
+// limits.maxNodeDepth, positions that are not finite, a required extension we do not support
+// (Draco named as such), and the limits of ObjLimits (file, buffer, triangle, vertex, node,
+// texture sizes). A texture that cannot be loaded is a warning and the checkerboard.
+Result<Model> loadGltf(const std::string& utf8Path, const ObjOptions& options = {});
+
+// The same from the file's bytes already in memory (.glb when they start with "glTF", else
+// .gltf JSON); external buffers and images are still read relative to utf8Path's directory.
+Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& utf8Path,
+                                 const ObjOptions& options = {});
+
+// True when the path ends in .gltf or .glb (ASCII case-insensitive).
+bool isGltfPath(const std::string& path);
+
+// loadGltf for .gltf / .glb, loadObj otherwise.
+Result<Model> loadModel(const std::string& utf8Path, const ObjOptions& options = {});
+
+} // namespace sr

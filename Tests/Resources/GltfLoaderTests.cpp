@@ -1,0 +1,428 @@
+// The glTF 2.0 loader: node transforms, primitive modes, index types, attributes and materials on hand-built assets; every variant of a file (embedded, .bin, .glb) alike; bad files are one-line errors; and, natively, world-space triangles equal those of assimp's OBJ export.
+#include "TestFramework.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "Resources/FileIO.hpp"
+#include "Resources/GltfLoader.hpp"
+#include "Resources/ObjLoader.hpp"
+#include "GltfTestUtil.hpp"
+#include "ObjTestUtil.hpp"
+
+using namespace sr;
+using namespace sr::objtest;
+using sr::gltftest::Asset;
+
+namespace {
+
+// The one-triangle asset: (0,0,0), (1,0,0), (0,1,0), u16 indices, under `nodes` (mesh 0).
+Asset triangleAsset(const std::string& nodes) {
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int idx = a.indices({0, 1, 2}, 5123);
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"indices\":" +
+               std::to_string(idx) + "}]}]";
+    a.nodes = nodes;
+    return a;
+}
+
+Result<Model> load(const std::string& dir, const std::string& name, const std::string& text) {
+    return loadGltf(writeText(dir, name, text));
+}
+
+void checkVec(Vec3 v, float x, float y, float z) {
+    CHECK(v.x == Approx(x).margin(1e-6));
+    CHECK(v.y == Approx(y).margin(1e-6));
+    CHECK(v.z == Approx(z).margin(1e-6));
+}
+
+// The loader's error for `text`: must fail, in one line naming the file.
+std::string errorOf(const std::string& dir, const std::string& name, const std::string& text) {
+    auto r = load(dir, name, text);
+    REQUIRE_FALSE(r.ok());
+    INFO(r.error());
+    CHECK(contains(r.error(), name));
+    CHECK(r.error().find('\n') == std::string::npos);
+    return r.error();
+}
+
+} // namespace
+
+TEST_CASE("glTF nodes: nested TRS and matrix transforms place the vertices in world space", "[resources][gltf]") {
+    const std::string dir = freshDir("gltf-nodes");
+    // Node 0: T(10, 0, 0) R(90 degrees about z) S(2), child node 1: a matrix T(0, 0, 5), the mesh.
+    // World = T R S T5: (0,0,0) -> (0,0,5) -> (0,0,10) -> (0,0,10) -> (10, 0, 10)
+    //                   (1,0,0) -> (1,0,5) -> (2,0,10) -> (0,2,10) -> (10, 2, 10)
+    //                   (0,1,0) -> (0,1,5) -> (0,2,10) -> (-2,0,10) -> (8, 0, 10)
+    const Asset a = triangleAsset(
+        "[{\"translation\":[10,0,0],\"rotation\":[0,0,0.7071067811865476,0.7071067811865476],\"scale\":[2,2,2],"
+        "\"children\":[1]},{\"matrix\":[1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,5,1],\"mesh\":0}]");
+    auto r = load(dir, "nodes.gltf", a.embedded());
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.mesh.vertexCount() == 3);
+    REQUIRE(m.mesh.indices == std::vector<std::uint32_t>{0, 1, 2});
+    checkVec(m.mesh.positions[0], 10, 0, 10);
+    checkVec(m.mesh.positions[1], 10, 2, 10);
+    checkVec(m.mesh.positions[2], 8, 0, 10);
+    // No NORMAL: the area-weighted normal of the world-space triangle, (0,2,0) x (-2,0,0) = +z.
+    for (const Vec3& n : m.mesh.normals) checkVec(n, 0, 0, 1);
+    CHECK_FALSE(m.normalsFromFile);
+    CHECK_FALSE(m.hasUvs);
+    checkVec(m.boundsMin, 8, 0, 10);
+    checkVec(m.boundsMax, 10, 2, 10);
+    REQUIRE(m.ranges.size() == 1);
+    CHECK(m.ranges[0].material == -1);
+    CHECK(m.ranges[0].indexCount == 3);
+}
+
+TEST_CASE("glTF primitives: triangles, strips and fans; u8, u16, u32 and no indices", "[resources][gltf]") {
+    const std::string dir = freshDir("gltf-modes");
+    Asset a;
+    std::vector<float> p;
+    for (int k = 0; k < 6; ++k) p.insert(p.end(), {float(k), float(k * k), 0.0f});
+    const int six = a.floats(p, "VEC3");
+    const int five = a.floats(std::vector<float>(p.begin(), p.begin() + 15), "VEC3");
+    const int u8 = a.indices({0, 1, 2, 3, 4}, 5121);
+    const int u32 = a.indices({4, 3, 2, 1, 0}, 5125);
+    const auto attr = [](int acc) { return "{\"POSITION\":" + std::to_string(acc) + "}"; };
+    a.meshes = "[{\"primitives\":[{\"attributes\":" + attr(six) + "},"                                     // triangles, no indices
+               "{\"attributes\":" + attr(five) + ",\"indices\":" + std::to_string(u8) + ",\"mode\":5}," // strip
+               "{\"attributes\":" + attr(five) + ",\"indices\":" + std::to_string(u32) + ",\"mode\":6}]}]"; // fan
+    a.nodes = "[{\"mesh\":0}]";
+    auto r = load(dir, "modes.gltf", a.embedded());
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.mesh.vertexCount() == 6 + 5 + 5);
+    // Triangles: 0..5. Strip over 6..10 (glTF: triangle i is (i, i+1, i+2) for even i and
+    // (i+1, i, i+2) for odd i, the winding kept): (6,7,8), (8,7,9), (8,9,10). Fan over the
+    // indices 4,3,2,1,0 of 11..15 (glTF: triangle i is (i+1, i+2, 0)): (14,13,15), (13,12,15),
+    // (12,11,15).
+    const std::vector<std::uint32_t> expected{0, 1, 2, 3, 4, 5, 6, 7, 8, 8, 7, 9, 8, 9, 10, 14, 13, 15, 13, 12, 15, 12, 11, 15};
+    CHECK(m.mesh.indices == expected);
+    REQUIRE(m.ranges.size() == 1);
+    CHECK(m.ranges[0].indexCount == expected.size());
+}
+
+TEST_CASE("glTF: a mirroring node keeps front faces counter-clockwise; normals go by the inverse transpose",
+          "[resources][gltf]") {
+    const std::string dir = freshDir("gltf-mirror");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const float s = 0.70710678f;
+    const int nrm = a.floats({s, s, 0, s, s, 0, s, s, 0}, "VEC3");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"NORMAL\":" +
+               std::to_string(nrm) + "}}]}]";
+    SECTION("scale (-1, 1, 1): the triangle's winding is reversed") {
+        a.nodes = "[{\"scale\":[-1,1,1],\"mesh\":0}]";
+        auto r = load(dir, "mirror.gltf", a.embedded());
+        REQUIRE(r.ok());
+        const Mesh& mesh = r.value().mesh;
+        CHECK(mesh.indices == std::vector<std::uint32_t>{0, 2, 1});
+        const Vec3 p0 = mesh.positions[mesh.indices[0]], p1 = mesh.positions[mesh.indices[1]], p2 = mesh.positions[mesh.indices[2]];
+        const Vec3 n = cross(p1 - p0, p2 - p0);
+        CHECK(n.z > 0.0f); // counter-clockwise seen from +z, as in the file
+        // The normal (1,1,0)/sqrt2 mirrored: (-1, 1, 0)/sqrt2.
+        checkVec(mesh.normals[0], -s, s, 0);
+        CHECK(r.value().normalsFromFile);
+    }
+    SECTION("scale (2, 1, 1): the normal (1,1,0)/sqrt2 becomes (1/2, 1, 0) normalised") {
+        a.nodes = "[{\"scale\":[2,1,1],\"mesh\":0}]";
+        auto r = load(dir, "stretch.gltf", a.embedded());
+        REQUIRE(r.ok());
+        CHECK(r.value().mesh.indices == std::vector<std::uint32_t>{0, 1, 2});
+        checkVec(r.value().mesh.normals[1], 0.4472136f, 0.8944272f, 0); // (0.5, 1, 0) / sqrt(1.25)
+        checkVec(r.value().mesh.positions[1], 2, 0, 0);
+    }
+}
+
+TEST_CASE("glTF TEXCOORD_0: float or normalised u16, v flipped to OBJ's convention", "[resources][gltf]") {
+    const std::string dir = freshDir("gltf-uv");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uvFloat = a.floats({0.25f, 0.125f, 1, 0, 0, 1}, "VEC2");
+    const int uvShort = a.normalizedShorts({0, 65535, 65535, 0, 32768, 16384}, "VEC2");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" +
+               std::to_string(uvFloat) + "}},{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" +
+               std::to_string(uvShort) + "}},{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    auto r = load(dir, "uv.gltf", a.embedded());
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    CHECK(m.hasUvs);
+    REQUIRE(m.mesh.uvs.size() == 9);
+    // glTF (0, 0) is the image's top-left; ours (OBJ) v = 0 is its bottom row: v' = 1 - v.
+    CHECK(m.mesh.uvs[0].x == 0.25f);
+    CHECK(m.mesh.uvs[0].y == 0.875f);
+    CHECK(m.mesh.uvs[1].y == 1.0f);
+    CHECK(m.mesh.uvs[3].x == 0.0f); // 0 / 65535
+    CHECK(m.mesh.uvs[3].y == 0.0f); // 1 - 65535 / 65535
+    CHECK(m.mesh.uvs[4].x == 1.0f);
+    CHECK(m.mesh.uvs[5].x == Approx(32768.0 / 65535.0).epsilon(1e-7));
+    CHECK(m.mesh.uvs[5].y == Approx(1.0 - 16384.0 / 65535.0).epsilon(1e-7));
+    for (std::size_t i = 6; i < 9; ++i) CHECK(m.mesh.uvs[i].x == 0.0f); // a primitive without uvs
+}
+
+TEST_CASE("glTF materials: metallic-roughness mapped to Blinn-Phong; one range per material in first use",
+          "[resources][gltf][materials]") {
+    const std::string dir = freshDir("gltf-materials");
+    Asset a = triangleAsset("");
+    const std::string prim = "{\"attributes\":{\"POSITION\":0},\"indices\":1";
+    a.meshes = "[{\"primitives\":[" + prim + ",\"material\":1}," + prim + "}," + prim + ",\"material\":0}]}," + "{\"primitives\":[" +
+               prim + ",\"material\":2}," + prim + ",\"material\":1}]}]";
+    a.nodes = "[{\"mesh\":0,\"children\":[1]},{\"mesh\":1}]";
+    a.materials = "[{\"name\":\"paint\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.4,0.2,1],"
+                  "\"metallicFactor\":0,\"roughnessFactor\":0.5}},"
+                  "{\"name\":\"gold\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0.5,0.25,1],"
+                  "\"metallicFactor\":1,\"roughnessFactor\":0}},"
+                  "{\"name\":\"default\"}]";
+    auto r = load(dir, "materials.gltf", a.embedded());
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.materials.size() == 3);
+    // paint: kd = base (metal 0), ks = 0.04, shininess 2 / 0.5^4 - 2 = 30.
+    CHECK(m.materials[0].name == "paint");
+    CHECK(m.materials[0].kd.r == 0.8f);
+    CHECK(m.materials[0].kd.b == 0.2f);
+    CHECK(m.materials[0].ks.g == 0.04f);
+    CHECK(m.materials[0].shininess == 30.0f);
+    // gold: kd = 0 (metal 1), ks = base, roughness 0: the largest shininess, 1024.
+    CHECK(m.materials[1].kd.r == 0.0f);
+    CHECK(m.materials[1].ks.r == 1.0f);
+    CHECK(m.materials[1].ks.g == 0.5f);
+    CHECK(m.materials[1].ks.b == 0.25f);
+    CHECK(m.materials[1].shininess == 1024.0f);
+    // The glTF defaults (base 1, metallic 1, roughness 1): kd 0, ks 1, shininess 2 / 1 - 2 = 0 -> 1.
+    CHECK(m.materials[2].kd.g == 0.0f);
+    CHECK(m.materials[2].ks.g == 1.0f);
+    CHECK(m.materials[2].shininess == 1.0f);
+    for (const Material& mat : m.materials) {
+        CHECK(mat.fromFile);
+        CHECK_FALSE(mat.hasMap);
+    }
+    // First use: gold (mesh 0), none, paint, default (mesh 1), and gold again joins its range.
+    REQUIRE(m.ranges.size() == 4);
+    const int order[] = {1, -1, 0, 2};
+    for (std::size_t i = 0; i < 4; ++i) CHECK(m.ranges[i].material == order[i]);
+    CHECK(m.ranges[0].indexCount == 6);
+    CHECK(m.ranges[3].firstIndex + m.ranges[3].indexCount == m.mesh.indices.size());
+}
+
+TEST_CASE("glTF: embedded, external .bin and .glb forms of one asset load the same model", "[resources][gltf]") {
+    const std::string dir = freshDir("gltf-forms");
+    const Asset a = triangleAsset("[{\"translation\":[1,2,3],\"mesh\":0}]");
+    REQUIRE(writeFileBytes(dir + "/tri.bin", a.buffer().data(), a.buffer().size()).ok());
+    const std::vector<unsigned char> glb = a.glb();
+    REQUIRE(writeFileBytes(dir + "/tri.glb", glb.data(), glb.size()).ok());
+    auto embedded = load(dir, "embedded.gltf", a.embedded());
+    auto external = load(dir, "external.gltf", a.json("tri.bin"));
+    auto binary = loadGltf(dir + "/tri.glb");
+    auto viaModel = loadModel(dir + "/tri.glb");
+    for (auto* r : {&embedded, &external, &binary, &viaModel}) {
+        INFO((r->ok() ? std::string() : r->error()));
+        REQUIRE(r->ok());
+        CHECK(r->value().mesh.indices == std::vector<std::uint32_t>{0, 1, 2});
+        checkVec(r->value().mesh.positions[2], 1, 3, 3);
+    }
+    CHECK(isGltfPath("a/B.GLB"));
+    CHECK(isGltfPath("x.gltf"));
+    CHECK_FALSE(isGltfPath("x.obj"));
+    CHECK_FALSE(isGltfPath("gltf"));
+}
+
+TEST_CASE("glTF: bad files are one-line errors naming the file and the problem", "[resources][gltf][errors]") {
+    const std::string dir = freshDir("gltf-errors");
+    SECTION("an index out of range") {
+        Asset a;
+        const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+        const int idx = a.indices({0, 1, 5}, 5125);
+        a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"indices\":" + std::to_string(idx) + "}]}]";
+        a.nodes = "[{\"mesh\":0}]";
+        CHECK(contains(errorOf(dir, "index.gltf", a.embedded()), "index 5"));
+    }
+    SECTION("an accessor beyond its buffer view") {
+        Asset a = triangleAsset("[{\"mesh\":0}]");
+        a.rawAccessor("{\"bufferView\":0,\"componentType\":5126,\"count\":1000,\"type\":\"VEC3\"}");
+        a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":2}}]}]";
+        CHECK(contains(errorOf(dir, "beyond.gltf", a.embedded()), "do not fit"));
+    }
+    SECTION("a missing .bin") {
+        const Asset a = triangleAsset("[{\"mesh\":0}]");
+        CHECK(contains(errorOf(dir, "nobin.gltf", a.json("gone.bin")), "gone.bin"));
+    }
+    SECTION("recursive nodes") {
+        const Asset a = triangleAsset("[{\"children\":[1]},{\"children\":[0],\"mesh\":0}]");
+        CHECK(contains(errorOf(dir, "loop.gltf", a.embedded()), "reached twice"));
+    }
+    SECTION("a hierarchy deeper than the limit") {
+        std::string nodes = "[";
+        for (int i = 0; i < 70; ++i) nodes += "{\"children\":[" + std::to_string(i + 1) + "]},";
+        nodes += "{\"mesh\":0}]";
+        CHECK(contains(errorOf(dir, "deep.gltf", triangleAsset(nodes).embedded()), "deeper than 64"));
+    }
+    SECTION("no scene") {
+        Asset a = triangleAsset("[{\"mesh\":0}]");
+        a.scenes = "[]";
+        const std::string e = errorOf(dir, "noscene.gltf", a.embedded());
+        CHECK((contains(e, "scene") || contains(e, "Scene")));
+    }
+    SECTION("positions that are not finite") {
+        Asset a;
+        const int pos = a.floats({0, 0, 0, std::numeric_limits<float>::infinity(), 0, 0, 0, 1, 0}, "VEC3");
+        a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}]}]";
+        a.nodes = "[{\"mesh\":0}]";
+        CHECK(contains(errorOf(dir, "inf.gltf", a.embedded()), "not finite"));
+    }
+    SECTION("Draco compression required") {
+        Asset a = triangleAsset("[{\"mesh\":0}]");
+        a.extra = ",\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],\"extensionsRequired\":[\"KHR_draco_mesh_compression\"]";
+        CHECK(contains(errorOf(dir, "draco.gltf", a.embedded()), "Draco"));
+    }
+    SECTION("wrong JSON types and not JSON at all") {
+        Asset a = triangleAsset("[{\"mesh\":\"zero\"}]");
+        errorOf(dir, "types.gltf", a.embedded());
+        errorOf(dir, "text.gltf", "this is not JSON");
+        errorOf(dir, "empty.glb", "glTF");
+    }
+    SECTION("POSITION of the wrong type") {
+        Asset a;
+        const int pos = a.floats({0, 0, 0, 1, 0, 0}, "VEC2");
+        a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}]}]";
+        a.nodes = "[{\"mesh\":0}]";
+        CHECK(contains(errorOf(dir, "vec2.gltf", a.embedded()), "float VEC3"));
+    }
+}
+
+#ifndef _WIN32
+// The glTF 2.0 files of Debian's assimp-testmodels (valid and malformed), natively: each loads or
+// fails with one line; and the valid ones' world-space triangles equal those of the same model
+// exported to OBJ by assimp (assimp-utils), an independent glTF reader, read by our OBJ loader.
+namespace {
+
+const std::string kAssimpGltf = "/usr/share/assimp/models/glTF2";
+
+using Triangle = std::array<Vec3, 3>;
+
+std::vector<Triangle> triangles(const Model& m) {
+    std::vector<Triangle> out;
+    for (std::size_t t = 0; t + 2 < m.mesh.indices.size(); t += 3)
+        out.push_back({m.mesh.positions[m.mesh.indices[t]], m.mesh.positions[m.mesh.indices[t + 1]],
+                       m.mesh.positions[m.mesh.indices[t + 2]]});
+    return out;
+}
+
+// How many triangles of `a` have no partner in `b`: a triangle of b, not yet taken, with the same
+// vertices in the same cyclic order (the winding) within `tol`. Candidates are found through a
+// grid of the centroids (cells of 4 tol, the 27 around a centroid searched).
+std::size_t unmatched(const std::vector<Triangle>& a, const std::vector<Triangle>& b, float tol) {
+    const auto key = [&](const Triangle& t, int dx, int dy, int dz) {
+        const Vec3 c = (t[0] + t[1] + t[2]) / 3.0f;
+        const float cell = 4.0f * tol;
+        return std::array<long long, 3>{(long long)std::floor(c.x / cell) + dx, (long long)std::floor(c.y / cell) + dy,
+                                        (long long)std::floor(c.z / cell) + dz};
+    };
+    std::map<std::array<long long, 3>, std::vector<std::size_t>> grid;
+    for (std::size_t i = 0; i < b.size(); ++i) grid[key(b[i], 0, 0, 0)].push_back(i);
+    std::vector<std::uint8_t> taken(b.size(), 0);
+    const auto near = [&](Vec3 p, Vec3 q) { return std::fabs(p.x - q.x) <= tol && std::fabs(p.y - q.y) <= tol && std::fabs(p.z - q.z) <= tol; };
+    std::size_t missing = 0;
+    for (const Triangle& t : a) {
+        bool found = false;
+        for (int dx = -1; dx <= 1 && !found; ++dx)
+            for (int dy = -1; dy <= 1 && !found; ++dy)
+                for (int dz = -1; dz <= 1 && !found; ++dz) {
+                    const auto it = grid.find(key(t, dx, dy, dz));
+                    if (it == grid.end()) continue;
+                    for (std::size_t j : it->second) {
+                        if (taken[j]) continue;
+                        const Triangle& u = b[j];
+                        for (int r = 0; r < 3 && !found; ++r)
+                            if (near(t[0], u[std::size_t(r)]) && near(t[1], u[std::size_t((r + 1) % 3)]) &&
+                                near(t[2], u[std::size_t((r + 2) % 3)]))
+                                found = true;
+                        if (found) {
+                            taken[j] = 1;
+                            break;
+                        }
+                    }
+                }
+        missing += !found;
+    }
+    return missing;
+}
+
+} // namespace
+
+TEST_CASE("glTF files of assimp-testmodels: each loads or fails in one line; the malformed ones fail",
+          "[resources][gltf][assimp]") {
+    if (!std::filesystem::is_directory(kAssimpGltf)) FAIL(kAssimpGltf + " missing: scripts/install-deps.sh test installs assimp-testmodels");
+    int loaded = 0, failed = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(kAssimpGltf)) {
+        const std::string path = entry.path().string();
+        if (!isGltfPath(path)) continue;
+        ObjOptions options;
+        options.loadTextures = false;
+        auto r = loadGltf(path, options);
+        INFO(path << ": " << (r.ok() ? "loaded" : r.error()));
+        if (r.ok()) {
+            ++loaded;
+            CHECK(r.value().mesh.triangleCount() > 0);
+            CHECK(indicesValid(r.value().mesh));
+        } else {
+            ++failed;
+            CHECK(contains(r.error(), path));
+            CHECK(r.error().find('\n') == std::string::npos);
+        }
+    }
+    CHECK(loaded >= 10);
+    CHECK(failed >= 5);
+    for (const char* bad : {"IndexOutOfRange/IndexOutOfRange.gltf", "MissingBin/BoxTextured.gltf",
+                            "RecursiveNodes/RecursiveNodes.gltf", "draco/2CylinderEngine.gltf",
+                            "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "TestNoRootNode/NoScene.gltf"}) {
+        const std::string path = kAssimpGltf + "/" + bad;
+        if (!std::filesystem::exists(path)) continue;
+        INFO(path);
+        CHECK_FALSE(loadGltf(path).ok());
+    }
+    auto draco = loadGltf(kAssimpGltf + "/draco/2CylinderEngine.gltf");
+    REQUIRE_FALSE(draco.ok());
+    CHECK(contains(draco.error(), "Draco"));
+}
+
+TEST_CASE("glTF world-space triangles equal assimp's OBJ export of the same file", "[resources][gltf][assimp]") {
+    if (std::system("command -v assimp >/dev/null 2>&1") != 0) FAIL("assimp not found: scripts/install-deps.sh test installs assimp-utils");
+    const std::string dir = freshDir("gltf-assimp");
+    int compared = 0;
+    for (const char* file : {"BoxTextured-glTF/BoxTextured.gltf", "BoxTextured-glTF-Binary/BoxTextured.glb",
+                             "BoxTextured-glTF-Embedded/BoxTextured.gltf", "2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+                             "cameras/Cameras.gltf", "BoxTexcoords-glTF/boxTexcoords.gltf"}) {
+        const std::string path = kAssimpGltf + "/" + file;
+        INFO(path);
+        REQUIRE(std::filesystem::exists(path));
+        const std::string obj = dir + "/export" + std::to_string(compared) + ".obj";
+        REQUIRE(std::system(("assimp export '" + path + "' '" + obj + "' >/dev/null 2>&1").c_str()) == 0);
+        ObjOptions options;
+        options.loadTextures = false;
+        auto ours = loadGltf(path, options);
+        auto theirs = loadObj(obj, options);
+        REQUIRE(ours.ok());
+        REQUIRE(theirs.ok());
+        const auto a = triangles(ours.value()), b = triangles(theirs.value());
+        REQUIRE(a.size() == b.size());
+        // Tolerance: 1e-6 of the model's extent (both round a double or float transform to float).
+        const Vec3 extent = ours.value().boundsMax - ours.value().boundsMin;
+        const float tol = 1e-6f * std::max({extent.x, extent.y, extent.z, 1.0f});
+        CHECK(unmatched(a, b, tol) == 0);
+        ++compared;
+    }
+    CHECK(compared == 6);
+}
+#endif
