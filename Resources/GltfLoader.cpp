@@ -11,6 +11,7 @@
 #include <optional>
 #include <system_error>
 
+#include "Math/Conventions.hpp"
 #include "Math/DoubleMath.hpp"
 #include "Resources/FileIO.hpp"
 #include "Resources/ObjLoader.hpp"
@@ -262,6 +263,7 @@ std::string decodeUri(const std::string& uri) {
 
 // Everything gathered while walking the scene: vertices in world space, triangles per material.
 struct Builder {
+    std::string path; // the file, for warnings
     Model model;
     std::vector<std::vector<std::uint32_t>> trianglesOf; // [material + 1] -> indices
     std::vector<int> firstUse;                           // materials (+1) in order of first use
@@ -426,6 +428,38 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
     return success();
 }
 
+// A camera node: eye = the node's origin, forward = its -Z, up = its +Y (glTF "Cameras").
+Status addCamera(Builder& b, const tinygltf::Camera& c, const Mat4d& world, int index) {
+    const std::string what = "camera " + std::to_string(index);
+    if (c.type != "perspective") {
+        b.model.warnings.push_back(b.path + ": " + what + " (" + c.type + ") skipped: only perspective cameras are used");
+        return success();
+    }
+    const auto& p = c.perspective;
+    if (!(p.yfov > 0.0 && p.yfov < kPiD) || !(p.znear > 0.0) || !(p.zfar == 0.0 || p.zfar > p.znear))
+        return Status::failure(what + ": yfov must be in (0, pi), znear > 0 and zfar 0 or above znear");
+    const auto apply3 = [&](double x, double y, double z) {
+        return Vec3d{world.m[0][0] * x + world.m[0][1] * y + world.m[0][2] * z, world.m[1][0] * x + world.m[1][1] * y + world.m[1][2] * z,
+                     world.m[2][0] * x + world.m[2][1] * y + world.m[2][2] * z};
+    };
+    const Vec3d eye{world.m[0][3], world.m[1][3], world.m[2][3]};
+    const Vec3d forward = apply3(0, 0, -1), up = apply3(0, 1, 0);
+    const double lf = length(forward), lu = length(up);
+    if (!(lf > 0.0) || !(lu > 0.0) || !std::isfinite(lf) || !std::isfinite(lu))
+        return Status::failure(what + ": its node's transform collapses the view direction");
+    ModelCamera cam;
+    cam.name = c.name;
+    cam.eye = Vec3(float(eye.x), float(eye.y), float(eye.z));
+    const Vec3d target = eye + forward / lf;
+    cam.target = Vec3(float(target.x), float(target.y), float(target.z));
+    cam.up = Vec3(float(up.x / lu), float(up.y / lu), float(up.z / lu));
+    cam.yfovDegrees = p.yfov * 180.0 / kPiD;
+    cam.znear = p.znear;
+    cam.zfar = p.zfar;
+    b.model.cameras.push_back(cam);
+    return success();
+}
+
 } // namespace
 
 bool isGltfPath(const std::string& path) {
@@ -484,6 +518,7 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
                           std::to_string(limits.maxMaterials));
 
     Builder b;
+    b.path = path;
     b.trianglesOf.resize(g.materials.size() + 2); // [material + 1]; the last slot: the override stand-in
     // Depth-first over the scene's node trees; a node met twice makes the graph not a tree.
     std::vector<std::uint8_t> seen(g.nodes.size(), 0);
@@ -520,6 +555,12 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
                 const Status s = addPrimitive(b, g, gm.primitives[p], world, what, limits);
                 if (!s) return R::failure(path + ": " + s.error());
             }
+        }
+        if (node.camera >= 0) {
+            if (std::size_t(node.camera) >= g.cameras.size())
+                return R::failure(path + ": node " + std::to_string(item.node) + ": camera " + std::to_string(node.camera) + " does not exist");
+            const Status s = addCamera(b, g.cameras[std::size_t(node.camera)], world, node.camera);
+            if (!s) return R::failure(path + ": " + s.error());
         }
         for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, world, item.depth + 1});
     }

@@ -38,6 +38,15 @@ struct DrawRange {
     int texture = -1; // == (material >= 0 && hasUvs ? materials[material].texture : -1), for convenience
 };
 
+// A perspective camera of the file (glTF), in world space: it looks down its node's -Z with +Y up.
+struct ModelCamera {
+    std::string name;
+    Vec3 eye{0, 0, 0}, target{0, 0, -1}, up{0, 1, 0};
+    double yfovDegrees = 60.0;
+    double znear = 0.1;
+    double zfar = 0.0; // 0: none (infinite)
+};
+
 struct Model {
     Mesh mesh; // normals always present (one per vertex); uvs only when hasUvs
     std::vector<DrawRange> ranges;
@@ -47,6 +56,7 @@ struct Model {
     Vec3 boundsMin, boundsMax; // AABB of ALL 'v' entries (used or not), for the auto-fit camera
     bool hasUvs = false;          // the OBJ has at least one 'vt'
     bool normalsFromFile = false; // every face-vertex had a 'vn' (else some were computed)
+    std::vector<ModelCamera> cameras;  // glTF: the scene's perspective cameras, in node order
     std::vector<std::string> warnings; // one line each, naming the file
 };
 

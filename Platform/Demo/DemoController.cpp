@@ -63,11 +63,26 @@ const char* cullLabel(CullMode mode) {
 }
 
 DemoController::DemoController(const Camera& home, const RenderSettings& settings, Vec3 toLight, MotionTuning tuning)
-    : home_(home), camera_(home), settings_(settings), toLight_(toLight), tuning_(tuning) {}
+    : home_(home), start_(home), camera_(home), settings_(settings), toLight_(toLight), tuning_(tuning) {}
 
 DemoController::DemoController(const CameraSetup& home, const RenderSettings& settings, Vec3 toLight, MotionTuning tuning)
     : DemoController(cameraFromSetup(home), settings, toLight, tuning) {
     homeSetup_ = home;
+    startSetup_ = home;
+}
+
+void DemoController::cycleCamera() {
+    if (cameras_.empty()) return;
+    cameraIndex_ = cameraIndex_ + 1 >= int(cameras_.size()) ? -1 : cameraIndex_ + 1;
+    if (cameraIndex_ < 0) {
+        home_ = start_;
+        homeSetup_ = startSetup_;
+    } else {
+        // Until the camera moves, the view is exactly the file's camera (its up and planes too).
+        homeSetup_ = cameras_[std::size_t(cameraIndex_)];
+        home_ = cameraFromSetup(*homeSetup_);
+    }
+    camera_ = home_;
 }
 
 CameraSetup DemoController::cameraSetup() const {
@@ -91,6 +106,7 @@ Action DemoController::keyDown(Key key, bool repeat) {
     case Action::ToggleWireframe: settings_.wireframe = !settings_.wireframe; break;
     case Action::ToggleDepthView: depthView_ = !depthView_; break;
     case Action::ResetView: resetView(); break;
+    case Action::CycleCamera: cycleCamera(); break;
     case Action::ToggleHelp: help_ = !help_; break;
     case Action::None:
     case Action::Quit:
@@ -158,6 +174,8 @@ std::string DemoController::modeSummary() const {
     s += perspectiveModeName(settings_.perspective);
     s += settings_.msaa > 1 ? " | msaa " : " | ssaa ";
     s += std::to_string(settings_.msaa > 1 ? settings_.msaa : settings_.ssaa);
+    if (cameraIndex_ >= 0)
+        s += " | camera " + std::to_string(cameraIndex_);
     if (settings_.wireframe)
         s += " | wireframe";
     if (depthView_)

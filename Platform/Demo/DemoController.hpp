@@ -5,6 +5,7 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "Platform/Demo/Input.hpp"
 #include "Platform/Demo/SceneSetup.hpp"
@@ -68,6 +69,10 @@ public:
     bool helpVisible() const { return help_; }
     const MotionTuning& tuning() const { return tuning_; }
     void resetView() { camera_ = home_; }
+    // The model's own cameras (LoadedScene::cameras), which V cycles through after the starting
+    // view. The selected one becomes the view R returns to; -1 = the starting view.
+    void setCameras(std::vector<CameraSetup> cameras) { cameras_ = std::move(cameras); }
+    int cameraIndex() const { return cameraIndex_; }
 
     // The camera as a setup for the one view builder (makeFrameView): the starting setup while
     // the camera is where it started, else eye = position, target = position + forward, up = +Y.
@@ -80,8 +85,13 @@ public:
 
 private:
     void cycleAntialiasing();
+    void cycleCamera();
     Camera home_;
     std::optional<CameraSetup> homeSetup_; // the exact starting setup, when constructed from one
+    std::optional<CameraSetup> startSetup_; // the flags' setup, restored after the last camera
+    Camera start_;                          // the flags' fly camera
+    std::vector<CameraSetup> cameras_;
+    int cameraIndex_ = -1;
     Camera camera_;
     RenderSettings settings_;
     Vec3 toLight_;

@@ -13,7 +13,7 @@ enum class Key {
     W, A, S, D, Q, E,          // fly: forward / strafe left / back / strafe right / down / up
     Up, Down, Left, Right,     // turn
     Shift,                     // held: move faster
-    C, M, T, P, N, L, Z, R,    // toggles and reset (see actionForKey)
+    C, M, T, P, N, L, Z, R, V, // toggles, reset and camera (see actionForKey)
     F1, F12,
     Count
 };
@@ -32,6 +32,7 @@ enum class Action {
     ToggleWireframe,
     ToggleDepthView,  // show the depth buffer as grey
     ResetView,        // back to the starting camera
+    CycleCamera,      // the flags' view -> the file's camera 0 -> 1 -> ... -> the flags' view
     ToggleHelp,
     Screenshot
 };
@@ -47,6 +48,7 @@ constexpr Action actionForKey(Key key) {
     case Key::L: return Action::ToggleWireframe;
     case Key::Z: return Action::ToggleDepthView;
     case Key::R: return Action::ResetView;
+    case Key::V: return Action::CycleCamera;
     case Key::F1: return Action::ToggleHelp;
     case Key::F12: return Action::Screenshot;
     default: break;
@@ -60,13 +62,14 @@ struct KeyHelp {
     const char* what;
 };
 
-inline constexpr std::array<KeyHelp, 16> kKeyHelp{{
+inline constexpr std::array<KeyHelp, 17> kKeyHelp{{
     {"W / S", "fly forward / back"},
     {"A / D", "strafe left / right"},
     {"Q / E", "fly down / up"},
     {"Arrows, left-drag", "turn (look around)"},
     {"Shift", "hold to move 4x faster"},
     {"R", "reset the view"},
+    {"V", "next camera of the model (glTF), then back to the start"},
     {"C", "cull mode: none -> CW -> CCW"},
     {"M", "shading: unlit -> flat -> gouraud -> phong"},
     {"T", "texture filter: nearest -> bilinear -> trilinear"},

@@ -92,7 +92,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     static const char* const kFlags[] = {"--obj",   "--model",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
-                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials"};
+                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
@@ -140,13 +140,17 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         if (!v) return bad("three finite numbers x,y,z");
         if (flag == "--eye") o.eye = *v;
         else if (flag == "--target") o.target = *v;
-        else if (flag == "--up") o.up = *v;
+        else if (flag == "--up") {
+            o.up = *v;
+            o.explicitUp = true;
+        }
         else if (flag == "--light") o.light = *v;
         else o.kd = Color{v->x, v->y, v->z, 1.0f};
     } else if (flag == "--fov") {
         const auto v = parseNumber(value);
         if (!v || !(*v > 0.0 && *v < 180.0)) return bad("degrees in (0, 180)");
         o.fovDegrees = *v;
+        o.explicitFov = true;
     } else if (flag == "--near") {
         const auto v = parseNumber(value);
         if (!v || !(*v >= double(Camera::kMinNear) && *v <= double(Camera::kMaxCoordinate)))
@@ -161,6 +165,10 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         if (!m) return bad("unlit, flat, gouraud or phong");
         o.shading = *m;
         o.explicitShading = true;
+    } else if (flag == "--camera") {
+        const auto v = parseInt(value);
+        if (!v || *v < 0 || *v > 65535) return bad("a camera number from 0 (the file's cameras, in node order)");
+        o.camera = *v;
     } else if (flag == "--materials") {
         const auto m = parseMaterialRule(value);
         if (!m) return bad("mtl or fixed");
@@ -261,6 +269,8 @@ std::string sceneFlagsHelp() {
            "  --eye x,y,z           camera position (default: auto-fit the model's bounding sphere)\n"
            "  --target x,y,z        look-at point (default: the bounding box centre)\n"
            "  --up x,y,z            up vector (default 0,1,0)\n"
+           "  --camera N            view through the model's camera N (glTF, numbered from 0 in node\n"
+           "                        order); --eye, --target, --up, --fov, --near, --far still override\n"
            "  --fov DEG             vertical field of view in degrees (default 60)\n"
            "  --near Z --far Z      clip distances, near >= 1e-06 (default: auto-fitted, or 0.1 / 100\n"
            "                        with --eye)\n"

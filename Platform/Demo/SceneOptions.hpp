@@ -69,6 +69,8 @@ struct SceneOptions {
     Isa isa = bestIsa(); // --isa: which span kernels fill (auto = the widest this CPU has)
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
     MaterialRule materials = MaterialRule::Mtl; // --materials
+    std::optional<int> camera;                  // --camera N: the file's camera N (glTF)
+    bool explicitUp = false, explicitFov = false; // --up / --fov given (they override --camera's)
     bool wireframe = false;
     std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).

@@ -176,12 +176,37 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         out.description = options.obj + ": " + std::to_string(m.mesh.triangleCount()) + " triangles, " +
                           std::to_string(m.textures.size()) + " textures, normals " +
                           (m.normalsFromFile ? "from the file" : "computed (area-weighted)");
+        for (const ModelCamera& mc : m.cameras) {
+            CameraSetup c;
+            c.eye = mc.eye;
+            c.target = mc.target;
+            c.up = mc.up;
+            c.fovDegrees = mc.yfovDegrees;
+            c.nearZ = mc.znear;
+            c.farZ = mc.zfar > 0.0 ? mc.zfar : std::numeric_limits<double>::infinity();
+            out.cameras.push_back(c);
+        }
         out.scene = sceneFromModel(std::move(m), options.kd, options.materials);
     }
+    if (options.camera && std::size_t(*options.camera) >= out.cameras.size())
+        return Result<LoadedScene>::failure((options.obj.empty() ? std::string("the built-in scene") : options.obj) +
+                                            ": --camera " + std::to_string(*options.camera) + ": it has " +
+                                            std::to_string(out.cameras.size()) + " camera(s)" +
+                                            (out.cameras.empty() ? "" : " (numbered from 0)"));
     return Result<LoadedScene>(std::move(out));
 }
 
 CameraSetup resolveCamera(const SceneOptions& o, const LoadedScene& s) {
+    if (o.camera && std::size_t(*o.camera) < s.cameras.size()) {
+        CameraSetup c = s.cameras[std::size_t(*o.camera)];
+        if (o.eye) c.eye = *o.eye;
+        if (o.target) c.target = *o.target;
+        if (o.explicitUp) c.up = o.up;
+        if (o.explicitFov) c.fovDegrees = o.fovDegrees;
+        if (o.nearZ) c.nearZ = *o.nearZ;
+        if (o.farZ) c.farZ = *o.farZ;
+        return c;
+    }
     CameraSetup c;
     c.up = o.up;
     c.fovDegrees = o.fovDegrees;

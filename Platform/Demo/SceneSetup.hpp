@@ -14,12 +14,20 @@
 
 namespace sr::demo {
 
+struct CameraSetup {
+    Vec3 eye, target, up;
+    double fovDegrees = 60.0;
+    double nearZ = 0.1;
+    double farZ = 100.0; // +infinity: no far plane
+};
+
 struct LoadedScene {
     Scene scene;
     std::optional<Texture> textureOverride; // --texture on the built-in scene
     bool builtIn = false;
     Vec3 centre{0, 0, 0}; // bounding sphere of the model's vertices (auto-fit)
     double radius = 1.0;
+    std::vector<CameraSetup> cameras; // the file's cameras (glTF), for --camera N and the demo's V key
     std::vector<std::string> warnings;
     std::string description; // one line: what was loaded (triangles, textures, normals)
 };
@@ -40,14 +48,9 @@ std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex,
                           std::vector<std::uint32_t>& remap);
 void clearRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount, std::vector<std::uint32_t>& remap);
 
-struct CameraSetup {
-    Vec3 eye, target, up;
-    double fovDegrees = 60.0;
-    double nearZ = 0.1;
-    double farZ = 100.0; // +infinity: no far plane
-};
-
-// The camera the flags ask for. Without --eye: the built-in scene's own view, or for a model
+// The camera the flags ask for. With --camera N: the file's camera N (loadScene checked that it
+// exists), any of --eye, --target, --up, --fov, --near, --far given replacing its value.
+// Without --eye: the built-in scene's own view, or for a model
 // the reference's auto-fit: target = bounding-box centre (or --target), eye = target +
 // (0, 0, r / sin(half)) with half the narrower half field of view, near = max(dist - 1.01 r,
 // 0.01 r), far = dist + 1.01 r. With --eye: target defaults to the centre and near/far to

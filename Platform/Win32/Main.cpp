@@ -107,6 +107,7 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
         tuning.moveSpeed = float(std::max(scene.radius * 0.5, 1e-3));
     demo::DemoController controller(setup, demo::makeRenderSettings(options.scene),
                                     options.scene.light, tuning);
+    controller.setCameras(scene.cameras); // V cycles through the model's own cameras
 
     win32::enableDpiAwareness(); // before any window exists
     win32::MainWindow window(scene, controller);

@@ -196,6 +196,7 @@ demo::Key MainWindow::translateKey(WPARAM vk) {
     case 'L': return Key::L;
     case 'Z': return Key::Z;
     case 'R': return Key::R;
+    case 'V': return Key::V;
     case VK_F1: return Key::F1;
     case VK_F12: return Key::F12;
     default: return Key::Unknown;

@@ -1,9 +1,13 @@
-// Tests of splitting a loaded model into per-range meshes: contents, and work bounded by the range.
+// Tests of scene setup: splitting a loaded model into per-range meshes (contents, work bounded by the range), and the model's cameras (--camera, the demo's V key).
 #include "TestFramework.hpp"
 
+#include "Platform/Demo/DemoController.hpp"
 #include "Platform/Demo/SceneSetup.hpp"
+#include "Resources/GltfTestUtil.hpp"
+#include "Resources/ObjTestUtil.hpp"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 using namespace sr;
@@ -82,4 +86,83 @@ TEST_CASE("appendRange and clearRange read and write only the remap entries of t
         for (std::uint32_t v = first; v < first + 4; ++v) remap[v] = kMarker;
     }
     CHECK(vertices == 4 * std::size_t(quads));
+}
+
+TEST_CASE("--camera N views through the model's camera N; flags override it; V cycles the cameras in the demo",
+          "[platform][cameras]") {
+    using gltftest::Asset;
+    const std::string dir = objtest::freshDir("scene-cameras");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}]}]";
+    a.nodes = "[{\"mesh\":0,\"children\":[1,2]},{\"translation\":[0,0,4],\"camera\":0},"
+              "{\"translation\":[5,0,0],\"rotation\":[0,0.7071067811865476,0,0.7071067811865476],\"camera\":0}]";
+    a.extra = ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"znear\":0.25,\"zfar\":40}}]";
+    SceneOptions options;
+    options.obj = objtest::writeText(dir, "two.gltf", a.embedded());
+    options.camera = 1;
+    auto scene = loadScene(options);
+    REQUIRE(scene.ok());
+    REQUIRE(scene.value().cameras.size() == 2);
+    CameraSetup c = resolveCamera(options, scene.value());
+    CHECK(c.eye.x == 5.0f);
+    CHECK(c.target.x == Approx(4.0f).margin(1e-6)); // looking down -x
+    CHECK(c.fovDegrees == Approx(0.8 * 180.0 / 3.14159265358979).epsilon(1e-12));
+    CHECK(c.nearZ == 0.25);
+    CHECK(c.farZ == 40.0);
+    // Explicit flags win over the camera's values, one by one.
+    options.fovDegrees = 30.0;
+    options.explicitFov = true;
+    options.farZ = 7.0;
+    c = resolveCamera(options, scene.value());
+    CHECK(c.fovDegrees == 30.0);
+    CHECK(c.farZ == 7.0);
+    CHECK(c.eye.x == 5.0f);
+    // A camera the file does not have is an error naming the file and the count.
+    options.camera = 2;
+    auto missing = loadScene(options);
+    REQUIRE_FALSE(missing.ok());
+    CHECK(missing.error().find("two.gltf") != std::string::npos);
+    CHECK(missing.error().find("2 camera(s)") != std::string::npos);
+    // The command-line flag.
+    std::vector<std::string> args{"--camera", "3"};
+    std::size_t i = 0;
+    SceneOptions parsed;
+    std::string error;
+    CHECK(parseSceneFlag(args, i, parsed, error) == FlagResult::Consumed);
+    CHECK(parsed.camera == 3);
+    args = {"--camera=-1"};
+    i = 0;
+    CHECK(parseSceneFlag(args, i, parsed, error) == FlagResult::Error);
+
+    // The demo: V goes start -> camera 0 -> camera 1 -> start; each view is the camera exactly.
+    options = SceneOptions{};
+    options.obj = objtest::writeText(dir, "two.gltf", a.embedded());
+    auto loaded = loadScene(options);
+    REQUIRE(loaded.ok());
+    const CameraSetup start = resolveCamera(options, loaded.value());
+    DemoController demo(start, makeRenderSettings(options), options.light);
+    const auto same = [](const CameraSetup& x, const CameraSetup& y) {
+        return x.eye.x == y.eye.x && x.eye.y == y.eye.y && x.eye.z == y.eye.z && x.target.x == y.target.x &&
+               x.target.z == y.target.z && x.fovDegrees == y.fovDegrees && x.nearZ == y.nearZ && x.farZ == y.farZ;
+    };
+    demo.keyDown(Key::V);
+    CHECK(same(demo.cameraSetup(), start)); // no cameras given to the controller yet: nothing changes
+    demo.keyUp(Key::V);
+    demo.setCameras(loaded.value().cameras);
+    for (int expected : {0, 1, -1, 0}) {
+        INFO("expected camera " << expected);
+        demo.keyDown(Key::V);
+        demo.keyUp(Key::V);
+        CHECK(demo.cameraIndex() == expected);
+        CHECK(same(demo.cameraSetup(), expected < 0 ? start : loaded.value().cameras[std::size_t(expected)]));
+        CHECK((demo.modeSummary().find("camera " + std::to_string(expected)) != std::string::npos) == (expected >= 0));
+    }
+    // R returns to the selected camera after flying away.
+    demo.keyDown(Key::W);
+    demo.update(0.05);
+    demo.keyUp(Key::W);
+    CHECK_FALSE(same(demo.cameraSetup(), loaded.value().cameras[0]));
+    demo.keyDown(Key::R);
+    CHECK(same(demo.cameraSetup(), loaded.value().cameras[0]));
 }

@@ -238,6 +238,47 @@ TEST_CASE("glTF: embedded, external .bin and .glb forms of one asset load the sa
     CHECK_FALSE(isGltfPath("gltf"));
 }
 
+TEST_CASE("glTF cameras: perspective camera nodes in world space, in node order; orthographic ones skipped",
+          "[resources][gltf][cameras]") {
+    const std::string dir = freshDir("gltf-cameras");
+    // Node 0 holds the mesh and two children: node 1 at (1, 2, 3) turned 90 degrees about +y
+    // (its -z view axis becomes -x) with camera 0; node 2 scaled by 2 (the up vector is
+    // renormalised) with the orthographic camera 1 and a child node 3 at (0, 0, 10) with camera 2.
+    Asset a = triangleAsset("[{\"mesh\":0,\"children\":[1,2]},"
+                            "{\"translation\":[1,2,3],\"rotation\":[0,0.7071067811865476,0,0.7071067811865476],\"camera\":0},"
+                            "{\"scale\":[2,2,2],\"camera\":1,\"children\":[3]},{\"translation\":[0,0,10],\"camera\":2}]");
+    a.extra = ",\"cameras\":[{\"type\":\"perspective\",\"name\":\"side\",\"perspective\":{\"yfov\":0.5,\"znear\":0.1,\"zfar\":50}},"
+              "{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":1,\"ymag\":1,\"znear\":0.1,\"zfar\":10}},"
+              "{\"type\":\"perspective\",\"perspective\":{\"yfov\":1.0,\"znear\":0.5}}]";
+    auto r = load(dir, "cameras.gltf", a.embedded());
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.cameras.size() == 2);
+    const ModelCamera& side = m.cameras[0];
+    CHECK(side.name == "side");
+    checkVec(side.eye, 1, 2, 3);
+    checkVec(side.target, 0, 2, 3); // eye + (-1, 0, 0)
+    checkVec(side.up, 0, 1, 0);
+    CHECK(side.yfovDegrees == Approx(0.5 * 180.0 / 3.14159265358979).epsilon(1e-12));
+    CHECK(side.znear == 0.1);
+    CHECK(side.zfar == 50.0);
+    const ModelCamera& far = m.cameras[1];
+    checkVec(far.eye, 0, 0, 20); // scale 2 x (0, 0, 10)
+    checkVec(far.target, 0, 0, 19);
+    checkVec(far.up, 0, 1, 0); // (0, 2, 0) renormalised
+    CHECK(far.zfar == 0.0);    // none: infinite
+    REQUIRE(m.warnings.size() == 1);
+    CHECK(contains(m.warnings[0], "orthographic"));
+    CHECK(contains(m.warnings[0], "cameras.gltf"));
+
+    a.extra = ",\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0,\"znear\":0.1}},"
+              "{\"type\":\"orthographic\",\"orthographic\":{\"xmag\":1,\"ymag\":1,\"znear\":0.1,\"zfar\":10}},"
+              "{\"type\":\"perspective\",\"perspective\":{\"yfov\":1.0,\"znear\":0.5}}]";
+    auto bad = load(dir, "badcamera.gltf", a.embedded());
+    REQUIRE_FALSE(bad.ok());
+    CHECK(contains(bad.error(), "camera 0"));
+}
+
 TEST_CASE("glTF: bad files are one-line errors naming the file and the problem", "[resources][gltf][errors]") {
     const std::string dir = freshDir("gltf-errors");
     SECTION("an index out of range") {
