@@ -40,6 +40,7 @@ struct DrawContext {
     const Texture* texture; // non-null only when the draw is textured
     Color kd;               // the surface colour; when textured, the texel's multiplier (tint)
     Specular specular;
+    float alpha;            // opacity: below 1 the draw is blended over the target (DrawState::blendAlpha)
 };
 
 // Diffuse colour at a fragment whose varyings 0 and 1 are (u, v): the texel times the draw's kd
@@ -71,6 +72,10 @@ inline DrawState drawStateFor(const DrawContext& d) {
     s.stopAfter = d.settings.stopAfter;
     s.perspective = d.settings.perspective;
     if (d.texture != nullptr) s.rebase = {2, wrapPeriod(d.settings.wrap)}; // varyings 0-1 are the uv
+    if (d.alpha < 1.0f) { // transparent: tested against the depth buffer, never written to it
+        s.blendAlpha = std::max(d.alpha, 0.0f);
+        s.depth = DepthMode::Test;
+    }
     return s;
 }
 

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "Raster/Blend.hpp"
 #include "Raster/Msaa.hpp"
 #include "Raster/PipelineModes.hpp" // DepthMode, PerspectiveMode
 #include "Raster/ScanlineFill.hpp"
@@ -89,7 +90,7 @@ const Centroid* centroidTable() {
 
 template <int kN, DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
-                         ShadeRow& shadeRow, ShadeRuns& shadeRuns, std::uint64_t& shaded) {
+                         ShadeRow& shadeRow, ShadeRuns& shadeRuns, std::uint64_t& shaded, float alpha) {
     constexpr int n = kN;
     const SampleOffset* pattern = msaaPattern(n);
     const Centroid* centroids = centroidTable<kN>();
@@ -217,6 +218,11 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
             ++shaded;
             const Pixel c = shadedRow[x];
             Pixel* samples = colour + std::size_t(x) * std::size_t(n);
+            if (alpha < 1.0f) { // a transparent draw: over each passing sample's own colour
+                for (int k = 0; k < n; ++k)
+                    if (pass & (1u << k)) samples[k] = blendOver(c, samples[k], alpha);
+                continue;
+            }
             for (int k = 0; k < n; ++k)
                 if (pass & (1u << k)) samples[k] = c;
         }
@@ -235,17 +241,17 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
 //    when the centre is inside the triangle, otherwise at the centroid of the covered samples (no
 //    attribute is extrapolated outside the triangle), by one call shadeRuns(runs, count) per
 //    triangle (SpanRun), which writes the colours to shadeRow(y)[x] (pixel-sized scratch rows);
-//  - the colour goes to every covered sample that passed.
+//  - the colour goes to every covered sample that passed (alpha < 1: blended over each, Blend.hpp).
 // `shaded` counts the pixels shaded.
 template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleMsaa(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
-                      ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded) {
+                      ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded, float alpha = 1.0f) {
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
     switch (target.samples()) {
-    case 2: detail::fillTriangleSamples<2, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded); break;
-    case 4: detail::fillTriangleSamples<4, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded); break;
-    case 8: detail::fillTriangleSamples<8, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded); break;
-    default: detail::fillTriangleSamples<1, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded); break;
+    case 2: detail::fillTriangleSamples<2, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha); break;
+    case 4: detail::fillTriangleSamples<4, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha); break;
+    case 8: detail::fillTriangleSamples<8, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha); break;
+    default: detail::fillTriangleSamples<1, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha); break;
     }
 }
 

@@ -9,6 +9,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "Raster/Blend.hpp"
 #include "Raster/Clipper.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Line.hpp"
@@ -36,6 +37,10 @@ struct DrawState {
     // k (RenderSettings::ssaa), so that after the k x k resolve an edge still covers whole output
     // pixels (a 1-sample line would resolve to 1/k of its colour).
     int wireWidth = 1;
+    // Below 1: a transparent draw, blended "over" the target with this constant opacity
+    // (Blend.hpp), per pixel or, multisampled, per sample; filled by the scalar loop (the span
+    // kernels store opaque colours only). Such a draw is drawn with DepthMode::Test.
+    float blendAlpha = 1.0f;
 };
 
 namespace detail {
@@ -193,8 +198,10 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     program.triangle(t, static_cast<const TriangleSetup&>(setup));
     // Count the fragments that pass the depth test (one add per pixel: overdraw statistics).
     std::uint64_t& shaded = lane.stats.fragmentsShaded;
-    auto counted = [&shaded, &program](const Fragment<kVaryings>& f) {
+    const float alpha = state.blendAlpha;
+    auto counted = [&shaded, &program, &fb, alpha](const Fragment<kVaryings>& f) {
         ++shaded;
+        if (alpha < 1.0f) return blendOver(program.fragment(f), fb.colorRow(f.y)[f.x], alpha);
         return program.fragment(f);
     };
     // The program's own kernel if it has one for this draw; else the scalar loop, depth mode x
@@ -221,7 +228,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
                 fillSpan<DepthMode::Off, kVaryings, kPersp>(moved, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
             }
         };
-        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded);
+        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha);
     };
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
@@ -232,7 +239,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
             return;
         }
         if constexpr (HasFillKernel<Program>::value) {
-            if (program.fillKernel(static_cast<const TriangleSetup&>(setup), fb, scissor, shaded)) return;
+            if (alpha >= 1.0f && program.fillKernel(static_cast<const TriangleSetup&>(setup), fb, scissor, shaded)) return;
         }
         if constexpr (kVaryings == 0) {
             fillTriangle<kDepth, kVaryings>(setup, fb, scissor, counted);

@@ -24,6 +24,7 @@ struct RenderStats {
     std::uint64_t nonFinite = 0;        // dropped for a NaN/Inf position (part of trivialRejected)
     std::uint64_t fragmentsShaded = 0;  // pixels that passed the depth test and were shaded
     std::uint64_t verticesTransformed = 0; // vertex-stage runs (not counting reused vertices)
+    std::uint64_t trianglesSorted = 0;     // transparent triangles sorted back to front (renderScene)
 
     RenderStats& operator+=(const RenderStats& o) {
         trianglesIn += o.trianglesIn;
@@ -34,6 +35,7 @@ struct RenderStats {
         nonFinite += o.nonFinite;
         fragmentsShaded += o.fragmentsShaded;
         verticesTransformed += o.verticesTransformed;
+        trianglesSorted += o.trianglesSorted;
         return *this;
     }
 };

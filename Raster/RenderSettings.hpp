@@ -38,6 +38,7 @@ struct SurfaceMaterial {
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};   // untextured colour
     Color tint{1.0f, 1.0f, 1.0f, 1.0f}; // multiplies the texel when textured (MTL Kd; 1: the texel alone)
     Specular specular;
+    float alpha = 1.0f; // opacity; below 1 the draw is blended "over" what is behind it (Blend.hpp)
 };
 
 } // namespace sr

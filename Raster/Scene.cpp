@@ -1,7 +1,11 @@
 // Scene statistics and the per-draw loop.
 #include "Raster/Scene.hpp"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "Raster/Msaa.hpp"
 #include "Raster/Resolve.hpp"
@@ -14,22 +18,71 @@ std::size_t Scene::triangleCount() const {
     return n;
 }
 
+namespace {
+
+SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture* textureOverride) {
+    SurfaceMaterial material;
+    material.kd = d.kd;
+    material.tint = d.tint;
+    material.specular = d.specular;
+    material.alpha = d.alpha;
+    if (textureOverride) material.texture = textureOverride;
+    else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
+    return material;
+}
+
+// One transparent triangle: its draw, its first index in the mesh, and its sort key.
+struct SortedTriangle {
+    float w;                 // clip-space w of the centroid: the view depth
+    std::uint32_t draw, first;
+};
+
+} // namespace
+
 void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                  const Texture* textureOverride) {
     // The meshes and the view are constant during the loop: draws of one mesh with the same
     // shading program transform its vertices once (issue 14: cost linear in material switches).
     const VertexReuseScope reuse(ctx);
+    bool anyTransparent = false;
     for (const SceneDraw& d : scene.draws) {
         assert(d.mesh >= 0 && std::size_t(d.mesh) < scene.meshes.size());
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
         assert(std::size_t(d.firstIndex) + d.indexCount <= mesh.indices.size());
-        SurfaceMaterial material;
-        material.kd = d.kd;
-        material.tint = d.tint;
-        material.specular = d.specular;
-        if (textureOverride) material.texture = textureOverride;
-        else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
-        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
+        if (d.alpha < 1.0f) {
+            anyTransparent = true;
+            continue;
+        }
+        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount,
+                 materialOf(scene, d, textureOverride));
+    }
+    if (!anyTransparent) return;
+
+    // Transparent triangles back to front (largest w first; a stable sort keeps draw and file
+    // order for equal keys), drawn as runs of consecutive triangles of one draw.
+    std::vector<SortedTriangle> order;
+    for (std::size_t i = 0; i < scene.draws.size(); ++i) {
+        const SceneDraw& d = scene.draws[i];
+        if (!(d.alpha < 1.0f)) continue;
+        const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+        for (std::uint32_t k = 0; k + 2 < d.indexCount; k += 3) {
+            const std::uint32_t* t = mesh.indices.data() + d.firstIndex + k;
+            const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0f;
+            const float w = (view.viewProj * Vec4(c, 1.0f)).w;
+            order.push_back({std::isnan(w) ? 0.0f : w, std::uint32_t(i), d.firstIndex + k});
+        }
+    }
+    std::stable_sort(order.begin(), order.end(), [](const SortedTriangle& a, const SortedTriangle& b) { return a.w > b.w; });
+    ctx.stats.trianglesSorted += order.size();
+    std::vector<std::uint32_t> indices;
+    for (std::size_t r = 0; r < order.size();) {
+        const std::uint32_t draw = order[r].draw;
+        const SceneDraw& d = scene.draws[draw];
+        const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+        indices.clear();
+        for (; r < order.size() && order[r].draw == draw; ++r)
+            indices.insert(indices.end(), mesh.indices.begin() + order[r].first, mesh.indices.begin() + order[r].first + 3);
+        drawMesh(ctx, view, settings, mesh, indices.data(), indices.size(), materialOf(scene, d, textureOverride));
     }
 }
 

@@ -19,6 +19,7 @@ struct SceneDraw {
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};    // the colour when untextured
     Color tint{1.0f, 1.0f, 1.0f, 1.0f};  // multiplies the texel when textured (1: the texel alone)
     Specular specular;                   // ks and shininess (default: white 0.5, 32)
+    float alpha = 1.0f;                  // opacity (MTL d, glTF BLEND); below 1: drawn after the opaque draws
 };
 
 // Static geometry is stored in world space, prepared once (no per-frame vertex work besides
@@ -32,8 +33,11 @@ struct Scene {
     std::size_t triangleCount() const;
 };
 
-// Draws every SceneDraw in order (the order matters only for exact depth ties: first wins).
-// `textureOverride`, when not null, replaces every draw's texture.
+// Draws every opaque SceneDraw in order (the order matters only for exact depth ties: first
+// wins), then, if any draw is transparent (alpha < 1), the triangles of the transparent draws
+// sorted back to front by the clip-space w (view depth) of their centroids, ties in draw and
+// file order, each blended over what is behind it without writing depth. A scene without
+// transparent draws sorts nothing. `textureOverride`, when not null, replaces every draw's texture.
 void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                  const Texture* textureOverride = nullptr);
 

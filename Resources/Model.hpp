@@ -26,6 +26,7 @@ struct Material {
     bool hasMap = false;   // an MTL that names a map_Kd (whether or not it loads); false for glTF
     Color kd{0.0f, 0.0f, 0.0f, 1.0f}, ks{0.0f, 0.0f, 0.0f, 1.0f};
     float shininess = 1.0f;
+    float alpha = 1.0f; // opacity: MTL d (or 1 - Tr); glTF baseColorFactor alpha under BLEND, 0 or 1 under MASK
 };
 
 // The triangles of one material: one draw call. One range per material (faces without one form

@@ -1,6 +1,8 @@
 // ObjMaterials: .mtl reading via readFileBytes, map_Kd resolution (glref's rules), texture loading with a checkerboard fallback.
 #include "Resources/ObjMaterials.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <istream>
 
 #include "Resources/FileIO.hpp"
@@ -97,6 +99,7 @@ Result<int> assignMaterials(Model& model, const std::vector<tinyobj::material_t>
         q.kd = Color{float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2]), 1.0f};
         q.ks = Color{float(m.specular[0]), float(m.specular[1]), float(m.specular[2]), 1.0f};
         q.shininess = float(m.shininess);
+        q.alpha = std::isfinite(m.dissolve) ? std::clamp(float(m.dissolve), 0.0f, 1.0f) : 1.0f; // d, or 1 - Tr
         model.materials.push_back(q);
     }
 

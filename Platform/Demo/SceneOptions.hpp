@@ -41,8 +41,9 @@ std::optional<Quality> parseQuality(const std::string& text);
 
 // How an OBJ's MTL values are used (the reference renderer's --materials). Mtl: kd = Kd (times
 // the texel when textured; a textured material with a black Kd counts as Kd 1), ks = Ks,
-// shininess = Ns, no specular term when Ks is black or Ns <= 0. Fixed: every material is kd
-// = --kd or the texel alone, white ks 0.5, shininess 32 (the rule before MTL values were read).
+// shininess = Ns, no specular term when Ks is black or Ns <= 0, opacity = d (1 - Tr). Fixed:
+// every material is kd = --kd or the texel alone, white ks 0.5, shininess 32, opaque (the rule
+// before MTL values were read). glTF materials (GltfLoader.hpp) follow the same two rules.
 // Faces without a material use the fixed values under both.
 enum class MaterialRule { Mtl, Fixed };
 const char* materialRuleName(MaterialRule rule);

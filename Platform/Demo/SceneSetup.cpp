@@ -23,8 +23,9 @@ namespace {
 // vertex stage), and a vertex that two materials share (the corners of a checkerboard of
 // materials) is stored and transformed once. Each mesh holds only the vertices its ranges use.
 // One remap array serves both meshes (cleared after each).
-// Each range is one draw with its material's values under `rule` (SceneOptions.hpp, MaterialRule);
-// a range without an MTL material (or under Fixed) gets kd = `kd`, the texel alone, ks 0.5, 32.
+// Each range is one draw with its material's values under `rule` (SceneOptions.hpp, MaterialRule),
+// its opacity included (a range of opacity 0 is not drawn); a range without a material from the
+// file (or under Fixed) gets kd = `kd`, the texel alone, ks 0.5, 32, opaque.
 Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
     Scene scene;
     for (const Image& img : model.textures)
@@ -61,6 +62,8 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
             d.kd = m->hasMap && black ? Color{1.0f, 1.0f, 1.0f, 1.0f} : m->kd;
             d.tint = d.kd;
             d.specular = Specular{m->ks, m->shininess};
+            d.alpha = m->alpha;
+            if (!(d.alpha > 0.0f)) continue; // fully transparent (glTF MASK below its cutoff): nothing to draw
         }
         scene.draws.push_back(d);
     }

@@ -135,6 +135,7 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"rasterized\":" + std::to_string(counters.rasterized);
     j += ",\"pixels_shaded\":" + std::to_string(counters.fragmentsShaded);
     j += ",\"pixels_covered\":" + std::to_string(covered);
+    j += ",\"triangles_sorted\":" + std::to_string(counters.trianglesSorted);
     j += ",\"overdraw\":" + jsonNumber(covered > 0 ? double(counters.fragmentsShaded) / double(covered) : 0.0) + "}";
     j += ",\"shading\":\"" + std::string(shadingModeName(settings.shading)) + "\"";
     j += ",\"cull\":\"" + std::string(cullModeName(settings.cull)) + "\"";

@@ -243,7 +243,7 @@ TEST_CASE("bench prints one JSON line with the documented fields", "[headless]")
     for (const char* key : {"width", "height", "triangles", "frames", "threads", "ms_per_frame_median",
                             "ms_per_frame_min", "mpix_per_s", "stages_ms", "clear", "transform_clip_cull", "setup",
                             "fill_shade", "counters", "vertices_transformed", "triangles_in", "clipped", "culled",
-                            "rasterized", "pixels_shaded", "overdraw"})
+                            "rasterized", "pixels_shaded", "overdraw", "triangles_sorted"})
         CHECK(hasKey(j, key));
     CHECK(numberOf(j, "width") == 64);
     CHECK(numberOf(j, "frames") == 3);
@@ -257,6 +257,7 @@ TEST_CASE("bench prints one JSON line with the documented fields", "[headless]")
     CHECK(numberOf(j, "pixels_shaded") >= numberOf(j, "pixels_covered"));
     CHECK(numberOf(j, "pixels_covered") <= 64 * 48);
     CHECK(numberOf(j, "overdraw") >= 1.0);
+    CHECK(numberOf(j, "triangles_sorted") == 0); // nothing transparent in the built-in scene: no sort
 }
 
 TEST_CASE("bench counters follow the cull mode", "[headless]") {

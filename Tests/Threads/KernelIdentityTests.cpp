@@ -163,7 +163,8 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                         for (const Texture& texture : textures) {
                             // kd here is the texel's tint (an MTL Kd).
                             const DrawContext d{view,     settings, mesh, mesh.indices.data(), &texture, Color{0.7f, 0.4f, 0.2f, 1.0f},
-                                                specular};
+                                                specular,
+                                                1.0f};
                             compareKernel<UnlitProgram<true>>(isa, key, [&] { return UnlitProgram<true>(&d, 0); }, rng, totals);
                             compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<true>>(isa, key, [&] { return GouraudProgram<true>(&d); }, rng, totals);
@@ -172,7 +173,7 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                         // Untextured programs read neither filter nor wrap: once per depth and perspective.
                         if (filter != TextureFilter::Nearest || wrap != WrapMode::Repeat) continue;
                         for (const Specular& sp : speculars) {
-                            const DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}, sp};
+                            const DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f};
                             compareKernel<UnlitProgram<false>>(isa, key, [&] { return UnlitProgram<false>(&d, packBgra8(d.kd)); }, rng, totals);
                             compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<false>>(isa, key, [&] { return GouraudProgram<false>(&d); }, rng, totals);
