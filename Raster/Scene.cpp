@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "Raster/LineDraw.hpp"
 #include "Raster/Msaa.hpp"
 #include "Raster/Resolve.hpp"
 
@@ -56,6 +57,10 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount,
                  materialOf(scene, d, textureOverride));
     }
+    // Lines and points: depth-tested and written, before the transparent surfaces blend over them.
+    const int lineWidth = std::max(1, ssaaFactor(settings.ssaa));
+    for (const SceneLines& l : scene.lines)
+        drawWorldLines(ctx, view, l.positions, l.indices, l.points, packBgra8(l.colour), lineWidth);
     if (!anyTransparent) return;
 
     // Transparent triangles back to front (largest w first; a stable sort keeps draw and file

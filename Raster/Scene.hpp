@@ -22,19 +22,28 @@ struct SceneDraw {
     float alpha = 1.0f;                  // opacity (MTL d, glTF BLEND); below 1: drawn after the opaque draws
 };
 
+// World-space line segments (index pairs) or points, in one flat colour (lines are unlit).
+struct SceneLines {
+    std::vector<Vec3> positions;
+    std::vector<std::uint32_t> indices; // 2 per segment, or 1 per point
+    bool points = false;
+    Color colour{0.8f, 0.8f, 0.8f, 1.0f};
+};
+
 // Static geometry is stored in world space, prepared once (no per-frame vertex work besides
 // the transform to clip space).
 struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Texture> textures;
     std::vector<SceneDraw> draws;
+    std::vector<SceneLines> lines; // drawn after the opaque triangles, before the transparent ones
     Vec3 boundsMin{0, 0, 0}, boundsMax{0, 0, 0}; // for the auto-fit camera
 
     std::size_t triangleCount() const;
 };
 
 // Draws every opaque SceneDraw in order (the order matters only for exact depth ties: first
-// wins), then, if any draw is transparent (alpha < 1), the triangles of the transparent draws
+// wins), then the lines and points (drawWorldLines, LineDraw.hpp), then, if any draw is transparent (alpha < 1), the triangles of the transparent draws
 // sorted back to front by the clip-space w (view depth) of their centroids, ties in draw and
 // file order, each blended over what is behind it without writing depth. A scene without
 // transparent draws sorts nothing. `textureOverride`, when not null, replaces every draw's texture.

@@ -272,20 +272,64 @@ struct Builder {
     Model model;
     std::vector<std::vector<std::uint32_t>> trianglesOf; // [material + 1] -> indices
     std::vector<int> firstUse;                           // materials (+1) in order of first use
-    std::size_t skippedPrimitives = 0;
+    std::size_t lineElements = 0, lineVertices = 0; // in model.lineSets, for the limits
     std::size_t triangles = 0; // in trianglesOf (the mesh's indices are filled at the end)
     bool anyComputedNormal = false, anyFileNormal = false;
 };
+
+// Vertex i of a POSITION accessor through the node's world transform (double, rounded to float).
+Result<Vec3> worldPosition(const View& pos, std::size_t i, const Mat4d& world, const std::string& what) {
+    const double x = readFloat(pos, i, 0), y = readFloat(pos, i, 1), z = readFloat(pos, i, 2);
+    if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
+        return Result<Vec3>::failure(what + " POSITION: vertex " + std::to_string(i) + " is not finite");
+    const double px = world.m[0][0] * x + world.m[0][1] * y + world.m[0][2] * z + world.m[0][3];
+    const double py = world.m[1][0] * x + world.m[1][1] * y + world.m[1][2] * z + world.m[1][3];
+    const double pz = world.m[2][0] * x + world.m[2][1] * y + world.m[2][2] * z + world.m[2][3];
+    const Vec3 pf{float(px), float(py), float(pz)};
+    if (!std::isfinite(pf.x) || !std::isfinite(pf.y) || !std::isfinite(pf.z))
+        return Result<Vec3>::failure(what + " POSITION: vertex " + std::to_string(i) + " is not finite after the node transforms");
+    return Result<Vec3>(pf);
+}
+
+// POINTS, LINES, LINE_LOOP and LINE_STRIP: a LineSet in world space (glTF "Meshes": a loop
+// closes last -> first, a strip joins consecutive vertices).
+Status addLines(Builder& b, const tinygltf::Model& g, const tinygltf::Primitive& prim, const View& pos,
+                const std::vector<std::uint32_t>& order, const Mat4d& world, const std::string& what,
+                const ObjLimits& limits) {
+    LineSet set;
+    set.points = prim.mode == kModePoints;
+    set.material = prim.material >= 0 && std::size_t(prim.material) < g.materials.size() ? prim.material : -1;
+    if (prim.material >= 0 && set.material < 0)
+        return Status::failure(what + ": material " + std::to_string(prim.material) + " does not exist");
+    const std::size_t n = order.size();
+    if (set.points) {
+        set.indices = order;
+    } else if (prim.mode == kModePoints + 1) { // LINES
+        set.indices.assign(order.begin(), order.begin() + std::ptrdiff_t(n - n % 2));
+    } else {
+        for (std::size_t i = 0; i + 1 < n; ++i) set.indices.insert(set.indices.end(), {order[i], order[i + 1]});
+        if (prim.mode == kModePoints + 2 && n >= 2) set.indices.insert(set.indices.end(), {order[n - 1], order[0]}); // LOOP
+    }
+    b.lineElements += set.indices.size();
+    if (b.lineElements > limits.maxTriangles * 3) return Status::failure("more line and point elements than the triangle limit allows");
+    if (b.model.mesh.vertexCount() + b.lineVertices + pos.count > limits.maxVertices)
+        return Status::failure("more than " + std::to_string(limits.maxVertices) + " vertices");
+    b.lineVertices += pos.count;
+    set.positions.reserve(pos.count);
+    for (std::size_t i = 0; i < pos.count; ++i) {
+        auto p = worldPosition(pos, i, world, what);
+        if (!p) return Status::failure(p.error());
+        set.positions.push_back(p.value());
+    }
+    if (!set.indices.empty()) b.model.lineSets.push_back(std::move(set));
+    return success();
+}
 
 Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primitive& prim, const Mat4d& world,
                     const std::string& what, const ObjLimits& limits) {
     if (prim.extensions.count("KHR_draco_mesh_compression"))
         return Status::failure(what + ": uses KHR_draco_mesh_compression (Draco-compressed meshes), which SoftRaster does not support");
-    if (prim.mode != kModeTriangles && prim.mode != kModeStrip && prim.mode != kModeFan) {
-        if (prim.mode < kModePoints || prim.mode > kModeFan) return Status::failure(what + ": unknown mode " + std::to_string(prim.mode));
-        ++b.skippedPrimitives;
-        return success();
-    }
+    if (prim.mode < kModePoints || prim.mode > kModeFan) return Status::failure(what + ": unknown mode " + std::to_string(prim.mode));
     const auto attribute = [&](const char* name) {
         const auto it = prim.attributes.find(name);
         return it == prim.attributes.end() ? -1 : it->second;
@@ -336,6 +380,7 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
         order.resize(count);
         for (std::size_t i = 0; i < count; ++i) order[i] = std::uint32_t(i);
     }
+    if (prim.mode < kModeTriangles) return addLines(b, g, prim, pos.value(), order, world, what, limits);
     // Triangles of the mode, in the primitive's vertex numbering.
     std::vector<std::uint32_t> tris;
     const std::size_t n = order.size();
@@ -359,18 +404,10 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
     const auto base = std::uint32_t(mesh.positions.size());
     std::vector<Vec3d> world3(count);
     for (std::size_t i = 0; i < count; ++i) {
-        const double x = readFloat(pos.value(), i, 0), y = readFloat(pos.value(), i, 1), z = readFloat(pos.value(), i, 2);
-        if (!std::isfinite(x) || !std::isfinite(y) || !std::isfinite(z))
-            return Status::failure(what + " POSITION: vertex " + std::to_string(i) + " is not finite");
-        Vec3d p;
-        p.x = world.m[0][0] * x + world.m[0][1] * y + world.m[0][2] * z + world.m[0][3];
-        p.y = world.m[1][0] * x + world.m[1][1] * y + world.m[1][2] * z + world.m[1][3];
-        p.z = world.m[2][0] * x + world.m[2][1] * y + world.m[2][2] * z + world.m[2][3];
-        const Vec3 pf(float(p.x), float(p.y), float(p.z));
-        if (!std::isfinite(pf.x) || !std::isfinite(pf.y) || !std::isfinite(pf.z))
-            return Status::failure(what + " POSITION: vertex " + std::to_string(i) + " is not finite after the node transforms");
-        world3[i] = Vec3d(pf);
-        mesh.positions.push_back(pf);
+        auto pf = worldPosition(pos.value(), i, world, what);
+        if (!pf) return Status::failure(pf.error());
+        world3[i] = Vec3d(pf.value());
+        mesh.positions.push_back(pf.value());
     }
     // Normals: the inverse transpose of the upper 3x3 (its cofactor matrix; the scale drops out
     // with the renormalisation), or area-weighted from the world-space triangles.
@@ -570,10 +607,7 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
         for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, world, item.depth + 1});
     }
     Model& model = b.model;
-    if (b.triangles == 0) return R::failure(path + ": the scene has no triangles to draw");
-    if (b.skippedPrimitives > 0)
-        model.warnings.push_back(path + ": " + std::to_string(b.skippedPrimitives) +
-                                 " point or line primitive(s) not drawn (only triangles, strips and fans are)");
+    if (b.triangles == 0 && model.lineSets.empty()) return R::failure(path + ": the scene has nothing to draw");
     model.normalsFromFile = b.anyFileNormal && !b.anyComputedNormal;
 
     // Materials and their base colour textures (one slot per image).
@@ -657,12 +691,16 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
         model.mesh.indices.insert(model.mesh.indices.end(), list.begin(), list.end());
         model.ranges.push_back(r);
     }
-    // Bounds of the drawn vertices (world space).
-    model.boundsMin = model.boundsMax = model.mesh.positions.front();
-    for (const Vec3& p : model.mesh.positions) {
-        model.boundsMin = Vec3(std::min(model.boundsMin.x, p.x), std::min(model.boundsMin.y, p.y), std::min(model.boundsMin.z, p.z));
-        model.boundsMax = Vec3(std::max(model.boundsMax.x, p.x), std::max(model.boundsMax.y, p.y), std::max(model.boundsMax.z, p.z));
-    }
+    // Bounds of the drawn vertices (world space), triangles', lines' and points'.
+    model.boundsMin = model.boundsMax = !model.mesh.positions.empty() ? model.mesh.positions.front() : model.lineSets.front().positions.front();
+    const auto grow = [&](const std::vector<Vec3>& positions) {
+        for (const Vec3& p : positions) {
+            model.boundsMin = Vec3(std::min(model.boundsMin.x, p.x), std::min(model.boundsMin.y, p.y), std::min(model.boundsMin.z, p.z));
+            model.boundsMax = Vec3(std::max(model.boundsMax.x, p.x), std::max(model.boundsMax.y, p.y), std::max(model.boundsMax.z, p.z));
+        }
+    };
+    grow(model.mesh.positions);
+    for (const LineSet& l : model.lineSets) grow(l.positions);
     if (!warn.empty()) {
         std::string w = warn;
         while (!w.empty() && w.back() == '\n') w.pop_back();

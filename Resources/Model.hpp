@@ -39,6 +39,15 @@ struct DrawRange {
     int texture = -1; // == (material >= 0 && hasUvs ? materials[material].texture : -1), for convenience
 };
 
+// Line segments (index pairs) or points of the file (glTF POINTS / LINES / LINE_LOOP /
+// LINE_STRIP), in world space, with their material (-1: none).
+struct LineSet {
+    std::vector<Vec3> positions;
+    std::vector<std::uint32_t> indices; // 2 per segment, 1 per point; each < positions.size()
+    bool points = false;
+    int material = -1;
+};
+
 // A perspective camera of the file (glTF), in world space: it looks down its node's -Z with +Y up.
 struct ModelCamera {
     std::string name;
@@ -58,6 +67,7 @@ struct Model {
     bool hasUvs = false;          // the OBJ has at least one 'vt'
     bool normalsFromFile = false; // every face-vertex had a 'vn' (else some were computed)
     std::vector<ModelCamera> cameras;  // glTF: the scene's perspective cameras, in node order
+    std::vector<LineSet> lineSets;     // glTF: line and point primitives (OBJ 'l'/'p' are not read)
     std::vector<std::string> warnings; // one line each, naming the file
 };
 

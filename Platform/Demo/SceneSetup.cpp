@@ -67,6 +67,17 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
         }
         scene.draws.push_back(d);
     }
+    // Lines and points: the flat colour of their material (kd; lines carry no normal), else kd.
+    for (LineSet& l : model.lineSets) {
+        SceneLines lines;
+        lines.points = l.points;
+        lines.colour = kd;
+        const Material* m = l.material >= 0 ? &model.materials[std::size_t(l.material)] : nullptr;
+        if (rule == MaterialRule::Mtl && m && m->fromFile) lines.colour = m->kd;
+        lines.positions = std::move(l.positions);
+        lines.indices = std::move(l.indices);
+        scene.lines.push_back(std::move(lines));
+    }
     scene.boundsMin = model.boundsMin;
     scene.boundsMax = model.boundsMax;
     return scene;
@@ -171,14 +182,23 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         // Bounding sphere: centre of the AABB of every 'v', radius = farthest vertex from it.
         out.centre = (m.boundsMin + m.boundsMax) * 0.5f;
         double r = 0.0;
-        for (const Vec3& p : m.mesh.positions) {
-            const double dx = double(p.x) - out.centre.x, dy = double(p.y) - out.centre.y, dz = double(p.z) - out.centre.z;
-            r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz));
-        }
+        const auto reach = [&](const std::vector<Vec3>& positions) {
+            for (const Vec3& p : positions) {
+                const double dx = double(p.x) - out.centre.x, dy = double(p.y) - out.centre.y, dz = double(p.z) - out.centre.z;
+                r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz));
+            }
+        };
+        reach(m.mesh.positions);
+        for (const LineSet& l : m.lineSets) reach(l.positions); // glTF lines and points
         out.radius = r > 0.0 ? r : 1.0;
         out.description = options.obj + ": " + std::to_string(m.mesh.triangleCount()) + " triangles, " +
                           std::to_string(m.textures.size()) + " textures, normals " +
                           (m.normalsFromFile ? "from the file" : "computed (area-weighted)");
+        if (!m.lineSets.empty()) {
+            std::size_t segments = 0, points = 0;
+            for (const LineSet& l : m.lineSets) (l.points ? points : segments) += l.points ? l.indices.size() : l.indices.size() / 2;
+            out.description += ", " + std::to_string(segments) + " line segments, " + std::to_string(points) + " points";
+        }
         for (const ModelCamera& mc : m.cameras) {
             CameraSetup c;
             c.eye = mc.eye;

@@ -7,7 +7,9 @@
 #include <cstdlib>
 #include <filesystem>
 #include <limits>
+#include <cstdio>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -142,6 +144,33 @@ TEST_CASE("glTF: a mirroring node keeps front faces counter-clockwise; normals g
         checkVec(r.value().mesh.normals[1], 0.4472136f, 0.8944272f, 0); // (0.5, 1, 0) / sqrt(1.25)
         checkVec(r.value().mesh.positions[1], 2, 0, 0);
     }
+}
+
+TEST_CASE("glTF points, lines, line loops and strips become world-space line sets", "[resources][gltf][lines]") {
+    const std::string dir = freshDir("gltf-lines");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 5, 5, 5}, "VEC3"); // 5 vertices
+    const int idx = a.indices({0, 1, 2, 3}, 5123);
+    const auto prim = [&](int mode, bool indexed) {
+        return "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}" +
+               (indexed ? ",\"indices\":" + std::to_string(idx) : std::string()) + ",\"mode\":" + std::to_string(mode) + "}";
+    };
+    a.meshes = "[{\"primitives\":[" + prim(0, false) + "," + prim(1, false) + "," + prim(2, true) + "," + prim(3, true) + "]}]";
+    a.nodes = "[{\"translation\":[10,0,0],\"mesh\":0}]";
+    auto r = load(dir, "lines.gltf", a.embedded());
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    CHECK(m.mesh.triangleCount() == 0);
+    REQUIRE(m.lineSets.size() == 4);
+    CHECK(m.lineSets[0].points);
+    CHECK(m.lineSets[0].indices == std::vector<std::uint32_t>{0, 1, 2, 3, 4});
+    CHECK_FALSE(m.lineSets[1].points);
+    CHECK(m.lineSets[1].indices == std::vector<std::uint32_t>{0, 1, 2, 3}); // LINES: pairs, the odd 5th dropped
+    CHECK(m.lineSets[2].indices == std::vector<std::uint32_t>{0, 1, 1, 2, 2, 3, 3, 0}); // LINE_LOOP closes
+    CHECK(m.lineSets[3].indices == std::vector<std::uint32_t>{0, 1, 1, 2, 2, 3});       // LINE_STRIP
+    checkVec(m.lineSets[0].positions[2], 11, 1, 0); // world space: the node's translation applied
+    checkVec(m.boundsMin, 10, 0, 0);                // bounds from the lines alone
+    checkVec(m.boundsMax, 15, 5, 5);
 }
 
 TEST_CASE("glTF TEXCOORD_0: float or normalised u16, v flipped to OBJ's convention", "[resources][gltf]") {
@@ -415,7 +444,7 @@ TEST_CASE("glTF files of assimp-testmodels: each loads or fails in one line; the
         INFO(path << ": " << (r.ok() ? "loaded" : r.error()));
         if (r.ok()) {
             ++loaded;
-            CHECK(r.value().mesh.triangleCount() > 0);
+            CHECK((r.value().mesh.triangleCount() > 0 || !r.value().lineSets.empty()));
             CHECK(indicesValid(r.value().mesh));
         } else {
             ++failed;
@@ -465,5 +494,82 @@ TEST_CASE("glTF world-space triangles equal assimp's OBJ export of the same file
         ++compared;
     }
     CHECK(compared == 6);
+}
+
+// The exported OBJ's 'v', 'l' and 'p' lines, read directly (our OBJ loader reads faces only).
+struct ObjLines {
+    std::vector<Vec3> v;
+    std::vector<std::array<int, 2>> segments;
+    std::vector<int> points;
+};
+ObjLines readObjLines(const std::string& path) {
+    ObjLines out;
+    auto bytes = readFileBytes(path);
+    REQUIRE(bytes.ok());
+    const std::string text(bytes.value().begin(), bytes.value().end());
+    std::size_t start = 0;
+    while (start < text.size()) {
+        std::size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        const std::string line = text.substr(start, end - start);
+        start = end + 1;
+        float x = 0, y = 0, z = 0;
+        int i = 0, j = 0;
+        if (std::sscanf(line.c_str(), "v %f %f %f", &x, &y, &z) == 3) out.v.emplace_back(x, y, z);
+        else if (std::sscanf(line.c_str(), "l %d %d", &i, &j) == 2) out.segments.push_back({i - 1, j - 1});
+        else if (std::sscanf(line.c_str(), "p %d", &i) == 1) out.points.push_back(i - 1);
+    }
+    return out;
+}
+
+TEST_CASE("glTF-Asset-Generator's Mesh_PrimitiveMode set: every mode equals assimp's OBJ export", "[resources][gltf][assimp]") {
+    if (std::system("command -v assimp >/dev/null 2>&1") != 0) FAIL("assimp not found: scripts/install-deps.sh test installs assimp-utils");
+    const std::string set = kAssimpGltf + "/glTF-Asset-Generator/Mesh_PrimitiveMode";
+    const std::string dir = freshDir("gltf-modes-assimp");
+    const auto key = [](Vec3 p) { return std::array<long, 3>{std::lround(p.x * 1e5f), std::lround(p.y * 1e5f), std::lround(p.z * 1e5f)}; };
+    for (int n = 0; n <= 15; ++n) {
+        const std::string name = std::string("Mesh_PrimitiveMode_") + (n < 10 ? "0" : "") + std::to_string(n);
+        const std::string path = set + "/" + name + ".gltf", obj = dir + "/" + name + ".obj";
+        INFO(path);
+        REQUIRE(std::filesystem::exists(path));
+        REQUIRE(std::system(("assimp export '" + path + "' '" + obj + "' >/dev/null 2>&1").c_str()) == 0);
+        ObjOptions options;
+        options.loadTextures = false;
+        auto ours = loadGltf(path, options);
+        REQUIRE(ours.ok());
+        const Model& m = ours.value();
+        if (m.mesh.triangleCount() > 0) { // triangles, strips, fans
+            auto theirs = loadObj(obj, options);
+            REQUIRE(theirs.ok());
+            const auto a = triangles(m), b = triangles(theirs.value());
+            REQUIRE(a.size() == b.size());
+            CHECK(unmatched(a, b, 1e-6f) == 0);
+            continue;
+        }
+        // Points and lines: the same multisets of points and of (unordered) segments.
+        const ObjLines theirs = readObjLines(obj);
+        std::multiset<std::array<long, 3>> pa, pb;
+        std::multiset<std::array<std::array<long, 3>, 2>> sa, sb;
+        for (const LineSet& l : m.lineSets) {
+            if (l.points) {
+                for (std::uint32_t i : l.indices) pa.insert(key(l.positions[i]));
+                continue;
+            }
+            for (std::size_t k = 0; k + 1 < l.indices.size(); k += 2) {
+                auto e = std::array<std::array<long, 3>, 2>{key(l.positions[l.indices[k]]), key(l.positions[l.indices[k + 1]])};
+                if (e[1] < e[0]) std::swap(e[0], e[1]);
+                sa.insert(e);
+            }
+        }
+        for (int i : theirs.points) pb.insert(key(theirs.v[std::size_t(i)]));
+        for (const auto& s2 : theirs.segments) {
+            auto e = std::array<std::array<long, 3>, 2>{key(theirs.v[std::size_t(s2[0])]), key(theirs.v[std::size_t(s2[1])])};
+            if (e[1] < e[0]) std::swap(e[0], e[1]);
+            sb.insert(e);
+        }
+        CHECK(pa.size() + sa.size() > 0);
+        CHECK(pa == pb);
+        CHECK(sa == sb);
+    }
 }
 #endif

@@ -1,0 +1,100 @@
+// drawWorldLines: clip-space transform, homogeneous segment clipping, the DDA line drawer.
+#include "Raster/LineDraw.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "Raster/Clipper.hpp" // kClipMinW
+#include "Raster/Line.hpp"
+#include "Raster/Viewport.hpp"
+
+namespace sr {
+namespace {
+
+// The clip-space end of a segment, and its signed distances to the planes it is clipped against
+// (inside >= 0): near (w - z), MinW (w - kClipMinW), far (z; only with a far plane).
+struct ClipEnd {
+    double x, y, z, w;
+};
+
+ClipEnd toClip(const FrameView& view, Vec3 p) {
+    const Vec4 c = view.viewProj * Vec4(p, 1.0f);
+    return {c.x, c.y, c.z, c.w};
+}
+
+bool finiteEnd(const ClipEnd& e) {
+    return std::isfinite(e.x) && std::isfinite(e.y) && std::isfinite(e.z) && std::isfinite(e.w);
+}
+
+// Liang-Barsky on the plane distances: the parameter range [t0, t1] of a + t (b - a) inside
+// every plane, or false when none is.
+bool clipSegment(const ClipEnd& a, const ClipEnd& b, bool clipFar, double& t0, double& t1) {
+    t0 = 0.0;
+    t1 = 1.0;
+    const double minW = double(kClipMinW);
+    const double da[3] = {a.w - a.z, a.w - minW, a.z}, db[3] = {b.w - b.z, b.w - minW, b.z};
+    for (int p = 0; p < (clipFar ? 3 : 2); ++p) {
+        if (da[p] < 0.0 && db[p] < 0.0) return false;
+        if (da[p] < 0.0) t0 = std::max(t0, da[p] / (da[p] - db[p]));
+        else if (db[p] < 0.0) t1 = std::min(t1, da[p] / (da[p] - db[p]));
+    }
+    return t0 <= t1;
+}
+
+ScreenVertex toScreenAt(const ClipEnd& a, const ClipEnd& b, double t, int width, int height) {
+    ClipVertex v;
+    v.position = Vec4(float(a.x + (b.x - a.x) * t), float(a.y + (b.y - a.y) * t), float(a.z + (b.z - a.z) * t),
+                      float(a.w + (b.w - a.w) * t));
+    if (t == 0.0) v.position = Vec4(float(a.x), float(a.y), float(a.z), float(a.w));
+    if (t == 1.0) v.position = Vec4(float(b.x), float(b.y), float(b.z), float(b.w));
+    return toScreen(v, width, height, 0);
+}
+
+} // namespace
+
+void drawWorldLines(RenderContext& ctx, const FrameView& view, const std::vector<Vec3>& positions,
+                    const std::vector<std::uint32_t>& indices, bool points, Pixel colour, int width) {
+    FrameBuffer& fb = ctx.target();
+    MsaaBuffer* msaa = ctx.multisampleTarget();
+    const int w = fb.width(), h = fb.height();
+    if (w <= 0 || h <= 0) return;
+    LineOptions options;
+    options.depthTest = true;
+    options.depthWrite = true;
+    width = std::max(width, 1);
+    const auto draw = [&](const ScreenVertex& a, const ScreenVertex& b) {
+        const LineVertex la{a.x, a.y, a.z, colour}, lb{b.x, b.y, b.z, colour};
+        if (msaa) {
+            drawLine(*msaa, la, lb, options);
+            return;
+        }
+        if (points) { // the k x k block (k = width) of the output pixel that contains the point
+            if (!(std::fabs(a.x) < 1e9f && std::fabs(a.y) < 1e9f)) return; // far outside the target
+            const float x0 = std::floor(a.x / float(width)) * float(width), y0 = std::floor(a.y / float(width)) * float(width);
+            for (int i = 0; i < width; ++i)
+                for (int j = 0; j < width; ++j) {
+                    const float x = x0 + float(i) + 0.5f, y = y0 + float(j) + 0.5f;
+                    drawLine(fb, LineVertex{x, y, a.z, colour}, LineVertex{x, y, a.z, colour}, options);
+                }
+            return;
+        }
+        const bool xMajor = std::fabs(b.x - a.x) >= std::fabs(b.y - a.y);
+        for (int k = 0; k < width; ++k) {
+            const float offset = float(k) - 0.5f * float(width - 1);
+            const float dx = xMajor ? 0.0f : offset, dy = xMajor ? offset : 0.0f;
+            drawLine(fb, LineVertex{a.x + dx, a.y + dy, a.z, colour}, LineVertex{b.x + dx, b.y + dy, b.z, colour}, options);
+        }
+    };
+    const std::size_t step = points ? 1 : 2;
+    for (std::size_t i = 0; i + step - 1 < indices.size(); i += step) {
+        if (indices[i] >= positions.size() || indices[i + step - 1] >= positions.size()) continue;
+        const ClipEnd a = toClip(view, positions[indices[i]]);
+        const ClipEnd b = points ? a : toClip(view, positions[indices[i + 1]]);
+        if (!finiteEnd(a) || !finiteEnd(b)) continue;
+        double t0 = 0.0, t1 = 1.0;
+        if (!clipSegment(a, b, view.finiteFar, t0, t1)) continue;
+        draw(toScreenAt(a, b, t0, w, h), toScreenAt(a, b, t1, w, h));
+    }
+}
+
+} // namespace sr
