@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <system_error>
 
 #include "Math/Conventions.hpp"
@@ -16,6 +17,8 @@
 #include "Resources/FileIO.hpp"
 #include "Resources/ObjLoader.hpp"
 #include "Resources/TinyGltf.hpp"
+
+#include <nlohmann/json.hpp>
 
 namespace sr {
 
@@ -266,6 +269,126 @@ std::string decodeUri(const std::string& uri) {
     return out;
 }
 
+// Types of the glTF 2.0 core properties (the specification's JSON schema, by property name:
+// the core schema gives each name one type, "scale" aside: a node's array or a normal
+// texture's number). tinygltf skips an optional property of the wrong type as if it were
+// absent; the specification calls such a file invalid, so we refuse it, naming the property.
+enum class Kind { String, Uint, Number, Bool, Array, Object, NumberOrNumbers, Numbers, Uints };
+
+const std::map<std::string, Kind>& schemaKinds() {
+    static const std::map<std::string, Kind> kinds = {
+        {"name", Kind::String}, {"uri", Kind::String}, {"mimeType", Kind::String}, {"type", Kind::String},
+        {"alphaMode", Kind::String}, {"version", Kind::String}, {"minVersion", Kind::String},
+        {"generator", Kind::String}, {"copyright", Kind::String}, {"scene", Kind::Uint}, {"mesh", Kind::Uint},
+        {"camera", Kind::Uint}, {"skin", Kind::Uint}, {"buffer", Kind::Uint}, {"bufferView", Kind::Uint},
+        {"byteOffset", Kind::Uint}, {"byteLength", Kind::Uint}, {"byteStride", Kind::Uint},
+        {"componentType", Kind::Uint}, {"count", Kind::Uint}, {"indices", Kind::Uint}, {"material", Kind::Uint},
+        {"mode", Kind::Uint}, {"sampler", Kind::Uint}, {"source", Kind::Uint}, {"index", Kind::Uint},
+        {"texCoord", Kind::Uint}, {"magFilter", Kind::Uint}, {"minFilter", Kind::Uint}, {"wrapS", Kind::Uint},
+        {"wrapT", Kind::Uint}, {"metallicFactor", Kind::Number}, {"roughnessFactor", Kind::Number},
+        {"alphaCutoff", Kind::Number}, {"strength", Kind::Number}, {"yfov", Kind::Number}, {"znear", Kind::Number},
+        {"zfar", Kind::Number}, {"aspectRatio", Kind::Number}, {"xmag", Kind::Number}, {"ymag", Kind::Number},
+        {"normalized", Kind::Bool}, {"doubleSided", Kind::Bool}, {"scale", Kind::NumberOrNumbers},
+        {"matrix", Kind::Numbers}, {"rotation", Kind::Numbers}, {"translation", Kind::Numbers},
+        {"weights", Kind::Numbers}, {"baseColorFactor", Kind::Numbers}, {"emissiveFactor", Kind::Numbers},
+        {"max", Kind::Numbers}, {"min", Kind::Numbers}, {"children", Kind::Uints}, {"joints", Kind::Uints},
+        {"primitives", Kind::Array}, {"accessors", Kind::Array}, {"buffers", Kind::Array}, {"bufferViews", Kind::Array},
+        {"meshes", Kind::Array}, {"materials", Kind::Array}, {"textures", Kind::Array}, {"images", Kind::Array},
+        {"samplers", Kind::Array}, {"scenes", Kind::Array}, {"nodes", Kind::Array}, {"cameras", Kind::Array},
+        {"skins", Kind::Array}, {"animations", Kind::Array}, {"extensionsUsed", Kind::Array},
+        {"extensionsRequired", Kind::Array}, {"targets", Kind::Array}, {"attributes", Kind::Object},
+        {"pbrMetallicRoughness", Kind::Object}, {"normalTexture", Kind::Object}, {"occlusionTexture", Kind::Object},
+        {"emissiveTexture", Kind::Object}, {"baseColorTexture", Kind::Object}, {"metallicRoughnessTexture", Kind::Object},
+        {"asset", Kind::Object}, {"perspective", Kind::Object}, {"orthographic", Kind::Object}, {"sparse", Kind::Object},
+        {"extensions", Kind::Object}};
+    return kinds;
+}
+
+bool isUint(const nlohmann::json& v) { return v.is_number_unsigned() || (v.is_number_integer() && v.get<long long>() >= 0); }
+
+bool hasKind(const nlohmann::json& v, Kind k) {
+    const auto all = [&](auto pred) {
+        if (!v.is_array()) return false;
+        for (const auto& e : v)
+            if (!pred(e)) return false;
+        return true;
+    };
+    switch (k) {
+    case Kind::String: return v.is_string();
+    case Kind::Uint: return isUint(v);
+    case Kind::Number: return v.is_number();
+    case Kind::Bool: return v.is_boolean();
+    case Kind::Array: return v.is_array();
+    case Kind::Object: return v.is_object();
+    case Kind::NumberOrNumbers: return v.is_number() || all([](const nlohmann::json& e) { return e.is_number(); });
+    case Kind::Numbers: return all([](const nlohmann::json& e) { return e.is_number(); });
+    case Kind::Uints: return all([](const nlohmann::json& e) { return isUint(e); });
+    }
+    return false;
+}
+
+const char* kindName(Kind k) {
+    switch (k) {
+    case Kind::String: return "a string";
+    case Kind::Uint: return "an unsigned integer";
+    case Kind::Number: return "a number";
+    case Kind::Bool: return "true or false";
+    case Kind::Array: return "an array";
+    case Kind::Object: return "an object";
+    case Kind::NumberOrNumbers: return "a number or an array of numbers";
+    case Kind::Numbers: return "an array of numbers";
+    case Kind::Uints: return "an array of unsigned integers";
+    }
+    return "?";
+}
+
+// The first property of the wrong type, as "path: expected KIND", or an empty string. "extras"
+// is free-form; each extension's value must be an object (its own schema is not checked); at the
+// top level only the core properties are looked into (glTF 1.0 leftovers such as "programs" are
+// not glTF 2.0 and are ignored, as tinygltf ignores them). ("target" is left out: an unsigned
+// integer in a buffer view, an object in an animation channel.)
+std::string schemaProblem(const nlohmann::json& v, const std::string& path, int depth = 0) {
+    static const std::set<std::string> kTopLevel = {"asset", "scene", "scenes", "nodes", "meshes", "materials", "textures",
+                                                    "images", "samplers", "buffers", "bufferViews", "accessors", "cameras",
+                                                    "skins", "animations", "extensionsUsed", "extensionsRequired", "extensions"};
+    if (depth > 64) return "the JSON is nested deeper than 64 levels";
+    if (v.is_object()) {
+        for (auto it = v.begin(); it != v.end(); ++it) {
+            const std::string& key = it.key();
+            const std::string at = path.empty() ? key : path + "." + key;
+            if (key == "extras" || (depth == 0 && !kTopLevel.count(key))) continue;
+            const auto kind = schemaKinds().find(key);
+            if (kind != schemaKinds().end() && !hasKind(it.value(), kind->second))
+                return at + ": expected " + kindName(kind->second);
+            if (key == "extensions") {
+                for (auto e = it.value().begin(); e != it.value().end(); ++e)
+                    if (!e.value().is_object()) return at + "." + e.key() + ": expected an object";
+                continue;
+            }
+            std::string p = schemaProblem(it.value(), at, depth + 1);
+            if (!p.empty()) return p;
+        }
+    } else if (v.is_array()) {
+        for (std::size_t i = 0; i < v.size(); ++i) {
+            std::string p = schemaProblem(v[i], path + "[" + std::to_string(i) + "]", depth + 1);
+            if (!p.empty()) return p;
+        }
+    }
+    return {};
+}
+
+// The JSON text of a .gltf, or the JSON chunk of a .glb (empty when the header is malformed:
+// tinygltf then reports it).
+std::string jsonText(const unsigned char* data, std::size_t size, bool binary) {
+    if (!binary) return std::string(reinterpret_cast<const char*>(data), size);
+    if (size < 20) return {};
+    std::uint32_t length = 0, type = 0;
+    std::memcpy(&length, data + 12, 4);
+    std::memcpy(&type, data + 16, 4);
+    if (type != 0x4E4F534Au || length > size - 20) return {};
+    return std::string(reinterpret_cast<const char*>(data + 20), length);
+}
+
 // Everything gathered while walking the scene: vertices in world space, triangles per material.
 struct Builder {
     std::string path; // the file, for warnings
@@ -304,8 +427,8 @@ Status addLines(Builder& b, const tinygltf::Model& g, const tinygltf::Primitive&
     const std::size_t n = order.size();
     if (set.points) {
         set.indices = order;
-    } else if (prim.mode == kModePoints + 1) { // LINES
-        set.indices.assign(order.begin(), order.begin() + std::ptrdiff_t(n - n % 2));
+    } else if (prim.mode == kModePoints + 1) { // LINES (a whole number of pairs: checked)
+        set.indices = order;
     } else {
         for (std::size_t i = 0; i + 1 < n; ++i) set.indices.insert(set.indices.end(), {order[i], order[i + 1]});
         if (prim.mode == kModePoints + 2 && n >= 2) set.indices.insert(set.indices.end(), {order[n - 1], order[0]}); // LOOP
@@ -380,12 +503,18 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
         order.resize(count);
         for (std::size_t i = 0; i < count; ++i) order[i] = std::uint32_t(i);
     }
+    // The specification's vertex counts: whole triangles and whole segments (strips, fans and
+    // loops take any count; too few draw nothing).
+    if (prim.mode == kModeTriangles && order.size() % 3 != 0)
+        return Status::failure(what + ": TRIANGLES with " + std::to_string(order.size()) + " vertices, not a multiple of 3");
+    if (prim.mode == kModePoints + 1 && order.size() % 2 != 0)
+        return Status::failure(what + ": LINES with " + std::to_string(order.size()) + " vertices, not a multiple of 2");
     if (prim.mode < kModeTriangles) return addLines(b, g, prim, pos.value(), order, world, what, limits);
     // Triangles of the mode, in the primitive's vertex numbering.
     std::vector<std::uint32_t> tris;
     const std::size_t n = order.size();
-    if (prim.mode == kModeTriangles) {
-        tris.assign(order.begin(), order.begin() + std::ptrdiff_t(n - n % 3));
+    if (prim.mode == kModeTriangles) { // a whole number of triangles: checked above
+        tris = order;
     } else if (prim.mode == kModeStrip) {
         for (std::size_t i = 2; i < n; ++i) {
             const bool even = i % 2 == 0; // glTF: triangle i - 2 is (i-2, i-1, i) or (i-1, i-2, i)
@@ -533,6 +662,13 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
     std::string err, warn;
     const std::string dir = parentDirectory(path);
     const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+    {
+        const nlohmann::json j = nlohmann::json::parse(jsonText(data, size, binary), nullptr, false);
+        if (!j.is_discarded()) {
+            const std::string problem = schemaProblem(j, "");
+            if (!problem.empty()) return R::failure(path + ": " + problem + " (glTF 2.0 schema)");
+        }
+    }
     const bool loaded = binary ? loader.LoadBinaryFromMemory(&g, &err, &warn, data, unsigned(size), dir)
                                : loader.LoadASCIIFromString(&g, &err, &warn, reinterpret_cast<const char*>(data), unsigned(size), dir);
     if (!loaded) {

@@ -155,7 +155,7 @@ TEST_CASE("glTF points, lines, line loops and strips become world-space line set
         return "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}" +
                (indexed ? ",\"indices\":" + std::to_string(idx) : std::string()) + ",\"mode\":" + std::to_string(mode) + "}";
     };
-    a.meshes = "[{\"primitives\":[" + prim(0, false) + "," + prim(1, false) + "," + prim(2, true) + "," + prim(3, true) + "]}]";
+    a.meshes = "[{\"primitives\":[" + prim(0, false) + "," + prim(1, true) + "," + prim(2, true) + "," + prim(3, true) + "]}]";
     a.nodes = "[{\"translation\":[10,0,0],\"mesh\":0}]";
     auto r = load(dir, "lines.gltf", a.embedded());
     REQUIRE(r.ok());
@@ -165,7 +165,7 @@ TEST_CASE("glTF points, lines, line loops and strips become world-space line set
     CHECK(m.lineSets[0].points);
     CHECK(m.lineSets[0].indices == std::vector<std::uint32_t>{0, 1, 2, 3, 4});
     CHECK_FALSE(m.lineSets[1].points);
-    CHECK(m.lineSets[1].indices == std::vector<std::uint32_t>{0, 1, 2, 3}); // LINES: pairs, the odd 5th dropped
+    CHECK(m.lineSets[1].indices == std::vector<std::uint32_t>{0, 1, 2, 3}); // LINES: pairs
     CHECK(m.lineSets[2].indices == std::vector<std::uint32_t>{0, 1, 1, 2, 2, 3, 3, 0}); // LINE_LOOP closes
     CHECK(m.lineSets[3].indices == std::vector<std::uint32_t>{0, 1, 1, 2, 2, 3});       // LINE_STRIP
     checkVec(m.lineSets[0].positions[2], 11, 1, 0); // world space: the node's translation applied
@@ -362,6 +362,32 @@ TEST_CASE("glTF: bad files are one-line errors naming the file and the problem",
         errorOf(dir, "text.gltf", "this is not JSON");
         errorOf(dir, "empty.glb", "glTF");
     }
+    SECTION("vertex counts that are not whole triangles or segments") {
+        Asset a;
+        const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, "VEC3"); // 4 vertices
+        a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}]}]";
+        a.nodes = "[{\"mesh\":0}]";
+        CHECK(contains(errorOf(dir, "tri4.gltf", a.embedded()), "not a multiple of 3"));
+        const int idx = a.indices({0, 1, 2}, 5121);
+        a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"indices\":" +
+                   std::to_string(idx) + ",\"mode\":1}]}]";
+        CHECK(contains(errorOf(dir, "lines3.gltf", a.embedded()), "not a multiple of 2"));
+    }
+    SECTION("properties of the wrong JSON type (the glTF 2.0 schema)") {
+        Asset a = triangleAsset("[{\"mesh\":0,\"name\":42}]");
+        CHECK(contains(errorOf(dir, "name.gltf", a.embedded()), "nodes[0].name: expected a string"));
+        a = triangleAsset("[{\"mesh\":0,\"scale\":\"big\"}]");
+        CHECK(contains(errorOf(dir, "scale.gltf", a.embedded()), "nodes[0].scale"));
+        a = triangleAsset("[{\"mesh\":0}]");
+        a.materials = "[{\"pbrMetallicRoughness\":[\"not an object\"]}]";
+        CHECK(contains(errorOf(dir, "pbr.gltf", a.embedded()), "materials[0].pbrMetallicRoughness: expected an object"));
+        a.materials = "[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":-1}}}]";
+        CHECK(contains(errorOf(dir, "index.gltf", a.embedded()), "unsigned integer"));
+        a.materials = "[{\"extensions\":{\"KHR_materials_unlit\":\"yes\"}}]";
+        CHECK(contains(errorOf(dir, "ext.gltf", a.embedded()), "KHR_materials_unlit: expected an object"));
+        a.materials = "[{\"extras\":{\"name\":7}}]"; // extras are free-form
+        CHECK(load(dir, "extras.gltf", a.embedded()).ok());
+    }
     SECTION("POSITION of the wrong type") {
         Asset a;
         const int pos = a.floats({0, 0, 0, 1, 0, 0}, "VEC2");
@@ -454,12 +480,16 @@ TEST_CASE("glTF files of assimp-testmodels: each loads or fails in one line; the
     }
     CHECK(loaded >= 10);
     CHECK(failed >= 5);
-    for (const char* bad : {"IndexOutOfRange/IndexOutOfRange.gltf", "MissingBin/BoxTextured.gltf",
-                            "RecursiveNodes/RecursiveNodes.gltf", "draco/2CylinderEngine.gltf",
-                            "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "TestNoRootNode/NoScene.gltf"}) {
+    for (const char* bad : {"IndexOutOfRange/IndexOutOfRange.gltf", "IndexOutOfRange/AllIndicesOutOfRange.gltf",
+                            "MissingBin/BoxTextured.gltf", "RecursiveNodes/RecursiveNodes.gltf", "draco/2CylinderEngine.gltf",
+                            "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "TestNoRootNode/NoScene.gltf",
+                            "TestNoRootNode/SceneWithoutNodes.gltf", "IncorrectVertexArrays/Cube.gltf",
+                            "SchemaFailures/sceneWrongType.gltf", "wrongTypes/badArray.gltf", "wrongTypes/badExtension.gltf",
+                            "wrongTypes/badNumber.gltf", "wrongTypes/badObject.gltf", "wrongTypes/badString.gltf",
+                            "wrongTypes/badUint.gltf", "BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf"}) {
         const std::string path = kAssimpGltf + "/" + bad;
-        if (!std::filesystem::exists(path)) continue;
         INFO(path);
+        REQUIRE(std::filesystem::exists(path));
         CHECK_FALSE(loadGltf(path).ok());
     }
     auto draco = loadGltf(kAssimpGltf + "/draco/2CylinderEngine.gltf");
