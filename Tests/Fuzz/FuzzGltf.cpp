@@ -69,8 +69,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const std::size_t nv = m.mesh.positions.size();
         assert(m.mesh.normals.size() == nv);
         assert(!m.hasUvs || m.mesh.uvs.size() == nv);
-        assert(m.mesh.indices.size() % 3 == 0 && !m.mesh.indices.empty());
+        // Something to draw: triangles, or line / point primitives (each index in its set).
+        assert(m.mesh.indices.size() % 3 == 0 && (!m.mesh.indices.empty() || !m.lineSets.empty()));
         for (std::uint32_t i : m.mesh.indices) assert(i < nv);
+        for (const sr::LineSet& l : m.lineSets) {
+            assert(!l.indices.empty() && (l.points || l.indices.size() % 2 == 0));
+            for (std::uint32_t i : l.indices) assert(i < l.positions.size());
+        }
         std::size_t covered = 0;
         for (const sr::DrawRange& d : m.ranges) {
             assert(d.firstIndex == covered);
