@@ -100,7 +100,7 @@ bool loadImageData(tinygltf::Image* image, const int index, std::string* err, st
         image->width = image->height = 0;
         image->image.clear();
         if (err) err->clear();
-        image->name = decoded.error();
+        image->name = decoded.error(); // the reason, read back as the warning (loadGltfFromMemory)
         return true;
     }
     state->textureBytes += decoded.value().rgba.size();
