@@ -207,4 +207,23 @@ void drawLine(MsaaBuffer& target, const LineVertex& a, const LineVertex& b, cons
     });
 }
 
+void drawWideLine(FrameBuffer& fb, MsaaBuffer* msaa, const LineVertex& a, const LineVertex& b,
+                  const LineOptions& options, int width) {
+    if (msaa) {
+        drawLine(*msaa, a, b, options);
+        return;
+    }
+    const bool xMajor = std::fabs(b.x - a.x) >= std::fabs(b.y - a.y);
+    for (int k = 0; k < width; ++k) {
+        const float offset = float(k) - 0.5f * float(width - 1);
+        const float dx = xMajor ? 0.0f : offset, dy = xMajor ? offset : 0.0f;
+        LineVertex a2 = a, b2 = b;
+        a2.x += dx;
+        a2.y += dy;
+        b2.x += dx;
+        b2.y += dy;
+        drawLine(fb, a2, b2, options);
+    }
+}
+
 } // namespace sr

@@ -82,6 +82,13 @@ void forEachLinePixel(const LineSetup& l, const Scissor& s, Plot&& plot);
 void drawLine(FrameBuffer& fb, const LineVertex& a, const LineVertex& b,
               const LineOptions& options = {});
 
+// `width` (>= 1) parallel lines a-b, offset along the minor axis by whole or half pixels (exact
+// on the 1/256 snapping grid) and centred on a-b: a line `width` pixels wide, for a target
+// supersampled width x width that is resolved back to one pixel. Into a multisampled target
+// (`msaa` not null) one line, whose pixels cover all their samples.
+void drawWideLine(FrameBuffer& fb, MsaaBuffer* msaa, const LineVertex& a, const LineVertex& b,
+                  const LineOptions& options, int width);
+
 // The same line into a multisampled target: the pixels of the rule above, each covering all of
 // its samples (depth tested per sample, with the line's depth at the pixel), so that after the
 // resolve the line looks as it does without multisampling.

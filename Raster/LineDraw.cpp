@@ -41,12 +41,11 @@ bool clipSegment(const ClipEnd& a, const ClipEnd& b, bool clipFar, double& t0, d
     return t0 <= t1;
 }
 
+// The point a + t (b - a) (a and b exactly at t = 0 and 1) on the screen.
 ScreenVertex toScreenAt(const ClipEnd& a, const ClipEnd& b, double t, int width, int height) {
+    const auto at = [t](double p, double q) { return t == 1.0 ? float(q) : float(p + (q - p) * t); };
     ClipVertex v;
-    v.position = Vec4(float(a.x + (b.x - a.x) * t), float(a.y + (b.y - a.y) * t), float(a.z + (b.z - a.z) * t),
-                      float(a.w + (b.w - a.w) * t));
-    if (t == 0.0) v.position = Vec4(float(a.x), float(a.y), float(a.z), float(a.w));
-    if (t == 1.0) v.position = Vec4(float(b.x), float(b.y), float(b.z), float(b.w));
+    v.position = Vec4(at(a.x, b.x), at(a.y, b.y), at(a.z, b.z), at(a.w, b.w));
     return toScreen(v, width, height, 0);
 }
 
@@ -64,26 +63,18 @@ void drawWorldLines(RenderContext& ctx, const FrameView& view, const std::vector
     width = std::max(width, 1);
     const auto draw = [&](const ScreenVertex& a, const ScreenVertex& b) {
         const LineVertex la{a.x, a.y, a.z, colour}, lb{b.x, b.y, b.z, colour};
-        if (msaa) {
-            drawLine(*msaa, la, lb, options);
+        if (!points || msaa) {
+            drawWideLine(fb, msaa, la, lb, options, width); // as the wireframe's edges (Line.hpp)
             return;
         }
-        if (points) { // the k x k block (k = width) of the output pixel that contains the point
-            if (!(std::fabs(a.x) < 1e9f && std::fabs(a.y) < 1e9f)) return; // far outside the target
-            const float x0 = std::floor(a.x / float(width)) * float(width), y0 = std::floor(a.y / float(width)) * float(width);
-            for (int i = 0; i < width; ++i)
-                for (int j = 0; j < width; ++j) {
-                    const float x = x0 + float(i) + 0.5f, y = y0 + float(j) + 0.5f;
-                    drawLine(fb, LineVertex{x, y, a.z, colour}, LineVertex{x, y, a.z, colour}, options);
-                }
-            return;
-        }
-        const bool xMajor = std::fabs(b.x - a.x) >= std::fabs(b.y - a.y);
-        for (int k = 0; k < width; ++k) {
-            const float offset = float(k) - 0.5f * float(width - 1);
-            const float dx = xMajor ? 0.0f : offset, dy = xMajor ? offset : 0.0f;
-            drawLine(fb, LineVertex{a.x + dx, a.y + dy, a.z, colour}, LineVertex{b.x + dx, b.y + dy, b.z, colour}, options);
-        }
+        // A point: the k x k block (k = width) of the output pixel that contains it.
+        if (!(std::fabs(a.x) < 1e9f && std::fabs(a.y) < 1e9f)) return; // far outside the target
+        const float x0 = std::floor(a.x / float(width)) * float(width), y0 = std::floor(a.y / float(width)) * float(width);
+        for (int i = 0; i < width; ++i)
+            for (int j = 0; j < width; ++j) {
+                const float x = x0 + float(i) + 0.5f, y = y0 + float(j) + 0.5f;
+                drawLine(fb, LineVertex{x, y, a.z, colour}, LineVertex{x, y, a.z, colour}, options);
+            }
     };
     const std::size_t step = points ? 1 : 2;
     for (std::size_t i = 0; i + step - 1 < indices.size(); i += step) {

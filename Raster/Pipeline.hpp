@@ -64,24 +64,13 @@ inline void rebaseVaryings(const VaryingRebase& rebase, ClipVertex& a, ClipVerte
 // if that surface is within 0.025% of the line's depth in z_ndc).
 inline float wireDepth(float z) { return z * (1.0f + 1.0f / 4096.0f); }
 
-// A width of k draws k parallel DDA lines, offset along the minor axis by whole or half pixels
-// (exact on the 1/256 snapping grid) and centred on the edge.
+// One wireframe edge, `width` pixels wide (drawWideLine), with the wireframe's depth bias.
 inline void drawWireEdge(FrameBuffer& fb, MsaaBuffer* msaa, const ScreenVertex& a, const ScreenVertex& b,
                          Pixel colour, bool depthTest, int width = 1) {
     LineOptions options;
     options.depthTest = depthTest;
-    if (msaa) { // multisampled: the line's pixels cover all their samples
-        drawLine(*msaa, LineVertex{a.x, a.y, wireDepth(a.z), colour}, LineVertex{b.x, b.y, wireDepth(b.z), colour},
-                 options);
-        return;
-    }
-    const bool xMajor = std::fabs(b.x - a.x) >= std::fabs(b.y - a.y);
-    for (int k = 0; k < width; ++k) {
-        const float offset = float(k) - 0.5f * float(width - 1);
-        const float dx = xMajor ? 0.0f : offset, dy = xMajor ? offset : 0.0f;
-        drawLine(fb, LineVertex{a.x + dx, a.y + dy, wireDepth(a.z), colour},
-                 LineVertex{b.x + dx, b.y + dy, wireDepth(b.z), colour}, options);
-    }
+    drawWideLine(fb, msaa, LineVertex{a.x, a.y, wireDepth(a.z), colour}, LineVertex{b.x, b.y, wireDepth(b.z), colour},
+                 options, width);
 }
 
 // A triangle hook that does nothing (draws without per-triangle work).

@@ -82,6 +82,16 @@ public:
     VertexCacheKey vertexCache;
     bool vertexReuse = false; // set by VertexReuseScope only
 
+    // renderScene's transparent pass (Scene.cpp): each transparent triangle's draw, first index
+    // and view depth, and the indices of the run being drawn. Kept between frames: a scene with
+    // transparent draws sorts them every frame without allocating.
+    struct TransparentTriangle {
+        float w;                    // clip-space w of the centroid: the view depth
+        std::uint32_t draw, first;  // the SceneDraw, and the triangle's first index in its mesh
+    };
+    std::vector<TransparentTriangle> transparentOrder;
+    std::vector<std::uint32_t> transparentIndices;
+
     // Render threads (1..kMaxRenderThreads; 0 or less means 1). More than one starts a
     // persistent pool that drawProgram() splits its work over; the image is the same.
     void setThreads(int threads) {

@@ -32,12 +32,6 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
     return material;
 }
 
-// One transparent triangle: its draw, its first index in the mesh, and its sort key.
-struct SortedTriangle {
-    float w;                 // clip-space w of the centroid: the view depth
-    std::uint32_t draw, first;
-};
-
 } // namespace
 
 void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
@@ -63,9 +57,11 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         drawWorldLines(ctx, view, l.positions, l.indices, l.points, packBgra8(l.colour), lineWidth);
     if (!anyTransparent) return;
 
-    // Transparent triangles back to front (largest w first; a stable sort keeps draw and file
-    // order for equal keys), drawn as runs of consecutive triangles of one draw.
-    std::vector<SortedTriangle> order;
+    // Transparent triangles back to front (largest w first; equal keys in draw and file order),
+    // drawn as runs of consecutive triangles of one draw.
+    using Sorted = RenderContext::TransparentTriangle;
+    std::vector<Sorted>& order = ctx.transparentOrder;
+    order.clear();
     for (std::size_t i = 0; i < scene.draws.size(); ++i) {
         const SceneDraw& d = scene.draws[i];
         if (!(d.alpha < 1.0f)) continue;
@@ -77,9 +73,14 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
             order.push_back({std::isnan(w) ? 0.0f : w, std::uint32_t(i), d.firstIndex + k});
         }
     }
-    std::stable_sort(order.begin(), order.end(), [](const SortedTriangle& a, const SortedTriangle& b) { return a.w > b.w; });
+    // (draw, first) is unique and increases in the order above: the comparison is total, and
+    // equal depths keep that order without a stable sort's buffer.
+    std::sort(order.begin(), order.end(), [](const Sorted& a, const Sorted& b) {
+        if (a.w != b.w) return a.w > b.w;
+        return a.draw != b.draw ? a.draw < b.draw : a.first < b.first;
+    });
     ctx.stats.trianglesSorted += order.size();
-    std::vector<std::uint32_t> indices;
+    std::vector<std::uint32_t>& indices = ctx.transparentIndices;
     for (std::size_t r = 0; r < order.size();) {
         const std::uint32_t draw = order[r].draw;
         const SceneDraw& d = scene.draws[draw];

@@ -4,9 +4,6 @@
 // material library, which is written to <tmp>/f.mtl before each run (removed when absent). The
 // seeds say "mtllib f.mtl" and "map_Kd t.ppm"; t.ppm (a valid 2x2 image) and t.bin (not an
 // image) are written once at start-up, so texture loading and the checkerboard fallback run too.
-#include <unistd.h>
-
-#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <cstdio>
@@ -14,33 +11,19 @@
 #include <cstring>
 #include <string>
 
-#include "Resources/FileIO.hpp"
-#include "Resources/Model.hpp"
+#include "FuzzModel.hpp"
 #include "Resources/ObjLoader.hpp"
 
 namespace {
 
 std::string gDir; // a private temporary directory, with a trailing '/'
 
-void writeFile(const std::string& path, const void* data, std::size_t size) {
-    if (!sr::writeFileBytes(path, data, size)) {
-        std::fprintf(stderr, "FuzzObj: cannot write %s\n", path.c_str());
-        std::abort();
-    }
-}
-
 } // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-    char templ[] = "/tmp/sr-fuzz-obj-XXXXXX";
-    if (!mkdtemp(templ)) {
-        std::perror("FuzzObj: mkdtemp");
-        std::abort();
-    }
-    gDir = std::string(templ) + "/";
-    const char ppm[] = "P6\n2 2\n255\n\xff\x00\x00\x00\xff\x00\x00\x00\xff\xff\xff\xff";
-    writeFile(gDir + "t.ppm", ppm, sizeof ppm - 1);
-    writeFile(gDir + "t.bin", "not an image", 12);
+    gDir = sr::fuzz::makePrivateDir("sr-fuzz-obj");
+    sr::fuzz::writeTinyImage(gDir + "t.ppm");
+    sr::fuzz::writeFile(gDir + "t.bin", "not an image", 12);
     return 0;
 }
 
@@ -56,7 +39,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
     const std::string mtlPath = gDir + "f.mtl";
     if (objSize < size) {
-        writeFile(mtlPath, data + objSize + sepLen - 1, size - (objSize + sepLen - 1));
+        sr::fuzz::writeFile(mtlPath, data + objSize + sepLen - 1, size - (objSize + sepLen - 1));
     } else {
         std::remove(mtlPath.c_str());
     }
@@ -76,27 +59,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const sr::Result<sr::Model> r = sr::loadObjFromMemory(obj, objSize, gDir + "fuzz.obj", options);
     std::free(obj);
 
-    if (r.ok()) {
-        const sr::Model& m = r.value();
-        const std::size_t nv = m.mesh.positions.size();
-        assert(m.mesh.normals.size() == nv);
-        assert(!m.hasUvs || m.mesh.uvs.size() == nv);
-        assert(m.mesh.indices.size() % 3 == 0 && !m.mesh.indices.empty());
-        for (std::uint32_t i : m.mesh.indices) assert(i < nv);
-        std::size_t covered = 0;
-        for (const sr::DrawRange& d : m.ranges) {
-            assert(d.firstIndex == covered);
-            covered += d.indexCount;
-            assert(d.texture < int(m.textures.size()));
-            assert(d.material < int(m.materials.size()));
-        }
-        assert(covered == m.mesh.indices.size());
-        for (const sr::Image& t : m.textures) assert(t.rgba.size() == std::size_t(t.width) * std::size_t(t.height) * 4);
-        (void)covered;
-    } else {
-        const std::string& e = r.error();
-        assert(!e.empty() && e.find('\n') == std::string::npos && e.find("fuzz.obj") != std::string::npos);
-        (void)e;
-    }
+    if (r.ok()) sr::fuzz::checkModel(r.value());
+    else sr::fuzz::checkError(r.error(), "fuzz.obj");
     return 0;
 }
