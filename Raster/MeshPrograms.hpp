@@ -41,7 +41,16 @@ struct DrawContext {
     Color kd;               // the surface colour; when textured, the texel's multiplier (tint)
     Specular specular;
     float alpha;            // opacity: below 1 the draw is blended over the target (DrawState::blendAlpha)
+    bool whiteLights;       // view.lighting.whiteDirectional(): one-number terms (blinnPhong), else RGB (lightTerms)
 };
+
+// The lighting terms at world point p with unit normal n and unit view vector v, per channel:
+// blinnPhong's one-number terms when every light is white and directional (the same floats as
+// lightTerms would give, computed with less work), else lightTerms.
+inline RgbTerms litTerms(const DrawContext& d, Vec3 n, Vec3 p, Vec3 v) {
+    if (d.whiteLights) return RgbTerms::grey(blinnPhong(d.view.lighting, d.specular, n, v));
+    return lightTerms(d.view.lighting, d.specular, n, p, v);
+}
 
 // Diffuse colour at a fragment whose varyings 0 and 1 are (u, v): the texel times the draw's kd
 // (the reference's uKd * texture(uTex, vUV); kd 1 leaves the texel as it is). Trilinear
@@ -122,7 +131,7 @@ struct FlatProgram {
     const TriangleSetup* setup = nullptr;
     std::size_t tri = 0;
     mutable bool lit = false;
-    mutable LightTerms terms;
+    mutable RgbTerms terms;
     mutable Pixel flat = 0;
     explicit FlatProgram(const DrawContext* dc) : d(dc) {}
     void vertex(std::size_t i, ClipVertex& out) const { transformVertex<kTextured>(*d, i, out); }
@@ -137,7 +146,7 @@ struct FlatProgram {
         const Vec3 p0 = d->mesh.positions[d->indices[3 * tri]], p1 = d->mesh.positions[d->indices[3 * tri + 1]],
                    p2 = d->mesh.positions[d->indices[3 * tri + 2]];
         const Vec3 centroid = (p0 + p1 + p2) / 3.0f;
-        terms = blinnPhong(d->view.lighting, d->specular, faceNormal(p0, p1, p2), normalize(d->view.eye - centroid));
+        terms = litTerms(*d, faceNormal(p0, p1, p2), centroid, normalize(d->view.eye - centroid));
         if constexpr (!kTextured) flat = packBgra8(applyTerms(d->kd, d->specular.ks, terms));
     }
     Pixel fragment(const Fragment<kVaryings>& f) const {
@@ -148,13 +157,16 @@ struct FlatProgram {
 };
 
 // Gouraud: Blinn-Phong per vertex; the diffuse and specular terms are interpolated
-// (perspective-correct) and combined per pixel, so a texture still modulates per pixel.
-template <bool kTextured>
+// (perspective-correct) and combined per pixel, so a texture still modulates per pixel. With
+// white directional lights only, two terms (diffuse, specular); with any other light (kRgb) six,
+// one per channel (diffuse r, g, b, specular r, g, b).
+template <bool kTextured, bool kRgb = false>
 struct GouraudProgram {
     static constexpr ShadingMode kMode = ShadingMode::Gouraud;
     static constexpr bool kIsTextured = kTextured;
+    static constexpr bool kRgbTerms = kRgb;
     static constexpr int kT = kTextured ? 2 : 0; // first varying of the lighting terms
-    static constexpr int kVaryings = kT + 2;
+    static constexpr int kVaryings = kT + (kRgb ? 6 : 2);
     const DrawContext* d;
     const TriangleSetup* setup = nullptr;
     explicit GouraudProgram(const DrawContext* dc) : d(dc) {}
@@ -168,21 +180,33 @@ struct GouraudProgram {
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kTextured>(*d, i, out);
         const Vec3 p = d->mesh.positions[i];
-        const LightTerms t =
-            blinnPhong(d->view.lighting, d->specular, normalize(d->mesh.normals[i]), normalize(d->view.eye - p));
-        out.varyings[kT] = t.diffuse;
-        out.varyings[kT + 1] = t.specular;
+        const Vec3 n = normalize(d->mesh.normals[i]), v = normalize(d->view.eye - p);
+        if constexpr (kRgb) {
+            const RgbTerms t = lightTerms(d->view.lighting, d->specular, n, p, v);
+            const float terms[6] = {t.diffuse.r, t.diffuse.g, t.diffuse.b, t.specular.r, t.specular.g, t.specular.b};
+            for (int k = 0; k < 6; ++k) out.varyings[kT + k] = terms[k];
+        } else {
+            const LightTerms t = blinnPhong(d->view.lighting, d->specular, n, v);
+            out.varyings[kT] = t.diffuse;
+            out.varyings[kT + 1] = t.specular;
+        }
     }
     void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
     Pixel fragment(const Fragment<kVaryings>& f) const {
-        const LightTerms t{f.varyings[kT], f.varyings[kT + 1]};
-        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
-        else return packBgra8(applyTerms(d->kd, d->specular.ks, t));
+        Color kd = d->kd;
+        if constexpr (kTextured) kd = sampleKd(*d, setup, f);
+        if constexpr (kRgb) {
+            const RgbTerms t{{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], 1.0f},
+                             {f.varyings[kT + 3], f.varyings[kT + 4], f.varyings[kT + 5], 1.0f}};
+            return packBgra8(applyTerms(kd, d->specular.ks, t));
+        } else {
+            return packBgra8(applyTerms(kd, d->specular.ks, LightTerms{f.varyings[kT], f.varyings[kT + 1]}));
+        }
     }
 };
 
 // Phong shading: world position and normal interpolated (perspective-correct), the normal
-// renormalised and Blinn-Phong evaluated per pixel.
+// renormalised and Blinn-Phong evaluated per pixel (litTerms: any lights).
 template <bool kTextured>
 struct PhongProgram {
     static constexpr ShadingMode kMode = ShadingMode::Phong;
@@ -206,7 +230,7 @@ struct PhongProgram {
     Pixel fragment(const Fragment<kVaryings>& f) const {
         const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
         const Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
-        const LightTerms t = blinnPhong(d->view.lighting, d->specular, n, normalize(d->view.eye - p));
+        const RgbTerms t = litTerms(*d, n, p, normalize(d->view.eye - p));
         if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
         else return packBgra8(applyTerms(d->kd, d->specular.ks, t));
     }

@@ -61,7 +61,10 @@ void drawShaded(RenderContext& ctx, const DrawContext& d, ShadingMode mode, std:
     switch (mode) {
     case ShadingMode::Unlit: drawWith(ctx, d, indexCount, UnlitProgram<kTextured>(&d, packBgra8(d.kd))); break;
     case ShadingMode::Flat: drawWith(ctx, d, indexCount, FlatProgram<kTextured>(&d)); break;
-    case ShadingMode::Gouraud: drawWith(ctx, d, indexCount, GouraudProgram<kTextured>(&d)); break;
+    case ShadingMode::Gouraud:
+        if (d.whiteLights) drawWith(ctx, d, indexCount, GouraudProgram<kTextured>(&d));
+        else drawWith(ctx, d, indexCount, GouraudProgram<kTextured, true>(&d)); // RGB terms: six varyings
+        break;
     case ShadingMode::Phong: drawWith(ctx, d, indexCount, PhongProgram<kTextured>(&d)); break;
     }
 }
@@ -74,7 +77,8 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& s
     ShadingMode mode = settings.shading;
     if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong)) mode = ShadingMode::Flat;
     const DrawContext d{view,     settings, mesh, indices, textured ? material.texture : nullptr,
-                        textured ? material.tint : material.kd, material.specular, material.alpha};
+                        textured ? material.tint : material.kd, material.specular, material.alpha,
+                        view.lighting.whiteDirectional()};
     if (textured) drawShaded<true>(ctx, d, mode, indexCount);
     else drawShaded<false>(ctx, d, mode, indexCount);
 }

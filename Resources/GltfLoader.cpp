@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -631,6 +632,61 @@ Status addCamera(Builder& b, const tinygltf::Camera& c, const Mat4d& world, int 
     return success();
 }
 
+// A KHR_lights_punctual light placed by a node: the light shines down its node's -Z from its
+// origin. colour = color x intensity, used as it is (a directional light's lux and a point or
+// spot light's candela over the squared distance land on the same scale: 1 lights a surface
+// with its full diffuse colour); range 0 or absent: unlimited.
+Status addLight(Builder& b, const tinygltf::Light& l, const Mat4d& world, int index) {
+    const std::string what = "light " + std::to_string(index);
+    double rgb[3] = {1.0, 1.0, 1.0};
+    if (!l.color.empty()) {
+        if (l.color.size() != 3) return Status::failure(what + ": color must have 3 components");
+        for (int k = 0; k < 3; ++k) rgb[k] = l.color[std::size_t(k)];
+    }
+    for (double c : rgb)
+        if (!(c >= 0.0 && c <= 1.0)) return Status::failure(what + ": color components must be in [0, 1]");
+    if (!(l.intensity >= 0.0 && l.intensity <= 1e9)) return Status::failure(what + ": intensity must be in [0, 1e9]");
+    if (!(l.range >= 0.0 && l.range <= 1e30)) return Status::failure(what + ": range must be positive (or absent)");
+    const Color colour{float(rgb[0] * l.intensity), float(rgb[1] * l.intensity), float(rgb[2] * l.intensity), 1.0f};
+    const Vec3d origin{world.m[0][3], world.m[1][3], world.m[2][3]};
+    const Vec3d forward{-world.m[0][2], -world.m[1][2], -world.m[2][2]}; // the node's -Z
+    const double lf = length(forward);
+    const Vec3 position(float(origin.x), float(origin.y), float(origin.z));
+    const Vec3 direction = lf > 0.0 && std::isfinite(lf) ? Vec3(float(forward.x / lf), float(forward.y / lf), float(forward.z / lf))
+                                                         : Vec3(0.0f, 0.0f, 0.0f);
+    if (l.type == "directional") {
+        if (direction == Vec3(0.0f, 0.0f, 0.0f)) return Status::failure(what + ": its node's transform collapses the light's direction");
+        b.model.lights.push_back(Light::directional(-direction, colour));
+    } else if (l.type == "point") {
+        b.model.lights.push_back(Light::point(position, colour, float(l.range)));
+    } else if (l.type == "spot") {
+        if (direction == Vec3(0.0f, 0.0f, 0.0f)) return Status::failure(what + ": its node's transform collapses the light's direction");
+        const double inner = l.spot.innerConeAngle, outer = l.spot.outerConeAngle;
+        if (!(inner >= 0.0 && inner < outer && outer <= kPiD / 2.0))
+            return Status::failure(what + ": spot cone angles must satisfy 0 <= innerConeAngle < outerConeAngle <= pi/2");
+        b.model.lights.push_back(Light::spot(position, direction, colour, float(inner), float(outer), float(l.range)));
+    } else {
+        return Status::failure(what + ": type '" + l.type + "' is not directional, point or spot");
+    }
+    return success();
+}
+
+// The KHR_lights_punctual light a node places (-1: none); a malformed reference is an error.
+Result<int> nodeLight(const tinygltf::Node& node, std::size_t lightCount) {
+    const auto ext = node.extensions.find("KHR_lights_punctual");
+    if (ext == node.extensions.end()) return Result<int>(-1);
+    const tinygltf::Value& v = ext->second;
+    if (!v.IsObject() || !v.Has("light") || !v.Get("light").IsNumber())
+        return Result<int>::failure("KHR_lights_punctual must name a light by its index");
+    const double index = v.Get("light").GetNumberAsDouble();
+    if (!(index >= 0.0 && index < double(lightCount)) || index != double(int(index))) {
+        char text[32];
+        std::snprintf(text, sizeof text, "%.17g", index);
+        return Result<int>::failure(std::string("KHR_lights_punctual: light ") + text + " does not exist");
+    }
+    return Result<int>(int(index));
+}
+
 } // namespace
 
 bool isGltfPath(const std::string& path) {
@@ -738,6 +794,14 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
             if (std::size_t(node.camera) >= g.cameras.size())
                 return R::failure(path + ": node " + std::to_string(item.node) + ": camera " + std::to_string(node.camera) + " does not exist");
             const Status s = addCamera(b, g.cameras[std::size_t(node.camera)], world, node.camera);
+            if (!s) return R::failure(path + ": " + s.error());
+        }
+        const Result<int> light = nodeLight(node, g.lights.size());
+        if (!light) return R::failure(path + ": node " + std::to_string(item.node) + ": " + light.error());
+        if (light.value() >= 0) {
+            if (b.model.lights.size() >= limits.maxLights)
+                return R::failure(path + ": more than " + std::to_string(limits.maxLights) + " lights in the scene");
+            const Status s = addLight(b, g.lights[std::size_t(light.value())], world, light.value());
             if (!s) return R::failure(path + ": " + s.error());
         }
         for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, world, item.depth + 1});

@@ -9,6 +9,7 @@
 #include "Math/Color.hpp"
 #include "Math/Vec.hpp"
 #include "Raster/Mesh.hpp"
+#include "Raster/Shading.hpp" // Light
 #include "Resources/Image.hpp"
 
 namespace sr {
@@ -68,6 +69,7 @@ struct Model {
     bool normalsFromFile = false; // every face-vertex had a 'vn' (else some were computed)
     std::vector<ModelCamera> cameras;  // glTF: the scene's perspective cameras, in node order
     std::vector<LineSet> lineSets;     // glTF: line and point primitives (OBJ 'l'/'p' are not read)
+    std::vector<Light> lights;         // glTF KHR_lights_punctual: the scene's lights in world space, in node order
     std::vector<std::string> warnings; // one line each, naming the file
 };
 
@@ -85,6 +87,7 @@ struct ObjLimits {
     std::size_t maxTextureBytes = std::size_t(1) << 30;    // decoded RGBA of all textures
     std::size_t maxNodes = 65536;                          // glTF: nodes in the file
     std::size_t maxNodeDepth = 64;                         // glTF: levels of the node hierarchy
+    std::size_t maxLights = 64;                            // glTF: lights placed in the scene (each costs per pixel)
 };
 
 struct ObjOptions {

@@ -72,12 +72,14 @@ public:
     // The model's own cameras (LoadedScene::cameras), which V cycles through after the starting
     // view. The selected one becomes the view R returns to; -1 = the starting view.
     void setCameras(std::vector<CameraSetup> cameras) { cameras_ = std::move(cameras); }
+    // The scene's own lights (LoadedScene::lights); none: the one directional light toLight.
+    void setLights(std::vector<Light> lights) { lights_ = std::move(lights); }
     int cameraIndex() const { return cameraIndex_; }
 
     // The camera as a setup for the one view builder (makeFrameView): the starting setup while
     // the camera is where it started, else eye = position, target = position + forward, up = +Y.
     CameraSetup cameraSetup() const;
-    FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_); }
+    FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_, lights_); }
 
     // "cull none | phong | bilinear | exact | ssaa 4" (or "| msaa 4" while multisampling; + " | wireframe",
     // " | depth view", " | help").
@@ -95,6 +97,7 @@ private:
     Camera camera_;
     RenderSettings settings_;
     Vec3 toLight_;
+    std::vector<Light> lights_;
     MotionTuning tuning_;
     bool depthView_ = false;
     bool help_ = false;

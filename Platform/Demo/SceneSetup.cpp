@@ -199,6 +199,7 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
             for (const LineSet& l : m.lineSets) (l.points ? points : segments) += l.points ? l.indices.size() : l.indices.size() / 2;
             out.description += ", " + std::to_string(segments) + " line segments, " + std::to_string(points) + " points";
         }
+        out.lights = m.lights;
         for (const ModelCamera& mc : m.cameras) {
             CameraSetup c;
             c.eye = mc.eye;
@@ -265,7 +266,7 @@ std::string cameraFlags(const CameraSetup& c) {
     return "--eye " + formatVec(c.eye) + " --target " + formatVec(c.target) + " --up " + formatVec(c.up) + buf;
 }
 
-FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light) {
+FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light, const std::vector<Light>& sceneLights) {
     const double aspect = (width > 0 && height > 0) ? double(width) / double(height) : 1.0;
     // As Camera::setNearFar: near clamped into Camera's range, a far not beyond it is infinite.
     const double nearZ = usableNear(c.nearZ);
@@ -276,9 +277,13 @@ FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light)
         for (int col = 0; col < 4; ++col) v.viewProj(r, col) = float(mvp.m[r][col]);
     v.eye = c.eye;
     v.finiteFar = !std::isinf(farZ);
-    // The light direction is normalised in double, as the reference does.
+    if (!sceneLights.empty()) {
+        v.lighting.lights = sceneLights; // the scene's own lights; --light is for scenes without
+        return v;
+    }
+    // One white directional light; the direction is normalised in double, as the reference does.
     const double lx = light.x, ly = light.y, lz = light.z, l = std::sqrt(lx * lx + ly * ly + lz * lz);
-    v.lighting.toLight = {l > 0 ? Vec3(float(lx / l), float(ly / l), float(lz / l)) : Vec3(0, 0, 1)};
+    v.lighting.lights = {Light::directional(l > 0 ? Vec3(float(lx / l), float(ly / l), float(lz / l)) : Vec3(0, 0, 1))};
     return v;
 }
 

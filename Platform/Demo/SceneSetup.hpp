@@ -28,6 +28,7 @@ struct LoadedScene {
     Vec3 centre{0, 0, 0}; // bounding sphere of the model's vertices (auto-fit)
     double radius = 1.0;
     std::vector<CameraSetup> cameras; // the file's cameras (glTF), for --camera N and the demo's V key
+    std::vector<Light> lights;        // the scene's own lights (glTF, the built-in scene); none: --light's one
     std::vector<std::string> warnings;
     std::string description; // one line: what was loaded (triangles, textures, normals)
 };
@@ -62,7 +63,8 @@ std::string cameraFlags(const CameraSetup& camera);
 
 // World -> clip for the camera (reversed-Z; MVP computed in double, rounded once to float, as
 // the reference renderer does), the eye, and the light.
-FrameView makeFrameView(const CameraSetup& camera, int width, int height, Vec3 light);
+FrameView makeFrameView(const CameraSetup& camera, int width, int height, Vec3 light,
+                        const std::vector<Light>& sceneLights = {});
 
 RenderSettings makeRenderSettings(const SceneOptions& options);
 

@@ -173,7 +173,7 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
     }
     p->camera = demo::resolveCamera(a.scene, p->scene);
     if (!a.quiet) err << "softraster: camera: " << demo::cameraFlags(p->camera) << "\n";
-    p->view = demo::makeFrameView(p->camera, a.scene.width, a.scene.height, a.scene.light);
+    p->view = demo::makeFrameView(p->camera, a.scene.width, a.scene.height, a.scene.light, p->scene.lights);
     p->settings = demo::makeRenderSettings(a.scene);
     if (!p->framebuffer.resize(a.scene.width, a.scene.height)) {
         err << "softraster: cannot allocate a " << a.scene.width << "x" << a.scene.height << " framebuffer\n";

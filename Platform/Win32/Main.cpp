@@ -108,6 +108,7 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
     demo::DemoController controller(setup, demo::makeRenderSettings(options.scene),
                                     options.scene.light, tuning);
     controller.setCameras(scene.cameras); // V cycles through the model's own cameras
+    controller.setLights(scene.lights);
 
     win32::enableDpiAwareness(); // before any window exists
     win32::MainWindow window(scene, controller);

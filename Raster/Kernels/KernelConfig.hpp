@@ -32,11 +32,13 @@
 #define SR_TARGET_STRING_AVX512 "avx2,avx512f,avx512bw,avx512dq,avx512vl"
 
 // Force-inlined vector operations; SR_SIMD_LAMBDA does the same for a lambda (after its
-// parameter list).
+// parameter list); SR_SIMD_NOINLINE keeps a function out of line (one copy per ISA).
 #if defined(__GNUC__) || defined(__clang__)
 #define SR_SIMD_INLINE inline __attribute__((always_inline))
 #define SR_SIMD_LAMBDA __attribute__((always_inline))
+#define SR_SIMD_NOINLINE inline __attribute__((noinline))
 #else
+#define SR_SIMD_NOINLINE inline __declspec(noinline)
 #define SR_SIMD_INLINE __forceinline
 #define SR_SIMD_LAMBDA
 #endif

@@ -74,7 +74,8 @@ SR_SIMD_INLINE Terms blinnPhong(const Lighting& lighting, const Specular& materi
     F specular = fzero();
     const bool specularOn = material.on();
     const unsigned exponent = unsigned(material.shininess);
-    for (const Vec3& l : lighting.toLight) {
+    for (const Light& light : lighting.lights) {
+        const Vec3 l = light.toLight;
         const V3 lv{fset(l.x), fset(l.y), fset(l.z)};
         const F ndl = dot3(n, lv);
         const M lit = ndl > fzero();
@@ -101,6 +102,78 @@ SR_SIMD_INLINE Terms blinnPhong(const Lighting& lighting, const Specular& materi
 SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, Color ks, const Terms& t) {
     return {kd.r * t.diffuse + fset(ks.r) * t.specular, kd.g * t.diffuse + fset(ks.g) * t.specular,
             kd.b * t.diffuse + fset(ks.b) * t.specular};
+}
+
+// The RGB terms (RgbTerms) and their applyTerms.
+struct TermsRgb {
+    Rgb diffuse, specular;
+};
+SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, Color ks, const TermsRgb& t) {
+    return {kd.r * t.diffuse.r + fset(ks.r) * t.specular.r, kd.g * t.diffuse.g + fset(ks.g) * t.specular.g,
+            kd.b * t.diffuse.b + fset(ks.b) * t.specular.b};
+}
+
+// std::clamp(x, lo, hi) as the scalar code evaluates it: (x < lo) ? lo : (hi < x) ? hi : x.
+SR_SIMD_INLINE F clampLanes(F x, F lo, F hi) { return select(x < lo, lo, select(hi < x, hi, x)); }
+
+// lightTerms (Shading.hpp) for any lights at world points p, lane by lane: lightAt's direction
+// and factor, then the one-sided terms scaled by colour * a, the same operations in the same
+// order. Lanes whose light vector or half vector is off normalize's fast path lose `ok` (a point
+// light exactly at the surface point, non-finite positions). Out of line: its cost is per light,
+// and every kernel of the ISA shares one copy.
+SR_SIMD_NOINLINE TermsRgb lightsRgb(const Lighting& lighting, const Specular& material, const V3& n, const V3& p,
+                                          const V3& v, M& ok) {
+    const F ambient = fset(lighting.ambient);
+    TermsRgb t{{ambient, ambient, ambient}, {fzero(), fzero(), fzero()}};
+    const bool specularOn = material.on();
+    const unsigned exponent = unsigned(material.shininess);
+    for (const Light& light : lighting.lights) {
+        V3 l;
+        F a = fset(1.0f);
+        if (light.type == LightType::Directional) {
+            l = {fset(light.toLight.x), fset(light.toLight.y), fset(light.toLight.z)};
+        } else {
+            const V3 d{fset(light.position.x) - p.x, fset(light.position.y) - p.y, fset(light.position.z) - p.z};
+            const F d2 = dot3(d, d);
+            l = normalizeFast(d, ok);
+            // std::max(d2, k) is (d2 < k) ? k : d2, i.e. maxps(k, d2) (NaN lanes have failed `ok`).
+            a = fset(1.0f) / fmax(fset(kMinLightDistance2), d2);
+            if (light.range > 0.0f) {
+                const F q = d2 / fset(light.range * light.range);
+                a = a * clampLanes(fset(1.0f) - q * q, fzero(), fset(1.0f));
+            }
+            if (light.type == LightType::Spot) {
+                const V3 s{fset(light.spotDirection.x), fset(light.spotDirection.y), fset(light.spotDirection.z)};
+                const F c = clampLanes((fzero() - dot3(s, l)) * fset(light.coneScale) + fset(light.coneOffset), fzero(),
+                                       fset(1.0f));
+                a = a * (c * c);
+            }
+        }
+        const F ndl = dot3(n, l);
+        const M lit = (a > fzero()) & (ndl > fzero());
+        if (bits(lit) == 0) continue;
+        const F diffuse = ndl * a;
+        t.diffuse.r = select(lit, t.diffuse.r + fset(light.colour.r) * diffuse, t.diffuse.r);
+        t.diffuse.g = select(lit, t.diffuse.g + fset(light.colour.g) * diffuse, t.diffuse.g);
+        t.diffuse.b = select(lit, t.diffuse.b + fset(light.colour.b) * diffuse, t.diffuse.b);
+        if (!specularOn) continue;
+        M hOk = ok;
+        const V3 h = normalizeFast({l.x + v.x, l.y + v.y, l.z + v.z}, hOk);
+        ok = (lit & hOk) | andNot(ok, lit); // a bad half vector matters only where it is used
+        const F base0 = fmax(dot3(n, h), fzero());
+        unsigned e = exponent;
+        F result = fset(1.0f), base = base0;
+        while (e) {
+            if (e & 1u) result = result * base;
+            base = base * base;
+            e >>= 1u;
+        }
+        const F s = result * a;
+        t.specular.r = select(lit, t.specular.r + fset(light.colour.r) * s, t.specular.r);
+        t.specular.g = select(lit, t.specular.g + fset(light.colour.g) * s, t.specular.g);
+        t.specular.b = select(lit, t.specular.b + fset(light.colour.b) * s, t.specular.b);
+    }
+    return t;
 }
 
 // --- Texture sampling (TextureSampling.cpp's fast paths, lane by lane) -----------------------
@@ -353,14 +426,24 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
         out = packBgra8(kd);
     } else if constexpr (Prog::kMode == ShadingMode::Flat) {
         p.ensureLit(); // FlatProgram lights on its first shaded fragment
-        out = packBgra8(applyTerms(kd, d.specular.ks, Terms{fset(p.terms.diffuse), fset(p.terms.specular)}));
+        const RgbTerms& ft = p.terms;
+        const TermsRgb t{{fset(ft.diffuse.r), fset(ft.diffuse.g), fset(ft.diffuse.b)},
+                         {fset(ft.specular.r), fset(ft.specular.g), fset(ft.specular.b)}};
+        out = packBgra8(applyTerms(kd, d.specular.ks, t));
     } else if constexpr (Prog::kMode == ShadingMode::Gouraud) {
-        out = packBgra8(applyTerms(kd, d.specular.ks, Terms{v[kT], v[kT + 1]}));
+        if constexpr (Prog::kRgbTerms)
+            out = packBgra8(applyTerms(kd, d.specular.ks, TermsRgb{{v[kT], v[kT + 1], v[kT + 2]}, {v[kT + 3], v[kT + 4], v[kT + 5]}}));
+        else out = packBgra8(applyTerms(kd, d.specular.ks, Terms{v[kT], v[kT + 1]}));
     } else {
         const V3 n = normalizeFast({v[kT + 3], v[kT + 4], v[kT + 5]}, ok);
         const Vec3 eye = d.view.eye;
         const V3 toEye = normalizeFast({fset(eye.x) - v[kT], fset(eye.y) - v[kT + 1], fset(eye.z) - v[kT + 2]}, ok);
-        out = packBgra8(applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, toEye, ok)));
+        if (d.whiteLights) {
+            out = packBgra8(applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, toEye, ok)));
+        } else {
+            const V3 position{v[kT], v[kT + 1], v[kT + 2]};
+            out = packBgra8(applyTerms(kd, d.specular.ks, lightsRgb(d.view.lighting, d.specular, n, position, toEye, ok)));
+        }
     }
     if (bits(ok) != bits(mAll())) {
         alignas(64) std::int32_t pixels[kLanes], x[kLanes], y[kLanes];
@@ -667,3 +750,9 @@ template FillKernel<programs::SR_KERNEL_PROGRAM<false>> fillKernel(const KernelK
 template FillKernel<programs::SR_KERNEL_PROGRAM<true>> fillKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false>> shadeRunsKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true>> shadeRunsKernel(const KernelKey&);
+#ifdef SR_KERNEL_RGB_VARIANTS // the program's RGB-terms variant too (Gouraud under coloured lights)
+template FillKernel<programs::SR_KERNEL_PROGRAM<false, true>> fillKernel(const KernelKey&);
+template FillKernel<programs::SR_KERNEL_PROGRAM<true, true>> fillKernel(const KernelKey&);
+template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false, true>> shadeRunsKernel(const KernelKey&);
+template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true, true>> shadeRunsKernel(const KernelKey&);
+#endif

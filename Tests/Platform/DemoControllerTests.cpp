@@ -68,8 +68,8 @@ TEST_CASE("the frame view matches makeFrameView for the starting camera", "[plat
             CHECK(std::fabs(ours.viewProj(r, col) - ref.viewProj(r, col)) < 1e-4f);
         }
     CHECK_FALSE(ours.finiteFar);
-    REQUIRE(ours.lighting.toLight.size() == 1);
-    CHECK(std::fabs(length(ours.lighting.toLight[0]) - 1.0f) < 1e-6f);
+    REQUIRE(ours.lighting.lights.size() == 1);
+    CHECK(std::fabs(length(ours.lighting.lights[0].toLight) - 1.0f) < 1e-6f);
     // A minimised 0 x 0 window still gets a finite matrix.
     const FrameView empty = c.frameView(0, 0);
     for (int r = 0; r < 4; ++r)
@@ -209,8 +209,8 @@ TEST_CASE("one view builder: the demo's starting view is makeFrameView of the fl
     CHECK(start.viewProj == ref.viewProj);
     CHECK(start.eye == ref.eye);
     CHECK(start.finiteFar == ref.finiteFar);
-    REQUIRE(start.lighting.toLight.size() == 1);
-    CHECK(start.lighting.toLight[0] == ref.lighting.toLight[0]);
+    REQUIRE(start.lighting.lights.size() == 1);
+    CHECK(start.lighting.lights[0].toLight == ref.lighting.lights[0].toLight);
     // The float yaw/pitch camera alone would not give these bits.
     const FrameView viaYawPitch = makeFrameView(setupFromCamera(cameraFromSetup(setup)), 960, 540, light);
     CHECK_FALSE(viaYawPitch.viewProj == ref.viewProj);

@@ -20,7 +20,7 @@ namespace {
 
 Lighting oneLight(Vec3 toLight) {
     Lighting l;
-    l.toLight = {toLight};
+    l.lights = {Light::directional(toLight)};
     return l;
 }
 
@@ -160,7 +160,7 @@ TEST_CASE("Blinn-Phong: several lights add up, and the pixel they make", "[rende
     // diffuse  = 0.1 + 1 + 0.8 = 1.9
     // specular = 1 + 0.1853020 = 1.1853020
     Lighting l;
-    l.toLight = {kN, {0.6f, 0.0f, 0.8f}, {0.0f, 0.0f, -1.0f}};
+    l.lights = {Light::directional(kN), Light::directional({0.6f, 0.0f, 0.8f}), Light::directional({0.0f, 0.0f, -1.0f})};
     const LightTerms t = blinnPhong(l, kRef, kN, kN);
     CHECK(t.diffuse == Approx(1.9).epsilon(1e-6));
     CHECK(t.specular == Approx(1.1853020).epsilon(1e-5));
@@ -211,7 +211,7 @@ TEST_CASE("drawMesh: a flat quad facing the light has the same colour in flat, G
     view.eye = {0.0f, 0.0f, 50.0f};
     view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
     view.finiteFar = false;
-    view.lighting.toLight = {{0.0f, 0.0f, 1.0f}};
+    view.lighting.lights = {Light::directional({0.0f, 0.0f, 1.0f})};
     SurfaceMaterial material;
     material.kd = {0.4f, 0.3f, 0.06f};
 
@@ -242,5 +242,165 @@ TEST_CASE("drawMesh: a flat quad facing the light has the same colour in flat, G
         CHECK(covered < 53 * 53);
         CHECK(wrong == 0);
         CHECK(fb.pixel(32, 32) == c.expected);
+    }
+}
+
+// --- Coloured, point and spot lights (lightTerms) ----------------------------------------------
+// N = +Z at the origin and V = N unless stated; the one light's factor a and direction L follow
+// Shading.hpp's lightAt: a = 1 / d^2 for point and spot lights, times the range window
+// 1 - (d / range)^4 and the cone factor clamp((cos - cos outer) / (cos inner - cos outer), 0, 1)^2.
+
+namespace {
+Lighting only(const Light& light) {
+    Lighting l;
+    l.lights = {light};
+    return l;
+}
+constexpr Vec3 kOrigin{0.0f, 0.0f, 0.0f};
+} // namespace
+
+TEST_CASE("Lights: a coloured directional light scales both terms per channel", "[render][shading][lights]") {
+    // L = V = N: N.L = 1, N.H = 1 -> diffuse = 0.1 + colour, specular = colour.
+    const RgbTerms t = lightTerms(only(Light::directional(kN, {0.5f, 1.0f, 2.0f})), kRef, kN, kOrigin, kN);
+    CHECK(t.diffuse.r == Approx(0.6f));
+    CHECK(t.diffuse.g == Approx(1.1f));
+    CHECK(t.diffuse.b == Approx(2.1f));
+    CHECK(t.specular.r == 0.5f);
+    CHECK(t.specular.g == 1.0f);
+    CHECK(t.specular.b == 2.0f);
+}
+
+TEST_CASE("Lights: a point light falls off with the square of the distance", "[render][shading][lights]") {
+    SECTION("straight above at distance 2, colour (8, 4, 2): a = 1/4") {
+        // diffuse = 0.1 + colour * 1 * 0.25 = (2.1, 1.1, 0.6); specular = colour * 1^32 * 0.25 = (2, 1, 0.5).
+        const RgbTerms t = lightTerms(only(Light::point({0, 0, 2}, {8.0f, 4.0f, 2.0f})), kRef, kN, kOrigin, kN);
+        CHECK(t.diffuse.r == Approx(2.1f));
+        CHECK(t.diffuse.g == Approx(1.1f));
+        CHECK(t.diffuse.b == Approx(0.6f));
+        CHECK(t.specular.r == 2.0f);
+        CHECK(t.specular.g == 1.0f);
+        CHECK(t.specular.b == 0.5f);
+    }
+    SECTION("oblique: at (3, 0, 4), white") {
+        // d^2 = 25, a = 0.04, L = (0.6, 0, 0.8): diffuse = 0.1 + 0.8 * 0.04 = 0.132;
+        // N.H = 3 / sqrt 10 (as above), N.H^32 = 0.9^16 = 0.1853020 -> specular 0.04 * 0.1853020 = 0.00741208.
+        const RgbTerms t = lightTerms(only(Light::point({3, 0, 4}, {1, 1, 1})), kRef, kN, kOrigin, kN);
+        CHECK(t.diffuse.g == Approx(0.132f).epsilon(1e-6));
+        CHECK(t.specular.g == Approx(0.00741208f).epsilon(1e-5));
+    }
+    SECTION("the light moves with the surface point: p = (0, 0, -2) sees it at distance 4") {
+        const RgbTerms t = lightTerms(only(Light::point({0, 0, 2}, {8.0f, 8.0f, 8.0f})), kRef, kN, {0, 0, -2}, kN);
+        CHECK(t.diffuse.r == Approx(0.1f + 8.0f / 16.0f)); // 0.6
+    }
+    SECTION("range: the window 1 - (d / range)^4") {
+        // d = 2, range 4: (1/2)^4 = 0.0625 -> a = 0.25 * 0.9375 = 0.234375; 0.1 + 8 * 0.234375 = 1.975.
+        const RgbTerms t = lightTerms(only(Light::point({0, 0, 2}, {8.0f, 8.0f, 8.0f}, 4.0f)), kRef, kN, kOrigin, kN);
+        CHECK(t.diffuse.r == Approx(1.975f));
+        CHECK(t.specular.r == Approx(8.0f * 0.234375f));
+        // At or beyond the range: no light at all (ambient only, no specular).
+        for (float range : {2.0f, 1.0f}) {
+            const RgbTerms off = lightTerms(only(Light::point({0, 0, 2}, {8.0f, 8.0f, 8.0f}, range)), kRef, kN, kOrigin, kN);
+            CHECK(off.diffuse.r == 0.1f);
+            CHECK(off.specular.r == 0.0f);
+        }
+    }
+    SECTION("behind the surface: nothing") {
+        const RgbTerms t = lightTerms(only(Light::point({0, 0, -2}, {8.0f, 8.0f, 8.0f})), kRef, kN, kOrigin, kN);
+        CHECK(t.diffuse.r == 0.1f);
+        CHECK(t.specular.r == 0.0f);
+    }
+    SECTION("at the surface point itself: capped, finite") {
+        // d = 0: L = normalize(0) (no direction, N.L not > 0): no light, and no NaN.
+        const RgbTerms t = lightTerms(only(Light::point(kOrigin, {1, 1, 1})), kRef, kN, kOrigin, kN);
+        CHECK(t.diffuse.r == 0.1f);
+        CHECK(t.specular.r == 0.0f);
+    }
+}
+
+TEST_CASE("Lights: a spot light's cone", "[render][shading][lights]") {
+    // At (0, 0, 2) pointing down -Z, inner 0.2 rad, outer 0.6 rad, colour 1.
+    const Light spot = Light::spot({0, 0, 2}, {0, 0, -1}, {1, 1, 1}, 0.2f, 0.6f);
+    SECTION("on the axis: the full light, a = 1/4") {
+        const RgbTerms t = lightTerms(only(spot), kRef, kN, kOrigin, kN);
+        CHECK(t.diffuse.r == Approx(0.35f));
+        CHECK(t.specular.r == Approx(0.25f));
+    }
+    SECTION("0.4 rad off the axis: half-way through the falloff") {
+        // p = (-2 tan 0.4, 0, 0) = (-0.8455864, 0, 0): L makes 0.4 rad with the axis and with N.
+        // cone = ((cos 0.4 - cos 0.6) / (cos 0.2 - cos 0.6))^2 = (0.0957252 / 0.1547309)^2 = 0.3827364;
+        // d^2 = 4 / cos^2 0.4 = 4.7150164 -> a = 0.3827364 / 4.7150164 = 0.0811739;
+        // diffuse = 0.1 + cos 0.4 * a = 0.1 + 0.9210610 * 0.0811739 = 0.1747661;
+        // H bisects L and V = N: N.H = cos 0.2 = 0.9800666, specular = 0.9800666^32 a = 0.0426182.
+        const RgbTerms t = lightTerms(only(spot), kRef, kN, {-0.8455864f, 0.0f, 0.0f}, kN);
+        CHECK(t.diffuse.r == Approx(0.1747661).epsilon(1e-5));
+        CHECK(t.specular.r == Approx(0.0426182).epsilon(1e-4));
+    }
+    SECTION("inside the inner angle: the cone factor is 1") {
+        // 0.1 rad off: p = (-2 tan 0.1, 0, 0); a = cos^2 0.1 / 4, diffuse = 0.1 + cos^3 0.1 / 4.
+        const float x = -2.0f * std::tan(0.1f);
+        const RgbTerms t = lightTerms(only(spot), kRef, kN, {x, 0.0f, 0.0f}, kN);
+        CHECK(t.diffuse.r == Approx(0.1 + std::pow(std::cos(0.1), 3.0) / 4.0).epsilon(1e-5));
+    }
+    SECTION("outside the outer angle: dark") {
+        const RgbTerms t = lightTerms(only(spot), kRef, kN, {-2.0f * std::tan(0.7f), 0.0f, 0.0f}, kN);
+        CHECK(t.diffuse.r == 0.1f);
+        CHECK(t.specular.r == 0.0f);
+    }
+}
+
+TEST_CASE("Lights: white directional lights give blinnPhong's terms bit for bit", "[render][shading][lights]") {
+    // lightTerms with colour 1 and a = 1 multiplies by 1 only: the fast path (one-number terms)
+    // and the general one agree exactly, so scenes without coloured lights keep their images.
+    Lighting l;
+    l.lights = {Light::directional(normalize(Vec3(1, 1, 1))), Light::directional(normalize(Vec3(-0.3f, 0.2f, 1.0f)))};
+    REQUIRE(l.whiteDirectional());
+    std::uint32_t state = 12345u;
+    auto next = [&state] {
+        state = state * 1664525u + 1013904223u;
+        return float(state >> 8) / float(1u << 24) * 2.0f - 1.0f;
+    };
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 n = normalize(Vec3(next(), next(), next())), v = normalize(Vec3(next(), next(), next()));
+        const Vec3 p{next(), next(), next()};
+        const LightTerms grey = blinnPhong(l, kRef, n, v);
+        const RgbTerms rgb = lightTerms(l, kRef, n, p, v);
+        REQUIRE(rgb.diffuse.r == grey.diffuse);
+        REQUIRE(rgb.diffuse.b == grey.diffuse);
+        REQUIRE(rgb.specular.g == grey.specular);
+    }
+    l.lights.push_back(Light::directional(kN, {1.0f, 0.9f, 1.0f}));
+    CHECK(!l.whiteDirectional());
+    l.lights.back() = Light::point({0, 0, 1}, {1, 1, 1});
+    CHECK(!l.whiteDirectional());
+}
+
+TEST_CASE("drawMesh: a red light lights only the red channel, in flat, Gouraud and Phong", "[render][shading][lights]") {
+    // The lit quad of the test above under one pure red light along +Z: green and blue keep the
+    // ambient term alone, 0.1 kd (0.1 * 0.5 * 255 = 12.75 -> 13), red is lit as before
+    // (kd 0.5: 0.55 + spec [0.4996, 0.5] -> 1.05: 255). Gouraud carries six terms here: with
+    // its two grey ones, green would be lit too.
+    Mesh quad;
+    quad.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
+    quad.normals.assign(4, {0.0f, 0.0f, 1.0f});
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    FrameView view;
+    view.eye = {0.0f, 0.0f, 50.0f};
+    view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
+    view.finiteFar = false;
+    view.lighting.lights = {Light::directional({0.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 0.0f})};
+    SurfaceMaterial material;
+    material.kd = {0.5f, 0.5f, 0.5f};
+    for (ShadingMode mode : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong}) {
+        for (Isa isa : {Isa::Scalar, bestIsa()}) {
+            INFO("mode " << shadingModeName(mode) << ", isa " << isaName(isa));
+            FrameBuffer fb(64, 64);
+            fb.clear(0);
+            RenderContext ctx(fb);
+            RenderSettings settings;
+            settings.shading = mode;
+            settings.isa = isa;
+            drawMesh(ctx, view, settings, quad, material);
+            CHECK(fb.pixel(32, 32) == packBgra(255, 13, 13));
+        }
     }
 }

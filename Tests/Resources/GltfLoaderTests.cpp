@@ -308,6 +308,63 @@ TEST_CASE("glTF cameras: perspective camera nodes in world space, in node order;
     CHECK(contains(bad.error(), "camera 0"));
 }
 
+TEST_CASE("glTF lights (KHR_lights_punctual): placed by their nodes, colour x intensity", "[resources][gltf][lights]") {
+    const std::string dir = freshDir("gltf-lights");
+    // Node 1: the directional light 0, turned 90 degrees about +y (its -z shines along -x, so the
+    // direction TO it is +x). Node 2 at (1, 2, 3): the point light 1. Node 3 at (0, 5, 0) turned
+    // -90 degrees about +x (its -z points down, -y): the spot 2. Light 0 is placed twice (node 4
+    // under node 2, i.e. at (1, 2, 3) + (0, 0, -1), turned like node 2: not at all).
+    Asset a = triangleAsset("[{\"mesh\":0,\"children\":[1,2,3]},"
+                            "{\"rotation\":[0,0.7071067811865476,0,0.7071067811865476],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+                            "{\"translation\":[1,2,3],\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}},\"children\":[4]},"
+                            "{\"translation\":[0,5,0],\"rotation\":[-0.7071067811865476,0,0,0.7071067811865476],"
+                            "\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}},"
+                            "{\"translation\":[0,0,-1],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}]");
+    const std::string lights = "\"lights\":[{\"type\":\"directional\",\"color\":[1,0.5,0.25],\"intensity\":2},"
+                               "{\"type\":\"point\",\"intensity\":10,\"range\":7},"
+                               "{\"type\":\"spot\",\"color\":[0,1,0],\"spot\":{\"innerConeAngle\":0.25,\"outerConeAngle\":0.5}}]";
+    a.extra = ",\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{\"KHR_lights_punctual\":{" + lights + "}}";
+    auto r = load(dir, "lights.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const std::vector<Light>& l = r.value().lights;
+    REQUIRE(l.size() == 4); // depth-first node order: 1, 2, 4, 3
+    CHECK(l[0].type == LightType::Directional);
+    checkVec(l[0].toLight, 1, 0, 0);
+    CHECK(l[0].colour.r == 2.0f);
+    CHECK(l[0].colour.g == 1.0f);
+    CHECK(l[0].colour.b == 0.5f);
+    CHECK(l[1].type == LightType::Point);
+    checkVec(l[1].position, 1, 2, 3);
+    CHECK(l[1].colour.g == 10.0f); // no color: white
+    CHECK(l[1].range == 7.0f);
+    CHECK(l[2].type == LightType::Directional);
+    checkVec(l[2].toLight, 0, 0, 1); // node 4 is not turned: shines along -z
+    CHECK(l[3].type == LightType::Spot);
+    checkVec(l[3].position, 0, 5, 0);
+    checkVec(l[3].spotDirection, 0, -1, 0);
+    CHECK(l[3].range == 0.0f);
+    CHECK(l[3].colour.r == 0.0f);
+    CHECK(l[3].colour.g == 1.0f);
+    // The cone: factor 1 at the inner angle, 0 at the outer one.
+    CHECK(std::cos(0.25f) * l[3].coneScale + l[3].coneOffset == Approx(1.0f).margin(1e-5));
+    CHECK(std::cos(0.5f) * l[3].coneScale + l[3].coneOffset == Approx(0.0f).margin(1e-5));
+
+    SECTION("broken lights are errors naming the light") {
+        const auto withLights = [&](const std::string& list) {
+            Asset b = triangleAsset("[{\"mesh\":0,\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}]");
+            b.extra = ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":" + list + "}}";
+            return b.embedded();
+        };
+        CHECK(contains(errorOf(dir, "cone.gltf", withLights("[{\"type\":\"spot\",\"spot\":{\"innerConeAngle\":0.6,\"outerConeAngle\":0.5}}]")),
+                       "light 0: spot cone"));
+        CHECK(contains(errorOf(dir, "colour.gltf", withLights("[{\"type\":\"point\",\"color\":[1,2,0]}]")), "light 0: color"));
+        CHECK(contains(errorOf(dir, "intensity.gltf", withLights("[{\"type\":\"point\",\"intensity\":-1}]")), "intensity"));
+        Asset missing = triangleAsset("[{\"mesh\":0,\"extensions\":{\"KHR_lights_punctual\":{\"light\":3}}}]");
+        CHECK(contains(errorOf(dir, "missing.gltf", missing.embedded()), "node 0: KHR_lights_punctual: light 3"));
+    }
+}
+
 TEST_CASE("glTF: bad files are one-line errors naming the file and the problem", "[resources][gltf][errors]") {
     const std::string dir = freshDir("gltf-errors");
     SECTION("an index out of range") {

@@ -131,7 +131,17 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
     mesh.indices = {0, 1, 2};
     FrameView view;
     view.eye = {0.3f, 0.4f, 3.0f};
-    view.lighting.toLight = {normalize(Vec3(1, 1, 1)), normalize(Vec3(-0.3f, 0.2f, 1.0f))};
+    view.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1))), Light::directional(normalize(Vec3(-0.3f, 0.2f, 1.0f)))};
+    // The same with lights of every kind (RGB terms: lightsRgb, Gouraud's six varyings): a
+    // coloured directional light, a point light with a range that cuts through the positions
+    // (varyings in [-3, 3]), one without, and a spot whose cone edge crosses them.
+    FrameView colouredView = view;
+    colouredView.lighting.lights = {
+        Light::directional(normalize(Vec3(1, 1, 1)), {1.0f, 0.5f, 0.25f, 1.0f}),
+        Light::point({0.5f, 1.0f, 2.0f}, {4.0f, 3.0f, 1.0f, 1.0f}, 3.5f),
+        Light::point({-2.0f, 0.0f, 1.0f}, {0.5f, 2.0f, 2.0f, 1.0f}),
+        Light::spot({0.0f, 0.0f, 4.0f}, {0.1f, -0.2f, -1.0f}, {6.0f, 6.0f, 3.0f, 1.0f}, 0.2f, 0.6f, 9.0f)};
+    REQUIRE(!colouredView.lighting.whiteDirectional());
     const Texture textures[] = {randomTexture(rng, 13, 7), randomTexture(rng, 32, 16)}; // non-power-of-two, power-of-two
     // Specular constants: the default (white 0.5, 32), an MTL-like coloured Ks with an odd
     // exponent, and none (Ks black: the kernels skip the half vector). Textured draws take one
@@ -164,20 +174,33 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                             // kd here is the texel's tint (an MTL Kd).
                             const DrawContext d{view,     settings, mesh, mesh.indices.data(), &texture, Color{0.7f, 0.4f, 0.2f, 1.0f},
                                                 specular,
-                                                1.0f};
+                                                1.0f, true};
                             compareKernel<UnlitProgram<true>>(isa, key, [&] { return UnlitProgram<true>(&d, 0); }, rng, totals);
                             compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<true>>(isa, key, [&] { return GouraudProgram<true>(&d); }, rng, totals);
                             compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&d); }, rng, totals);
                         }
+                        {
+                            // Coloured, point and spot lights on the non-power-of-two texture.
+                            const DrawContext d{colouredView, settings, mesh, mesh.indices.data(), &textures[0],
+                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 1.0f, false};
+                            compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
+                            compareKernel<GouraudProgram<true, true>>(isa, key, [&] { return GouraudProgram<true, true>(&d); }, rng, totals);
+                            compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&d); }, rng, totals);
+                        }
                         // Untextured programs read neither filter nor wrap: once per depth and perspective.
                         if (filter != TextureFilter::Nearest || wrap != WrapMode::Repeat) continue;
                         for (const Specular& sp : speculars) {
-                            const DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f};
+                            const DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f, true};
                             compareKernel<UnlitProgram<false>>(isa, key, [&] { return UnlitProgram<false>(&d, packBgra8(d.kd)); }, rng, totals);
                             compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<false>>(isa, key, [&] { return GouraudProgram<false>(&d); }, rng, totals);
                             compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&d); }, rng, totals);
+                            const DrawContext c{colouredView, settings, mesh, mesh.indices.data(), nullptr,
+                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f, false};
+                            compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&c); }, rng, totals);
+                            compareKernel<GouraudProgram<false, true>>(isa, key, [&] { return GouraudProgram<false, true>(&c); }, rng, totals);
+                            compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&c); }, rng, totals);
                         }
                     }
     }
