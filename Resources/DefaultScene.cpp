@@ -9,18 +9,21 @@ namespace {
 
 Texture textureOf(const Image& img) { return Texture::fromRgba8(img.width, img.height, img.rgba.data()); }
 
-void addObject(Scene& scene, Mesh mesh, const Mat4& transform, int texture, Color kd) {
+void addObject(Scene& scene, Mesh mesh, const Mat4& transform, int texture, Color kd, float alpha = 1.0f) {
     transformMesh(mesh, transform);
     SceneDraw d;
     d.mesh = int(scene.meshes.size());
     d.indexCount = std::uint32_t(mesh.indices.size());
     d.texture = texture;
     d.kd = kd;
+    d.alpha = alpha;
     scene.meshes.push_back(std::move(mesh));
     scene.draws.push_back(d);
 }
 
 } // namespace
+
+Light defaultSceneFillLight() { return Light::point({-1.2f, 1.6f, 1.4f}, {2.4f, 1.5f, 0.7f, 1.0f}, 9.0f); }
 
 Scene makeDefaultScene() {
     Scene scene;
@@ -40,6 +43,10 @@ Scene makeDefaultScene() {
     addObject(scene, makeQuad(),
               translate({3.0f, 1.6f, 1.2f}) * rotate(radians(180.0f + 20.0f), {0, 1, 0}) * scale({2.2f, 1.6f, 1.0f}),
               bannerTex, grey);
+    // A block of tinted glass between the torus and the right cube: drawn after the opaque
+    // draws, its back faces first (no culling), blended over what is behind it.
+    addObject(scene, makeCube(), translate({1.25f, 0.45f, 1.7f}) * rotate(radians(25.0f), {0, 1, 0}) * scale({0.9f, 0.9f, 0.9f}),
+              -1, {0.55f, 0.85f, 0.95f}, 0.45f);
 
     scene.boundsMin = {-60.0f, 0.0f, -60.0f};
     scene.boundsMax = {60.0f, 2.5f, 60.0f};

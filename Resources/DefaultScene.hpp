@@ -3,14 +3,20 @@
 
 #include "Math/Vec.hpp"
 #include "Raster/Scene.hpp"
+#include "Raster/Shading.hpp"
 
 namespace sr {
 
 // A checker floor receding to the horizon (perspective correction and filtering visible), brick
-// textured cubes, a smooth sphere and a torus with specular highlights, and a single-sided
-// banner that the default camera sees from BEHIND: cull none shows it, cull CW (back faces)
-// hides it, cull CCW hides everything else and keeps it.
+// textured cubes, a smooth sphere and a torus with specular highlights, a block of tinted glass
+// (transparent: blended after the opaque draws), and a single-sided banner that the default
+// camera sees from BEHIND: cull none shows it, cull CW (back faces) hides it, cull CCW hides
+// everything else and keeps it.
 Scene makeDefaultScene();
+
+// The built-in scene's second light, besides the white directional key light (--light): a
+// warm point light low in front of the sphere, so the RGB lighting path is seen.
+Light defaultSceneFillLight();
 
 // The default camera of the built-in scene (world space; the floor is infinite-looking, so the
 // projection has no far plane).

@@ -172,6 +172,7 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
             out.textureOverride = Texture::fromRgba8(img.value().width, img.value().height, img.value().rgba.data());
         }
         out.description = "built-in scene: " + std::to_string(out.scene.triangleCount()) + " triangles";
+        out.lights = {keyLight(options.light), defaultSceneFillLight()};
     } else {
         ObjOptions objOptions;
         objOptions.textureOverride = options.texture;
@@ -266,6 +267,12 @@ std::string cameraFlags(const CameraSetup& c) {
     return "--eye " + formatVec(c.eye) + " --target " + formatVec(c.target) + " --up " + formatVec(c.up) + buf;
 }
 
+Light keyLight(Vec3 light) {
+    // The direction is normalised in double, as the reference does.
+    const double lx = light.x, ly = light.y, lz = light.z, l = std::sqrt(lx * lx + ly * ly + lz * lz);
+    return Light::directional(l > 0 ? Vec3(float(lx / l), float(ly / l), float(lz / l)) : Vec3(0, 0, 1));
+}
+
 FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light, const std::vector<Light>& sceneLights) {
     const double aspect = (width > 0 && height > 0) ? double(width) / double(height) : 1.0;
     // As Camera::setNearFar: near clamped into Camera's range, a far not beyond it is infinite.
@@ -281,9 +288,7 @@ FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light,
         v.lighting.lights = sceneLights; // the scene's own lights; --light is for scenes without
         return v;
     }
-    // One white directional light; the direction is normalised in double, as the reference does.
-    const double lx = light.x, ly = light.y, lz = light.z, l = std::sqrt(lx * lx + ly * ly + lz * lz);
-    v.lighting.lights = {Light::directional(l > 0 ? Vec3(float(lx / l), float(ly / l), float(lz / l)) : Vec3(0, 0, 1))};
+    v.lighting.lights = {keyLight(light)};
     return v;
 }
 

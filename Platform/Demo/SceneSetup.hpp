@@ -28,7 +28,8 @@ struct LoadedScene {
     Vec3 centre{0, 0, 0}; // bounding sphere of the model's vertices (auto-fit)
     double radius = 1.0;
     std::vector<CameraSetup> cameras; // the file's cameras (glTF), for --camera N and the demo's V key
-    std::vector<Light> lights;        // the scene's own lights (glTF, the built-in scene); none: --light's one
+    std::vector<Light> lights;        // the scene's own lights (glTF's; the built-in scene's key light from
+                                      // --light and its fill light); none: --light's one alone
     std::vector<std::string> warnings;
     std::string description; // one line: what was loaded (triangles, textures, normals)
 };
@@ -61,10 +62,14 @@ CameraSetup resolveCamera(const SceneOptions& options, const LoadedScene& scene)
 // "--eye x,y,z --target ... --near N --far F": the camera as flags for another renderer.
 std::string cameraFlags(const CameraSetup& camera);
 
+// The white directional light of --light (any non-zero direction, normalised in double).
+Light keyLight(Vec3 direction);
+
 // World -> clip for the camera (reversed-Z; MVP computed in double, rounded once to float, as
-// the reference renderer does), the eye, and the light.
+// the reference renderer does), the eye, and the lights: the scene's own (LoadedScene::lights)
+// when it has any, else keyLight(light) alone.
 FrameView makeFrameView(const CameraSetup& camera, int width, int height, Vec3 light,
-                        const std::vector<Light>& sceneLights = {});
+                        const std::vector<Light>& sceneLights);
 
 RenderSettings makeRenderSettings(const SceneOptions& options);
 

@@ -257,7 +257,7 @@ TEST_CASE("bench prints one JSON line with the documented fields", "[headless]")
     CHECK(numberOf(j, "pixels_shaded") >= numberOf(j, "pixels_covered"));
     CHECK(numberOf(j, "pixels_covered") <= 64 * 48);
     CHECK(numberOf(j, "overdraw") >= 1.0);
-    CHECK(numberOf(j, "triangles_sorted") == 0); // nothing transparent in the built-in scene: no sort
+    CHECK(numberOf(j, "triangles_sorted") == 12); // the built-in scene's glass block (12 triangles), sorted every frame
 }
 
 TEST_CASE("bench counters follow the cull mode", "[headless]") {

@@ -61,7 +61,7 @@ TEST_CASE("the frame view matches makeFrameView for the starting camera", "[plat
     setup.nearZ = 0.1;
     setup.farZ = std::numeric_limits<double>::infinity();
     const FrameView ours = c.frameView(640, 480);
-    const FrameView ref = makeFrameView(setup, 640, 480, {1.0f, 1.0f, 1.0f});
+    const FrameView ref = makeFrameView(setup, 640, 480, {1.0f, 1.0f, 1.0f}, {});
     for (int r = 0; r < 4; ++r)
         for (int col = 0; col < 4; ++col) {
             INFO("element " << r << "," << col);
@@ -90,8 +90,8 @@ TEST_CASE("an absurd near plane is clamped to Camera::kMinNear by the demo camer
         CameraSetup clamped = setup;
         clamped.nearZ = double(Camera::kMinNear);
         setup.nearZ = nearZ;
-        const FrameView headless = makeFrameView(setup, 640, 480, {1.0f, 1.0f, 1.0f});
-        const FrameView expected = makeFrameView(clamped, 640, 480, {1.0f, 1.0f, 1.0f});
+        const FrameView headless = makeFrameView(setup, 640, 480, {1.0f, 1.0f, 1.0f}, {});
+        const FrameView expected = makeFrameView(clamped, 640, 480, {1.0f, 1.0f, 1.0f}, {});
         const Camera camera = cameraFromSetup(setup);
         CHECK(camera.nearZ() == Camera::kMinNear);
         for (int r = 0; r < 4; ++r)
@@ -107,7 +107,7 @@ TEST_CASE("an absurd near plane is clamped to Camera::kMinNear by the demo camer
     tiny.up = {0.0f, 1.0f, 0.0f};
     tiny.nearZ = 1e-12;
     tiny.farZ = 1e-7;
-    CHECK_FALSE(makeFrameView(tiny, 64, 64, {1.0f, 1.0f, 1.0f}).finiteFar);
+    CHECK_FALSE(makeFrameView(tiny, 64, 64, {1.0f, 1.0f, 1.0f}, {}).finiteFar);
     CHECK(cameraFromSetup(tiny).farZ() == Camera::kInfinity);
 }
 
@@ -204,7 +204,7 @@ TEST_CASE("one view builder: the demo's starting view is makeFrameView of the fl
     setup.farZ = 5.0;
     const Vec3 light{1.0f, 1.0f, 1.0f};
     DemoController c(setup, RenderSettings{}, light);
-    const FrameView ref = makeFrameView(setup, 960, 540, light);
+    const FrameView ref = makeFrameView(setup, 960, 540, light, {});
     const FrameView start = c.frameView(960, 540);
     CHECK(start.viewProj == ref.viewProj);
     CHECK(start.eye == ref.eye);
@@ -212,7 +212,7 @@ TEST_CASE("one view builder: the demo's starting view is makeFrameView of the fl
     REQUIRE(start.lighting.lights.size() == 1);
     CHECK(start.lighting.lights[0].toLight == ref.lighting.lights[0].toLight);
     // The float yaw/pitch camera alone would not give these bits.
-    const FrameView viaYawPitch = makeFrameView(setupFromCamera(cameraFromSetup(setup)), 960, 540, light);
+    const FrameView viaYawPitch = makeFrameView(setupFromCamera(cameraFromSetup(setup)), 960, 540, light, {});
     CHECK_FALSE(viaYawPitch.viewProj == ref.viewProj);
     // Once it moves, the view follows the fly camera through the same builder; R brings the
     // starting view back exactly.
@@ -220,7 +220,7 @@ TEST_CASE("one view builder: the demo's starting view is makeFrameView of the fl
     c.update(0.1);
     c.keyUp(Key::W);
     CHECK_FALSE(c.frameView(960, 540).viewProj == ref.viewProj);
-    CHECK(c.frameView(960, 540).viewProj == makeFrameView(setupFromCamera(c.camera()), 960, 540, light).viewProj);
+    CHECK(c.frameView(960, 540).viewProj == makeFrameView(setupFromCamera(c.camera()), 960, 540, light, {}).viewProj);
     c.keyDown(Key::R);
     CHECK(c.frameView(960, 540).viewProj == ref.viewProj);
 }

@@ -51,7 +51,8 @@ TEST_CASE("OBJ draw order: at an exact depth tie the face whose material appears
     CHECK(scene.value().scene.draws[0].texture != scene.value().scene.draws[1].texture);
     CHECK(scene.value().scene.draws[0].indexCount == 6); // faces 1 and 3
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light);
+        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light,
+                            scene.value().lights);
     FrameBuffer fb(options.width, options.height);
     RenderContext ctx(fb);
     for (int threads : {1, 2}) {

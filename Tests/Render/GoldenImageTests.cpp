@@ -53,7 +53,7 @@ Image renderDefaultScene(ShadingMode mode) {
     auto scene = demo::loadScene(options);
     REQUIRE(scene.ok());
     const demo::CameraSetup camera = demo::resolveCamera(options, scene.value());
-    const FrameView view = demo::makeFrameView(camera, kWidth, kHeight, options.light);
+    const FrameView view = demo::makeFrameView(camera, kWidth, kHeight, options.light, scene.value().lights);
     const RenderSettings settings = demo::makeRenderSettings(options);
     FrameBuffer fb(kWidth, kHeight);
     RenderContext ctx(fb);

@@ -21,7 +21,7 @@ FrameView viewFrom(Vec3 eye, Vec3 target) {
     c.fovDegrees = 60.0;
     c.nearZ = 0.5;
     c.farZ = 50.0;
-    return demo::makeFrameView(c, kW, kH, {0, 0, 1});
+    return demo::makeFrameView(c, kW, kH, {0, 0, 1}, {});
 }
 
 ScreenVertex project(const FrameView& v, Vec3 p) {

@@ -57,7 +57,7 @@ Pixel centrePixel(const demo::LoadedScene& scene, demo::SceneOptions options, in
     options.farZ = 200.0;
     options.light = Vec3{0.0f, 0.0f, 1.0f};
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene), options.width, options.height, options.light);
+        demo::makeFrameView(demo::resolveCamera(options, scene), options.width, options.height, options.light, scene.lights);
     FrameBuffer fb(options.width, options.height);
     RenderContext ctx(fb);
     demo::renderFrame(ctx, scene, view, demo::makeRenderSettings(options));

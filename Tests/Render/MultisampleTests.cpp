@@ -36,7 +36,7 @@ FrameView builtInView(const demo::LoadedScene& scene, int width, int height) {
     demo::SceneOptions options;
     options.width = width;
     options.height = height;
-    return demo::makeFrameView(demo::resolveCamera(options, scene), width, height, options.light);
+    return demo::makeFrameView(demo::resolveCamera(options, scene), width, height, options.light, scene.lights);
 }
 
 } // namespace

@@ -15,8 +15,10 @@ TEST_CASE("specialised pipelines render the default scene exactly like the gener
     options.height = 120;
     auto scene = demo::loadScene(options);
     REQUIRE(scene.ok());
+    scene.value().scene = test::opaqueOnly(std::move(scene.value().scene)); // the general renderer draws opaque draws only
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light);
+        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light,
+                            scene.value().lights);
     for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
         for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
             for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear}) {
@@ -48,7 +50,8 @@ TEST_CASE("drawMesh renders the same image with every ISA's kernels and with the
     auto scene = demo::loadScene(options);
     REQUIRE(scene.ok());
     FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light);
+        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light,
+                            scene.value().lights);
     for (float shininess : {32.0f, 12.5f}) {
         for (SceneDraw& d : scene.value().scene.draws) d.specular.shininess = shininess;
         for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})

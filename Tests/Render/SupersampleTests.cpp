@@ -159,7 +159,7 @@ TEST_CASE("SSAA 16 of the built-in scene equals its 4x render, box-filtered by h
     options.height = 40;
     auto scene = demo::loadScene(options);
     REQUIRE(scene.ok());
-    const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 64, 40, options.light);
+    const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 64, 40, options.light, scene.value().lights);
     for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear}) {
         CAPTURE(filterName(filter));
         RenderSettings settings;

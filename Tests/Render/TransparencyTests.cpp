@@ -49,7 +49,7 @@ FrameView topView() {
     c.fovDegrees = 60.0;
     c.nearZ = 0.5;
     c.farZ = 20.0;
-    return demo::makeFrameView(c, kSize, kSize, {0, 0, 1});
+    return demo::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
 }
 
 // The pixel over world point (x, y) at depth z, as the view projects it.
@@ -139,7 +139,7 @@ TEST_CASE("the back-to-front order follows the view, not the file", "[render][tr
         c.up = {0, 1, 0};
         c.nearZ = 0.5;
         c.farZ = 20.0;
-        const FrameView view = demo::makeFrameView(c, kSize, kSize, {0, 0, 1});
+        const FrameView view = demo::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
         FrameBuffer fb(kSize, kSize);
         RenderContext ctx(fb);
         renderSceneFrame(ctx, s, view, settings);

@@ -40,7 +40,8 @@ Frame renderDefault(const demo::SceneOptions& options, int threads, const Render
     static auto scene = demo::loadScene(demo::SceneOptions{});
     REQUIRE(scene.ok());
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light);
+        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light,
+                            scene.value().lights);
     Frame f{FrameBuffer(options.width, options.height), {}};
     RenderContext ctx(f.fb);
     ctx.setThreads(threads);

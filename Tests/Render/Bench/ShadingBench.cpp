@@ -40,9 +40,10 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "sr_shading_bench: %s\n", loaded.error().c_str());
         return 1;
     }
+    loaded.value().scene = test::opaqueOnly(std::move(loaded.value().scene)); // the general renderer's scenes
     const demo::LoadedScene& scene = loaded.value();
     const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene), options.width, options.height,
-                                               options.light);
+                                               options.light, scene.lights);
     FrameBuffer special(options.width, options.height), general(options.width, options.height);
     RenderContext cs(special), cg(general);
 
@@ -53,7 +54,9 @@ int main(int argc, char** argv) {
     std::printf("%-8s %10s %16s %14s %8s %10s\n", "mode", "varyings", "specialised ms", "general ms", "speed-up",
                 "same img");
     using Clock = std::chrono::steady_clock;
-    const char* varyings[] = {"0/2", "0/2", "2/4", "6/8"}; // untextured/textured, vs 10 in the general path
+    // Untextured/textured, vs 14 in the general path (Gouraud: six RGB terms under the built-in
+    // scene's coloured fill light).
+    const char* varyings[] = {"0/2", "0/2", "6/8", "6/8"};
     int m = 0;
     for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong}) {
         RenderSettings settings = demo::makeRenderSettings(options);
