@@ -42,6 +42,7 @@ struct DrawContext {
     Specular specular;
     float alpha;            // opacity: below 1 the draw is blended over the target (DrawState::blendAlpha)
     bool whiteLights;       // view.lighting.whiteDirectional(): one-number terms (blinnPhong), else RGB (lightTerms)
+    bool doubleSided = true; // false: the draw's back faces are culled whatever settings.cull says
 };
 
 // The lighting terms at world point p with unit normal n and unit view vector v, per channel:
@@ -74,7 +75,7 @@ inline Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fr
 
 inline DrawState drawStateFor(const DrawContext& d) {
     DrawState s;
-    s.cull = d.settings.cull;
+    s.cull = d.doubleSided ? d.settings.cull : CullMode::CW; // single-sided: back faces (CW on screen) culled
     s.clipFar = d.view.finiteFar;
     s.wireframe = d.settings.wireframe;
     s.wireWidth = std::max(1, ssaaFactor(d.settings.ssaa));

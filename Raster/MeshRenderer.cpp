@@ -78,7 +78,7 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& s
     if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong)) mode = ShadingMode::Flat;
     const DrawContext d{view,     settings, mesh, indices, textured ? material.texture : nullptr,
                         textured ? material.tint : material.kd, material.specular, material.alpha,
-                        view.lighting.whiteDirectional()};
+                        view.lighting.whiteDirectional(), material.doubleSided};
     if (textured) drawShaded<true>(ctx, d, mode, indexCount);
     else drawShaded<false>(ctx, d, mode, indexCount);
 }

@@ -38,8 +38,8 @@ struct DrawState {
     // pixels (a 1-sample line would resolve to 1/k of its colour).
     int wireWidth = 1;
     // Below 1: a transparent draw, blended "over" the target with this constant opacity
-    // (Blend.hpp), per pixel or, multisampled, per sample; filled by the scalar loop (the span
-    // kernels store opaque colours only). Such a draw is drawn with DepthMode::Test.
+    // (Blend.hpp), per pixel or, multisampled, per sample; the span kernels blend as the scalar
+    // loop does (their colours go through blendOver). Such a draw is drawn with DepthMode::Test.
     float blendAlpha = 1.0f;
 };
 
@@ -228,7 +228,8 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
             return;
         }
         if constexpr (HasFillKernel<Program>::value) {
-            if (alpha >= 1.0f && program.fillKernel(static_cast<const TriangleSetup&>(setup), fb, scissor, shaded)) return;
+            // (A transparent draw's kernel blends each colour over the target itself, as `counted`.)
+            if (program.fillKernel(static_cast<const TriangleSetup&>(setup), fb, scissor, shaded)) return;
         }
         if constexpr (kVaryings == 0) {
             fillTriangle<kDepth, kVaryings>(setup, fb, scissor, counted);

@@ -39,6 +39,7 @@ struct SurfaceMaterial {
     Color tint{1.0f, 1.0f, 1.0f, 1.0f}; // multiplies the texel when textured (MTL Kd; 1: the texel alone)
     Specular specular;
     float alpha = 1.0f; // opacity; below 1 the draw is blended "over" what is behind it (Blend.hpp)
+    bool doubleSided = true; // false: back faces (clockwise on screen) are culled whatever RenderSettings::cull says
 };
 
 } // namespace sr

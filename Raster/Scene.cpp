@@ -27,6 +27,7 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
     material.tint = d.tint;
     material.specular = d.specular;
     material.alpha = d.alpha;
+    material.doubleSided = d.doubleSided;
     if (textureOverride) material.texture = textureOverride;
     else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
     return material;

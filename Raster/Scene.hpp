@@ -20,6 +20,7 @@ struct SceneDraw {
     Color tint{1.0f, 1.0f, 1.0f, 1.0f};  // multiplies the texel when textured (1: the texel alone)
     Specular specular;                   // ks and shininess (default: white 0.5, 32)
     float alpha = 1.0f;                  // opacity (MTL d, glTF BLEND); below 1: drawn after the opaque draws
+    bool doubleSided = true;             // false (a glTF single-sided material): back faces culled whatever the cull mode
 };
 
 // World-space line segments (index pairs) or points, in one flat colour (lines are unlit).

@@ -250,6 +250,7 @@ Material materialFrom(const tinygltf::Material& gm) {
     // Alpha modes with the factor's alpha (texel alpha is not sampled): BLEND blends with it,
     // MASK keeps the surface when it reaches alphaCutoff and drops it otherwise, OPAQUE ignores it.
     const double a = pbr.baseColorFactor.size() > 3 ? std::clamp(pbr.baseColorFactor[3], 0.0, 1.0) : 1.0;
+    m.doubleSided = gm.doubleSided;
     if (gm.alphaMode == "BLEND") m.alpha = float(a);
     else if (gm.alphaMode == "MASK") m.alpha = a >= gm.alphaCutoff ? 1.0f : 0.0f;
     return m;

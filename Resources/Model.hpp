@@ -28,6 +28,7 @@ struct Material {
     Color kd{0.0f, 0.0f, 0.0f, 1.0f}, ks{0.0f, 0.0f, 0.0f, 1.0f};
     float shininess = 1.0f;
     float alpha = 1.0f; // opacity: MTL d (or 1 - Tr); glTF baseColorFactor alpha under BLEND, 0 or 1 under MASK
+    bool doubleSided = true; // glTF doubleSided (its default: false, back faces culled whatever --cull says); OBJ: true
 };
 
 // The triangles of one material: one draw call. One range per material (faces without one form

@@ -56,6 +56,7 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
         d.texture = range.texture;
         d.kd = kd;
         const Material* m = range.material >= 0 ? &model.materials[std::size_t(range.material)] : nullptr;
+        if (m) d.doubleSided = m->doubleSided; // geometry, not colour: under either material rule
         if (rule == MaterialRule::Mtl && m && m->fromFile) {
             // The reference's rule: a material with a map_Kd and a black Kd is "the texture alone".
             const bool black = m->kd.r == 0.0f && m->kd.g == 0.0f && m->kd.b == 0.0f;

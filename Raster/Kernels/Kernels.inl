@@ -498,6 +498,11 @@ struct SpanKernel {
     FragmentQueue<kV>& queue;
     F gradient[kPlanes];
     F triangleLod; // affine trilinear: the triangle's mip level (else unused)
+    float alpha = 1.0f; // below 1: a transparent draw, every colour blended over the target (blendOver)
+
+    // Writes the shaded colour of pixel `dst` (opaque: the colour itself; transparent: blendOver,
+    // the scalar pipeline's very function, lane by lane).
+    void put(Pixel& dst, Pixel colour) const { dst = alpha < 1.0f ? blendOver(colour, dst, alpha) : colour; }
 
     // fillTriangle's depth and 1/w: start + step * ddx in double, rounded once.
     F planeInDouble(D startValue, int plane, F step) const {
@@ -511,7 +516,7 @@ struct SpanKernel {
         for (int k = 0; k < kV; ++k) values[k] = fload(queue.v[k]);
         alignas(64) std::uint32_t out[kLanes];
         istore(out, shadeGroup<Prog, kPersp, kFilter, kWrap>(p, values, fload(queue.invW), iload(queue.x), iload(queue.y), triangleLod));
-        for (int i = 0; i < used; ++i) fb.colorRow(queue.y[i])[queue.x[i]] = out[i];
+        for (int i = 0; i < used; ++i) put(fb.colorRow(queue.y[i])[queue.x[i]], out[i]);
     }
 
     void flush() const {
@@ -581,11 +586,11 @@ struct SpanKernel {
             if constexpr (kV == 0) {
                 if constexpr (Prog::kMode == ShadingMode::Flat) p.ensureLit(); // lazy flat lighting
                 constant = p.flat;
-                if (inRow) {
+                if (inRow && alpha >= 1.0f) {
                     istore(colour + x, select(pass, iset(int(constant)), iload(colour + x)));
                 } else {
                     for (int i = 0; i < n; ++i)
-                        if (passBits & (1 << i)) colour[x + i] = constant;
+                        if (passBits & (1 << i)) put(colour[x + i], constant);
                 }
                 continue;
             } else {
@@ -599,7 +604,14 @@ struct SpanKernel {
                 }
                 const I columns = iset(x) + iiota();
                 if (passBits == bits(mAll())) {
-                    istore(colour + x, shadeGroup<Prog, kPersp, kFilter, kWrap>(p, values, invW, columns, row, triangleLod));
+                    const I shaded = shadeGroup<Prog, kPersp, kFilter, kWrap>(p, values, invW, columns, row, triangleLod);
+                    if (alpha >= 1.0f) {
+                        istore(colour + x, shaded);
+                    } else {
+                        alignas(64) std::uint32_t out[kLanes];
+                        istore(out, shaded);
+                        for (int i = 0; i < kLanes; ++i) put(colour[x + i], out[i]);
+                    }
                     continue;
                 }
                 const int at = queue.count;
@@ -629,7 +641,7 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
     // written before it is read).
     static thread_local FragmentQueue<Prog::kVaryings> queue;
     queue.count = 0;
-    SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap> span{p, t, fb, shaded, queue, {}, fzero()};
+    SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap> span{p, t, fb, shaded, queue, {}, fzero(), p.d->alpha};
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));
     for (int k = 0; k < SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap>::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);

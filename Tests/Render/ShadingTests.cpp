@@ -404,3 +404,42 @@ TEST_CASE("drawMesh: a red light lights only the red channel, in flat, Gouraud a
         }
     }
 }
+
+TEST_CASE("drawMesh: a single-sided surface loses its back faces whatever the cull mode; a double-sided one follows it",
+          "[render][cull][materials]") {
+    // The quad faces +Z; seen from +Z its triangles are counter-clockwise (front faces), from -Z
+    // clockwise (back faces). Covered pixels are counted at 64x64.
+    Mesh quad;
+    quad.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
+    quad.normals.assign(4, {0.0f, 0.0f, 1.0f});
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    auto covered = [&](float eyeZ, CullMode cull, bool doubleSided) {
+        FrameView view;
+        view.eye = {0.0f, 0.0f, eyeZ};
+        view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
+        view.finiteFar = false;
+        SurfaceMaterial material;
+        material.doubleSided = doubleSided;
+        FrameBuffer fb(64, 64);
+        fb.clear(0);
+        RenderContext ctx(fb);
+        RenderSettings settings;
+        settings.cull = cull;
+        drawMesh(ctx, view, settings, quad, material);
+        int n = 0;
+        for (int y = 0; y < 64; ++y)
+            for (int x = 0; x < 64; ++x) n += fb.pixel(x, y) != 0;
+        return n;
+    };
+    const int full = covered(50.0f, CullMode::None, true);
+    REQUIRE(full > 1000);
+    for (CullMode cull : {CullMode::None, CullMode::CW, CullMode::CCW}) {
+        INFO("cull " << cullModeName(cull));
+        // Single-sided: front faces always drawn, back faces never.
+        CHECK(covered(50.0f, cull, false) == full);
+        CHECK(covered(-50.0f, cull, false) == 0);
+        // Double-sided: the cull mode decides (CW culls back faces, CCW front faces).
+        CHECK(covered(50.0f, cull, true) == (cull == CullMode::CCW ? 0 : full));
+        CHECK(covered(-50.0f, cull, true) == (cull == CullMode::CW ? 0 : full));
+    }
+}

@@ -210,7 +210,7 @@ TEST_CASE("glTF materials: metallic-roughness mapped to Blinn-Phong; one range p
     a.nodes = "[{\"mesh\":0,\"children\":[1]},{\"mesh\":1}]";
     a.materials = "[{\"name\":\"paint\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.8,0.4,0.2,1],"
                   "\"metallicFactor\":0,\"roughnessFactor\":0.5}},"
-                  "{\"name\":\"gold\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0.5,0.25,1],"
+                  "{\"name\":\"gold\",\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,0.5,0.25,1],"
                   "\"metallicFactor\":1,\"roughnessFactor\":0}},"
                   "{\"name\":\"default\"}]";
     auto r = load(dir, "materials.gltf", a.embedded());
@@ -237,6 +237,10 @@ TEST_CASE("glTF materials: metallic-roughness mapped to Blinn-Phong; one range p
         CHECK(mat.fromFile);
         CHECK_FALSE(mat.hasMap);
     }
+    // doubleSided: false unless the file says true (glTF's default).
+    CHECK_FALSE(m.materials[0].doubleSided);
+    CHECK(m.materials[1].doubleSided);
+    CHECK_FALSE(m.materials[2].doubleSided);
     // First use: gold (mesh 0), none, paint, default (mesh 1), and gold again joins its range.
     REQUIRE(m.ranges.size() == 4);
     const int order[] = {1, -1, 0, 2};

@@ -45,8 +45,10 @@ float randomVarying(std::mt19937& rng, bool wild) {
 // The reference: ScanlineFill.hpp's loop with the program's fragment(), counting like the pipeline.
 template <class Prog, DepthMode kDepth, PerspectiveMode kPersp>
 void referenceFill(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) {
+    const float alpha = p.d->alpha;
     fillTriangle<kDepth, Prog::kVaryings, kPersp>(t, fb, s, [&](const Fragment<Prog::kVaryings>& f) {
         ++shaded;
+        if (alpha < 1.0f) return blendOver(p.fragment(f), fb.colorRow(f.y)[f.x], alpha); // the pipeline's `counted`
         return p.fragment(f);
     });
 }
@@ -179,6 +181,16 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                             compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<true>>(isa, key, [&] { return GouraudProgram<true>(&d); }, rng, totals);
                             compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&d); }, rng, totals);
+                        }
+                        {
+                            // A transparent draw (alpha 0.4: every colour blended over the target),
+                            // textured Phong and untextured flat (the constant-colour path).
+                            const DrawContext t{view, settings, mesh, mesh.indices.data(), &textures[1],
+                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 0.4f, true};
+                            compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&t); }, rng, totals);
+                            const DrawContext u{view, settings, mesh, mesh.indices.data(), nullptr,
+                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 0.4f, true};
+                            compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&u); }, rng, totals);
                         }
                         {
                             // Coloured, point and spot lights on the non-power-of-two texture.
