@@ -71,9 +71,13 @@ void drawShaded(RenderContext& ctx, const DrawContext& d, ShadingMode mode, std:
 
 } // namespace
 
-void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& settings, const Mesh& mesh,
+void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& frameSettings, const Mesh& mesh,
               const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& material) {
     const bool textured = material.texture != nullptr && mesh.hasUvs();
+    // The texture's own sampler where the settings let the file choose (glTF).
+    RenderSettings settings = frameSettings;
+    if (textured && material.wrap && settings.wrapFromFile) settings.wrap = *material.wrap;
+    if (textured && material.filter && settings.filterFromFile) settings.filter = *material.filter;
     ShadingMode mode = settings.shading;
     if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong)) mode = ShadingMode::Flat;
     const DrawContext d{view,     settings, mesh, indices, textured ? material.texture : nullptr,

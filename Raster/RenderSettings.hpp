@@ -1,6 +1,8 @@
 // The run-time quality and mode knobs of a frame, and the per-frame view they render with.
 #pragma once
 
+#include <optional>
+
 #include "Math/Mat4.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Kernels/Isa.hpp"
@@ -21,6 +23,10 @@ struct RenderSettings {
     Isa isa = bestIsa(); // which span kernels fill (Raster/Kernels/Isa.hpp); Scalar = the reference loop
     int ssaa = 1;        // supersampling: samples per pixel, 1 (off), 4 (2x2) or 16 (4x4) (Raster/Resolve.hpp)
     int msaa = 1;        // multisampling: samples per pixel, 1 (off), 2, 4 or 8 (Raster/Msaa.hpp); not with ssaa > 1
+    // A material's own sampler (SurfaceMaterial::wrap / filter, from a glTF file) overrides
+    // `wrap` / `filter` for its draw while these are true; false once the user chose them
+    // (--wrap, --filter, the demo's T key, the report's sweep).
+    bool wrapFromFile = true, filterFromFile = true;
 };
 
 // What every draw of one frame shares.
@@ -40,6 +46,10 @@ struct SurfaceMaterial {
     Specular specular;
     float alpha = 1.0f; // opacity; below 1 the draw is blended "over" what is behind it (Blend.hpp)
     bool doubleSided = true; // false: back faces (clockwise on screen) are culled whatever RenderSettings::cull says
+    // The texture's own sampler (glTF), where it says: the draw's wrap and filter when the
+    // settings let the file choose (RenderSettings::wrapFromFile / filterFromFile).
+    std::optional<WrapMode> wrap;
+    std::optional<TextureFilter> filter;
 };
 
 } // namespace sr

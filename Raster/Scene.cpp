@@ -28,6 +28,8 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
     material.specular = d.specular;
     material.alpha = d.alpha;
     material.doubleSided = d.doubleSided;
+    material.wrap = d.wrap;
+    material.filter = d.filter;
     if (textureOverride) material.texture = textureOverride;
     else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
     return material;

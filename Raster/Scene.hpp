@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "Raster/Mesh.hpp"
@@ -21,6 +22,8 @@ struct SceneDraw {
     Specular specular;                   // ks and shininess (default: white 0.5, 32)
     float alpha = 1.0f;                  // opacity (MTL d, glTF BLEND); below 1: drawn after the opaque draws
     bool doubleSided = true;             // false (a glTF single-sided material): back faces culled whatever the cull mode
+    std::optional<WrapMode> wrap;        // the texture's sampler (glTF), where it says (SurfaceMaterial)
+    std::optional<TextureFilter> filter;
 };
 
 // World-space line segments (index pairs) or points, in one flat colour (lines are unlit).

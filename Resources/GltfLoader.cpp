@@ -256,6 +256,43 @@ Material materialFrom(const tinygltf::Material& gm) {
     return m;
 }
 
+// A glTF sampler as SoftRaster's one wrap mode and one filter per draw. Wrap: REPEAT (the
+// default), CLAMP_TO_EDGE, MIRRORED_REPEAT; when wrapS and wrapT differ, wrapS serves both (a
+// note says so). Filter, from minFilter: NEAREST -> nearest, LINEAR -> bilinear, any *_MIPMAP_*
+// -> trilinear; without a minFilter, a NEAREST magFilter -> nearest, else unset (the settings').
+struct SamplerModes {
+    WrapMode wrap = WrapMode::Repeat;
+    std::optional<TextureFilter> filter;
+    std::string problem, note;
+};
+SamplerModes samplerModes(const tinygltf::Sampler& s) {
+    SamplerModes out;
+    const auto wrapOf = [&](int gl, const char* axis) -> WrapMode {
+        switch (gl) {
+        case 10497: return WrapMode::Repeat;
+        case 33071: return WrapMode::Clamp;
+        case 33648: return WrapMode::Mirror;
+        default: out.problem = std::string(axis) + " " + std::to_string(gl) + " is not a glTF wrap mode"; return WrapMode::Repeat;
+        }
+    };
+    out.wrap = wrapOf(s.wrapS, "wrapS");
+    const WrapMode t = wrapOf(s.wrapT, "wrapT");
+    if (out.problem.empty() && t != out.wrap)
+        out.note = std::string("wrapS (") + wrapName(out.wrap) + ") and wrapT (" + wrapName(t) + ") differ: " + wrapName(out.wrap) +
+                   " is used for both";
+    switch (s.minFilter) {
+    case -1: break;
+    case 9728: out.filter = TextureFilter::Nearest; break;
+    case 9729: out.filter = TextureFilter::Bilinear; break;
+    case 9984: case 9985: case 9986: case 9987: out.filter = TextureFilter::Trilinear; break;
+    default: out.problem = "minFilter " + std::to_string(s.minFilter) + " is not a glTF filter"; break;
+    }
+    if (s.magFilter != -1 && s.magFilter != 9728 && s.magFilter != 9729)
+        out.problem = "magFilter " + std::to_string(s.magFilter) + " is not a glTF filter";
+    if (s.minFilter == -1 && s.magFilter == 9728) out.filter = TextureFilter::Nearest;
+    return out;
+}
+
 // Percent-decoding of a relative URI (glTF: "URIs are relative to the .gltf file").
 std::string decodeUri(const std::string& uri) {
     std::string out;
@@ -841,8 +878,22 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
                 std::replace(b.firstUse.begin(), b.firstUse.end(), 0, int(b.trianglesOf.size() - 1));
             }
         } else {
-            for (std::size_t i = 0; i < g.materials.size(); ++i)
-                model.materials[i].texture = slotForTexture(g.materials[i].pbrMetallicRoughness.baseColorTexture.index);
+            for (std::size_t i = 0; i < g.materials.size(); ++i) {
+                const int textureIndex = g.materials[i].pbrMetallicRoughness.baseColorTexture.index;
+                model.materials[i].texture = slotForTexture(textureIndex);
+                if (model.materials[i].texture < 0) continue;
+                const int sampler = g.textures[std::size_t(textureIndex)].sampler;
+                if (sampler < 0) continue; // none: repeat, and the filter of the settings
+                if (std::size_t(sampler) >= g.samplers.size())
+                    return R::failure(path + ": texture " + std::to_string(textureIndex) + ": sampler " + std::to_string(sampler) +
+                                      " does not exist");
+                const SamplerModes modes = samplerModes(g.samplers[std::size_t(sampler)]);
+                if (!modes.problem.empty())
+                    return R::failure(path + ": sampler " + std::to_string(sampler) + ": " + modes.problem);
+                if (!modes.note.empty()) model.warnings.push_back(path + ": sampler " + std::to_string(sampler) + ": " + modes.note);
+                model.materials[i].wrap = modes.wrap;
+                model.materials[i].filter = modes.filter;
+            }
             for (int image : imageOfSlot) {
                 const tinygltf::Image& img = g.images[std::size_t(image)];
                 model.texturePaths.push_back(img.uri.empty() || img.uri.rfind("data:", 0) == 0

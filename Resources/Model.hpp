@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -10,6 +11,7 @@
 #include "Math/Vec.hpp"
 #include "Raster/Mesh.hpp"
 #include "Raster/Shading.hpp" // Light
+#include "Raster/Texture.hpp" // WrapMode, TextureFilter
 #include "Resources/Image.hpp"
 
 namespace sr {
@@ -29,6 +31,10 @@ struct Material {
     float shininess = 1.0f;
     float alpha = 1.0f; // opacity: MTL d (or 1 - Tr); glTF baseColorFactor alpha under BLEND, 0 or 1 under MASK
     bool doubleSided = true; // glTF doubleSided (its default: false, back faces culled whatever --cull says); OBJ: true
+    // glTF: the base colour texture's sampler, where it says (the draw's wrap and filter unless
+    // --wrap / --filter chose them: RenderSettings::wrapFromFile, filterFromFile). OBJ: unset.
+    std::optional<WrapMode> wrap;
+    std::optional<TextureFilter> filter;
 };
 
 // The triangles of one material: one draw call. One range per material (faces without one form

@@ -100,7 +100,10 @@ Action DemoController::keyDown(Key key, bool repeat) {
     switch (action) {
     case Action::CycleCull: settings_.cull = next(settings_.cull, 3); break;
     case Action::CycleShading: settings_.shading = next(settings_.shading, 4); break;
-    case Action::CycleFilter: settings_.filter = next(settings_.filter, 3); break;
+    case Action::CycleFilter:
+        settings_.filter = next(settings_.filter, 3);
+        settings_.filterFromFile = false; // the user's choice from now on, over any glTF sampler
+        break;
     case Action::CyclePerspective: settings_.perspective = next(settings_.perspective, 2); break;
     case Action::CycleAntialiasing: cycleAntialiasing(); break;
     case Action::ToggleWireframe: settings_.wireframe = !settings_.wireframe; break;

@@ -224,6 +224,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         const auto m = parseWrap(value);
         if (!m) return bad("repeat, clamp or mirror");
         o.wrap = *m;
+        o.explicitWrap = true;
     }
     return FlagResult::Consumed;
 }

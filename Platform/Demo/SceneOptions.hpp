@@ -76,6 +76,7 @@ struct SceneOptions {
     std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
     bool explicitSsaa = false, explicitMsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
+    bool explicitWrap = false; // --wrap given (a glTF sampler's wrap applies otherwise)
 };
 
 // Largest accepted --width / --height and --threads.

@@ -56,7 +56,11 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
         d.texture = range.texture;
         d.kd = kd;
         const Material* m = range.material >= 0 ? &model.materials[std::size_t(range.material)] : nullptr;
-        if (m) d.doubleSided = m->doubleSided; // geometry, not colour: under either material rule
+        if (m) { // geometry and sampling, not colour: under either material rule
+            d.doubleSided = m->doubleSided;
+            d.wrap = m->wrap;
+            d.filter = m->filter;
+        }
         if (rule == MaterialRule::Mtl && m && m->fromFile) {
             // The reference's rule: a material with a map_Kd and a black Kd is "the texture alone".
             const bool black = m->kd.r == 0.0f && m->kd.g == 0.0f && m->kd.b == 0.0f;
@@ -299,6 +303,8 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.cull = o.cull;
     s.filter = o.filter;
     s.wrap = o.wrap;
+    s.filterFromFile = !o.explicitFilter; // a --quality preset's filter yields to the file's sampler
+    s.wrapFromFile = !o.explicitWrap;
     s.perspective = o.perspective;
     s.isa = o.isa;
     s.wireframe = o.wireframe;

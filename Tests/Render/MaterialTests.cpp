@@ -2,8 +2,11 @@
 // renderSceneFrame, against colours worked out by hand, under --materials mtl and fixed.
 #include "TestFramework.hpp"
 
+#include <optional>
 #include <string>
+#include <vector>
 
+#include "Math/Transform.hpp"
 #include "Platform/Demo/SceneSetup.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/ObjTestUtil.hpp" // Tests/Resources: the OBJ tests' temporary files
@@ -144,4 +147,73 @@ TEST_CASE("--materials parses mtl and fixed; the default is mtl", "[render][mate
     i = 0;
     CHECK(demo::parseSceneFlag(args, i, o, error) == demo::FlagResult::Error);
     CHECK(error.find("mtl or fixed") != std::string::npos);
+}
+
+TEST_CASE("a material's own sampler (glTF) sets its draw's wrap and filter unless the settings chose them",
+          "[render][materials][samplers]") {
+    // A quad whose uvs run from -1 to 2 over a 2x2 texture: repeat, clamp and mirror give three
+    // different images, nearest and bilinear two more. The material's sampler says clamp +
+    // nearest; the frame's settings say repeat + bilinear.
+    Mesh quad;
+    quad.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
+    quad.normals.assign(4, {0.0f, 0.0f, 1.0f});
+    quad.uvs = {{-1.0f, -1.0f}, {2.0f, -1.0f}, {2.0f, 2.0f}, {-1.0f, 2.0f}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    const std::uint8_t rgba[] = {255, 0, 0, 255, 0, 255, 0, 255, 0, 0, 255, 255, 255, 255, 255, 255};
+    const Texture texture = Texture::fromRgba8(2, 2, rgba);
+    FrameView view;
+    view.eye = {0.0f, 0.0f, 50.0f};
+    view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
+    view.finiteFar = false;
+    auto render = [&](RenderSettings settings, std::optional<WrapMode> wrap, std::optional<TextureFilter> filter) {
+        SurfaceMaterial material;
+        material.texture = &texture;
+        material.wrap = wrap;
+        material.filter = filter;
+        settings.shading = ShadingMode::Unlit;
+        FrameBuffer fb(48, 48);
+        fb.clear(0);
+        RenderContext ctx(fb);
+        drawMesh(ctx, view, settings, quad, material);
+        return std::vector<Pixel>(fb.colorRow(0), fb.colorRow(0) + 48 * 48);
+    };
+    RenderSettings frame; // repeat + bilinear
+    RenderSettings clampNearest = frame;
+    clampNearest.wrap = WrapMode::Clamp;
+    clampNearest.filter = TextureFilter::Nearest;
+    REQUIRE(render(frame, std::nullopt, std::nullopt) != render(clampNearest, std::nullopt, std::nullopt));
+    // The file's sampler applies by default...
+    CHECK(render(frame, WrapMode::Clamp, TextureFilter::Nearest) == render(clampNearest, std::nullopt, std::nullopt));
+    // ... each half on its own ...
+    RenderSettings clampOnly = frame;
+    clampOnly.wrap = WrapMode::Clamp;
+    CHECK(render(frame, WrapMode::Clamp, std::nullopt) == render(clampOnly, std::nullopt, std::nullopt));
+    // ... and not where the user chose (--wrap / --filter, the demo's T key, the report).
+    RenderSettings chosen = frame;
+    chosen.wrapFromFile = false;
+    chosen.filterFromFile = false;
+    CHECK(render(chosen, WrapMode::Clamp, TextureFilter::Nearest) == render(frame, std::nullopt, std::nullopt));
+    RenderSettings wrapChosen = frame;
+    wrapChosen.wrapFromFile = false;
+    RenderSettings nearestOnly = frame;
+    nearestOnly.filter = TextureFilter::Nearest;
+    CHECK(render(wrapChosen, WrapMode::Clamp, TextureFilter::Nearest) == render(nearestOnly, std::nullopt, std::nullopt));
+}
+
+TEST_CASE("--wrap and --filter given on the command line win over a file's samplers; --quality's filter does not",
+          "[render][materials][samplers]") {
+    auto parse = [](std::vector<std::string> args) {
+        demo::SceneOptions o;
+        std::string error;
+        for (std::size_t i = 0; i < args.size(); ++i) REQUIRE(demo::parseSceneFlag(args, i, o, error) == demo::FlagResult::Consumed);
+        return demo::makeRenderSettings(o);
+    };
+    const RenderSettings none = parse({});
+    CHECK(none.wrapFromFile);
+    CHECK(none.filterFromFile);
+    const RenderSettings both = parse({"--wrap", "clamp", "--filter", "nearest"});
+    CHECK_FALSE(both.wrapFromFile);
+    CHECK_FALSE(both.filterFromFile);
+    const RenderSettings preset = parse({"--quality", "balanced"});
+    CHECK(preset.filterFromFile);
 }

@@ -15,6 +15,7 @@
 
 #include "Resources/FileIO.hpp"
 #include "Resources/GltfLoader.hpp"
+#include "Resources/Image.hpp"
 #include "Resources/ObjLoader.hpp"
 #include "GltfTestUtil.hpp"
 #include "ObjTestUtil.hpp"
@@ -367,6 +368,62 @@ TEST_CASE("glTF lights (KHR_lights_punctual): placed by their nodes, colour x in
         Asset missing = triangleAsset("[{\"mesh\":0,\"extensions\":{\"KHR_lights_punctual\":{\"light\":3}}}]");
         CHECK(contains(errorOf(dir, "missing.gltf", missing.embedded()), "node 0: KHR_lights_punctual: light 3"));
     }
+}
+
+TEST_CASE("glTF samplers: wrap and filter per material, as one wrap mode and one filter", "[resources][gltf][materials]") {
+    const std::string dir = freshDir("gltf-samplers");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {10, 20, 30, 255};
+    REQUIRE(writeImage(dir + "/t.png", one).ok());
+    const auto asset = [](const std::string& samplers, int materials) {
+        Asset a;
+        const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+        const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+        const int idx = a.indices({0, 1, 2}, 5123);
+        std::string prims, mats, textures;
+        for (int k = 0; k < materials; ++k) {
+            prims += std::string(k ? "," : "") + "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" +
+                     std::to_string(uv) + "},\"indices\":" + std::to_string(idx) + ",\"material\":" + std::to_string(k) + "}";
+            mats += std::string(k ? "," : "") + "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":" + std::to_string(k) + "}}}";
+            // Texture k uses sampler k; the last one none.
+            textures += std::string(k ? "," : "") + "{\"source\":0" +
+                        (k + 1 < materials ? ",\"sampler\":" + std::to_string(k) : std::string()) + "}";
+        }
+        a.meshes = "[{\"primitives\":[" + prims + "]}]";
+        a.nodes = "[{\"mesh\":0}]";
+        a.materials = "[" + mats + "]";
+        a.extra = ",\"images\":[{\"uri\":\"t.png\"}],\"textures\":[" + textures + "],\"samplers\":" + samplers;
+        return a;
+    };
+    // 0: clamp both, NEAREST; 1: mirror / repeat (differ: wrapS for both, a note), LINEAR_MIPMAP_LINEAR;
+    // 2: magFilter NEAREST only; 3: nothing said (repeat, the settings' filter); 4: no sampler.
+    const Asset a = asset("[{\"wrapS\":33071,\"wrapT\":33071,\"minFilter\":9728},"
+                          "{\"wrapS\":33648,\"wrapT\":10497,\"minFilter\":9987,\"magFilter\":9729},"
+                          "{\"magFilter\":9728},{}]",
+                          5);
+    auto r = load(dir, "samplers.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const std::vector<Material>& m = r.value().materials;
+    REQUIRE(m.size() == 5);
+    for (const Material& mat : m) CHECK(mat.texture == 0);
+    CHECK(m[0].wrap == WrapMode::Clamp);
+    CHECK(m[0].filter == TextureFilter::Nearest);
+    CHECK(m[1].wrap == WrapMode::Mirror);
+    CHECK(m[1].filter == TextureFilter::Trilinear);
+    CHECK(m[2].wrap == WrapMode::Repeat);
+    CHECK(m[2].filter == TextureFilter::Nearest);
+    CHECK(m[3].wrap == WrapMode::Repeat);
+    CHECK_FALSE(m[3].filter.has_value());
+    CHECK_FALSE(m[4].wrap.has_value());
+    CHECK_FALSE(m[4].filter.has_value());
+    REQUIRE(r.value().warnings.size() == 1);
+    CHECK(contains(r.value().warnings[0], "sampler 1: wrapS (mirror) and wrapT (repeat) differ"));
+
+    CHECK(contains(errorOf(dir, "badwrap.gltf", asset("[{\"wrapS\":1234},{}]", 2).embedded()), "sampler 0: wrapS 1234"));
+    CHECK(contains(errorOf(dir, "badfilter.gltf", asset("[{\"minFilter\":7},{}]", 2).embedded()), "sampler 0: minFilter 7"));
+    CHECK(contains(errorOf(dir, "nosampler.gltf", asset("[]", 2).embedded()), "texture 0: sampler 0 does not exist"));
 }
 
 TEST_CASE("glTF: bad files are one-line errors naming the file and the problem", "[resources][gltf][errors]") {
