@@ -32,12 +32,15 @@
 #define SR_TARGET_STRING_AVX512 "avx2,avx512f,avx512bw,avx512dq,avx512vl"
 
 // Force-inlined vector operations; SR_SIMD_LAMBDA does the same for a lambda (after its
-// parameter list); SR_SIMD_NOINLINE keeps a function out of line (one copy per ISA).
+// parameter list); SR_SIMD_NOINLINE keeps a function out of line (one copy per ISA);
+// SR_UNLIKELY(x) marks a rarely true condition (its branch is laid out and allocated as cold).
 #if defined(__GNUC__) || defined(__clang__)
 #define SR_SIMD_INLINE inline __attribute__((always_inline))
 #define SR_SIMD_LAMBDA __attribute__((always_inline))
 #define SR_SIMD_NOINLINE inline __attribute__((noinline))
+#define SR_UNLIKELY(x) __builtin_expect(!!(x), 0)
 #else
+#define SR_UNLIKELY(x) (x)
 #define SR_SIMD_NOINLINE inline __declspec(noinline)
 #define SR_SIMD_INLINE __forceinline
 #define SR_SIMD_LAMBDA

@@ -104,9 +104,10 @@ SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, Color ks, const Terms& t) {
             kd.b * t.diffuse + fset(ks.b) * t.specular};
 }
 
-// The RGB terms (RgbTerms) and their applyTerms.
+// The RGB terms (RgbTerms) and their applyTerms; `ok` as blinnPhong's (lightsRgb returns it).
 struct TermsRgb {
     Rgb diffuse, specular;
+    M ok;
 };
 SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, Color ks, const TermsRgb& t) {
     return {kd.r * t.diffuse.r + fset(ks.r) * t.specular.r, kd.g * t.diffuse.g + fset(ks.g) * t.specular.g,
@@ -116,15 +117,19 @@ SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, Color ks, const TermsRgb& t) {
 // std::clamp(x, lo, hi) as the scalar code evaluates it: (x < lo) ? lo : (hi < x) ? hi : x.
 SR_SIMD_INLINE F clampLanes(F x, F lo, F hi) { return select(x < lo, lo, select(hi < x, hi, x)); }
 
-// lightTerms (Shading.hpp) for any lights at world points p, lane by lane: lightAt's direction
-// and factor, then the one-sided terms scaled by colour * a, the same operations in the same
-// order. Lanes whose light vector or half vector is off normalize's fast path lose `ok` (a point
-// light exactly at the surface point, non-finite positions). Out of line: its cost is per light,
-// and every kernel of the ISA shares one copy.
-SR_SIMD_NOINLINE TermsRgb lightsRgb(const Lighting& lighting, const Specular& material, const V3& n, const V3& p,
-                                          const V3& v, M& ok) {
+// lightTerms (Shading.hpp) for any lights at world points p (px, py, pz) with unit normals n (nx,
+// ny, nz), seen from `eye`, lane by lane: the view vector as shadeGroup forms it, lightAt's
+// direction and factor, then the one-sided terms scaled by colour * a, the same operations in
+// the same order. Lanes whose light vector or half vector is off normalize's fast path lose
+// `ok` (a point light exactly at the surface point, non-finite positions). Out of line (its cost
+// is per light; every kernel of the ISA shares one copy), with its vectors passed by value so
+// that the callers' white-light path keeps them in registers.
+SR_SIMD_NOINLINE TermsRgb lightsRgb(const Lighting& lighting, const Specular& material, Vec3 eye, F nx, F ny, F nz, F px,
+                                    F py, F pz, M ok) {
+    const V3 n{nx, ny, nz}, p{px, py, pz};
+    const V3 v = normalizeFast({fset(eye.x) - px, fset(eye.y) - py, fset(eye.z) - pz}, ok);
     const F ambient = fset(lighting.ambient);
-    TermsRgb t{{ambient, ambient, ambient}, {fzero(), fzero(), fzero()}};
+    TermsRgb t{{ambient, ambient, ambient}, {fzero(), fzero(), fzero()}, ok};
     const bool specularOn = material.on();
     const unsigned exponent = unsigned(material.shininess);
     for (const Light& light : lighting.lights) {
@@ -135,7 +140,7 @@ SR_SIMD_NOINLINE TermsRgb lightsRgb(const Lighting& lighting, const Specular& ma
         } else {
             const V3 d{fset(light.position.x) - p.x, fset(light.position.y) - p.y, fset(light.position.z) - p.z};
             const F d2 = dot3(d, d);
-            l = normalizeFast(d, ok);
+            l = normalizeFast(d, t.ok);
             // std::max(d2, k) is (d2 < k) ? k : d2, i.e. maxps(k, d2) (NaN lanes have failed `ok`).
             a = fset(1.0f) / fmax(fset(kMinLightDistance2), d2);
             if (light.range > 0.0f) {
@@ -157,9 +162,9 @@ SR_SIMD_NOINLINE TermsRgb lightsRgb(const Lighting& lighting, const Specular& ma
         t.diffuse.g = select(lit, t.diffuse.g + fset(light.colour.g) * diffuse, t.diffuse.g);
         t.diffuse.b = select(lit, t.diffuse.b + fset(light.colour.b) * diffuse, t.diffuse.b);
         if (!specularOn) continue;
-        M hOk = ok;
+        M hOk = t.ok;
         const V3 h = normalizeFast({l.x + v.x, l.y + v.y, l.z + v.z}, hOk);
-        ok = (lit & hOk) | andNot(ok, lit); // a bad half vector matters only where it is used
+        t.ok = (lit & hOk) | andNot(t.ok, lit); // a bad half vector matters only where it is used
         const F base0 = fmax(dot3(n, h), fzero());
         unsigned e = exponent;
         F result = fset(1.0f), base = base0;
@@ -428,21 +433,24 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
         p.ensureLit(); // FlatProgram lights on its first shaded fragment
         const RgbTerms& ft = p.terms;
         const TermsRgb t{{fset(ft.diffuse.r), fset(ft.diffuse.g), fset(ft.diffuse.b)},
-                         {fset(ft.specular.r), fset(ft.specular.g), fset(ft.specular.b)}};
+                         {fset(ft.specular.r), fset(ft.specular.g), fset(ft.specular.b)},
+                         mAll()};
         out = packBgra8(applyTerms(kd, d.specular.ks, t));
     } else if constexpr (Prog::kMode == ShadingMode::Gouraud) {
         if constexpr (Prog::kRgbTerms)
-            out = packBgra8(applyTerms(kd, d.specular.ks, TermsRgb{{v[kT], v[kT + 1], v[kT + 2]}, {v[kT + 3], v[kT + 4], v[kT + 5]}}));
+            out = packBgra8(applyTerms(kd, d.specular.ks, TermsRgb{{v[kT], v[kT + 1], v[kT + 2]}, {v[kT + 3], v[kT + 4], v[kT + 5]}, mAll()}));
         else out = packBgra8(applyTerms(kd, d.specular.ks, Terms{v[kT], v[kT + 1]}));
     } else {
         const V3 n = normalizeFast({v[kT + 3], v[kT + 4], v[kT + 5]}, ok);
         const Vec3 eye = d.view.eye;
         const V3 toEye = normalizeFast({fset(eye.x) - v[kT], fset(eye.y) - v[kT + 1], fset(eye.z) - v[kT + 2]}, ok);
-        if (d.whiteLights) {
-            out = packBgra8(applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, toEye, ok)));
+        // Coloured, point or spot lights: the out-of-line RGB path, kept off the white-light path's registers.
+        if (SR_UNLIKELY(!d.whiteLights)) {
+            const TermsRgb t = lightsRgb(d.view.lighting, d.specular, eye, n.x, n.y, n.z, v[kT], v[kT + 1], v[kT + 2], ok);
+            ok = t.ok;
+            out = packBgra8(applyTerms(kd, d.specular.ks, t));
         } else {
-            const V3 position{v[kT], v[kT + 1], v[kT + 2]};
-            out = packBgra8(applyTerms(kd, d.specular.ks, lightsRgb(d.view.lighting, d.specular, n, position, toEye, ok)));
+            out = packBgra8(applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, toEye, ok)));
         }
     }
     if (bits(ok) != bits(mAll())) {
@@ -500,9 +508,14 @@ struct SpanKernel {
     F triangleLod; // affine trilinear: the triangle's mip level (else unused)
     float alpha = 1.0f; // below 1: a transparent draw, every colour blended over the target (blendOver)
 
+    // Transparent draws are drawn with DepthMode::Test (drawStateFor): only those kernels carry
+    // the blending code, so the opaque ones are the very loops they were without it.
+    static constexpr bool kMayBlend = kDepth == DepthMode::Test;
+    bool blending() const { return kMayBlend && alpha < 1.0f; }
+
     // Writes the shaded colour of pixel `dst` (opaque: the colour itself; transparent: blendOver,
     // the scalar pipeline's very function, lane by lane).
-    void put(Pixel& dst, Pixel colour) const { dst = alpha < 1.0f ? blendOver(colour, dst, alpha) : colour; }
+    void put(Pixel& dst, Pixel colour) const { dst = blending() ? blendOver(colour, dst, alpha) : colour; }
 
     // fillTriangle's depth and 1/w: start + step * ddx in double, rounded once.
     F planeInDouble(D startValue, int plane, F step) const {
@@ -586,7 +599,7 @@ struct SpanKernel {
             if constexpr (kV == 0) {
                 if constexpr (Prog::kMode == ShadingMode::Flat) p.ensureLit(); // lazy flat lighting
                 constant = p.flat;
-                if (inRow && alpha >= 1.0f) {
+                if (inRow && !blending()) {
                     istore(colour + x, select(pass, iset(int(constant)), iload(colour + x)));
                 } else {
                     for (int i = 0; i < n; ++i)
@@ -605,7 +618,7 @@ struct SpanKernel {
                 const I columns = iset(x) + iiota();
                 if (passBits == bits(mAll())) {
                     const I shaded = shadeGroup<Prog, kPersp, kFilter, kWrap>(p, values, invW, columns, row, triangleLod);
-                    if (alpha >= 1.0f) {
+                    if (!blending()) {
                         istore(colour + x, shaded);
                     } else {
                         alignas(64) std::uint32_t out[kLanes];
@@ -641,6 +654,7 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
     // written before it is read).
     static thread_local FragmentQueue<Prog::kVaryings> queue;
     queue.count = 0;
+    assert(kDepth == DepthMode::Test || p.d->alpha >= 1.0f); // blending kernels: DepthMode::Test only
     SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap> span{p, t, fb, shaded, queue, {}, fzero(), p.d->alpha};
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));

@@ -182,9 +182,10 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                             compareKernel<GouraudProgram<true>>(isa, key, [&] { return GouraudProgram<true>(&d); }, rng, totals);
                             compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&d); }, rng, totals);
                         }
-                        {
+                        if (depth == DepthMode::Test) {
                             // A transparent draw (alpha 0.4: every colour blended over the target),
-                            // textured Phong and untextured flat (the constant-colour path).
+                            // textured Phong and untextured flat (the constant-colour path); such
+                            // draws are drawn with DepthMode::Test only (drawStateFor).
                             const DrawContext t{view, settings, mesh, mesh.indices.data(), &textures[1],
                                                 Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 0.4f, true};
                             compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&t); }, rng, totals);
