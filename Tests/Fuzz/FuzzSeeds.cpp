@@ -86,6 +86,20 @@ int main(int argc, char** argv) {
     put(gl + "embedded.gltf", head + "\"nodes\":[{\"mesh\":0}],\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},"
                                      "\"mode\":5}]}],\"buffers\":[{\"byteLength\":42,\"uri\":\"data:application/octet-stream;base64," +
                                      b64 + "\"}]," + views + "}");
+    // Lights (KHR_lights_punctual: directional, point with range, spot), a double-sided material
+    // and a sampler on a texture whose image is missing (a warning).
+    put(gl + "lights.gltf",
+        head + "\"nodes\":[{\"mesh\":0,\"children\":[1,2,3]},{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+               "{\"translation\":[0,2,0],\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}},"
+               "{\"translation\":[0,0,3],\"rotation\":[0,0.38268343,0,0.92387953],\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}}],"
+               "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"material\":0}]}],"
+               "\"materials\":[{\"doubleSided\":true,\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+               "\"textures\":[{\"source\":0,\"sampler\":0}],\"images\":[{\"uri\":\"gone.png\"}],"
+               "\"samplers\":[{\"wrapS\":33071,\"wrapT\":33648,\"minFilter\":9987,\"magFilter\":9728}],"
+               "\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{\"KHR_lights_punctual\":{\"lights\":["
+               "{\"type\":\"directional\",\"color\":[1,0.5,0.5],\"intensity\":2},{\"type\":\"point\",\"range\":5},"
+               "{\"type\":\"spot\",\"spot\":{\"innerConeAngle\":0.1,\"outerConeAngle\":0.6}}]}},"
+               "\"buffers\":[{\"byteLength\":42,\"uri\":\"t.bin\"}]," + views + "}");
     // A GLB with the triangle in its BIN chunk.
     {
         std::string json = head + "\"nodes\":[{\"mesh\":0}]," + mesh + "\"buffers\":[{\"byteLength\":42}]," + views + "}";

@@ -57,6 +57,9 @@ if(MODE STREQUAL "errors")
   file(WRITE "${WORK}/nobin.gltf" "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":42,\"uri\":\"gone.bin\"}]}")
   expect_one_line("glTF with a missing .bin" 1 "gone.bin" render --model nobin.gltf ${tiny})
   expect_one_line("missing GLB" 1 "nowhere.glb" render --model nowhere.glb ${tiny})
+  # A node placing a light the file does not define.
+  file(WRITE "${WORK}/nolight.gltf" "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}}]}")
+  expect_one_line("glTF light that does not exist" 1 "light 2 does not exist" render --model nolight.gltf ${tiny})
   expect_one_line("bad flag value" 2 "--width" render --width 100000 --quiet)
   # A missing MTL is a warning (named), not an error: exit 0.
   file(WRITE "${WORK}/nomtl.obj" "mtllib absent.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
