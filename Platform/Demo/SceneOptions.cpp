@@ -144,7 +144,10 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
             o.up = *v;
             o.explicitUp = true;
         }
-        else if (flag == "--light") o.light = *v;
+        else if (flag == "--light") {
+            o.light = *v;
+            o.explicitLight = true;
+        }
         else o.kd = Color{v->x, v->y, v->z, 1.0f};
     } else if (flag == "--fov") {
         const auto v = parseNumber(value);

@@ -77,6 +77,7 @@ struct SceneOptions {
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
     bool explicitSsaa = false, explicitMsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
     bool explicitWrap = false; // --wrap given (a glTF sampler's wrap applies otherwise)
+    bool explicitLight = false; // --light given (ignored, with a warning, by a file with its own lights)
 };
 
 // Largest accepted --width / --height and --threads.

@@ -206,6 +206,9 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
             out.description += ", " + std::to_string(segments) + " line segments, " + std::to_string(points) + " points";
         }
         out.lights = m.lights;
+        if (options.explicitLight && !out.lights.empty())
+            out.warnings.push_back(options.obj + ": --light is ignored: the file has its own lights (" +
+                                   std::to_string(out.lights.size()) + ")");
         for (const ModelCamera& mc : m.cameras) {
             CameraSetup c;
             c.eye = mc.eye;

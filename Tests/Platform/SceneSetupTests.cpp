@@ -166,3 +166,46 @@ TEST_CASE("--camera N views through the model's camera N; flags override it; V c
     demo.keyDown(Key::R);
     CHECK(same(demo.cameraSetup(), loaded.value().cameras[0]));
 }
+
+TEST_CASE("a file's lights replace --light's one (with a warning if --light was given); the built-in scene has two",
+          "[platform][lights]") {
+    using gltftest::Asset;
+    const std::string dir = objtest::freshDir("scene-lights");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}]}]";
+    a.nodes = "[{\"mesh\":0,\"children\":[1]},{\"translation\":[0,3,0],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}}]";
+    a.extra = ",\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\",\"color\":[1,0,0],\"intensity\":5}]}}";
+    SceneOptions options;
+    options.obj = objtest::writeText(dir, "lit.gltf", a.embedded());
+    auto scene = loadScene(options);
+    REQUIRE(scene.ok());
+    REQUIRE(scene.value().lights.size() == 1);
+    CHECK(scene.value().warnings.empty());
+    const FrameView view = makeFrameView(resolveCamera(options, scene.value()), 64, 48, options.light, scene.value().lights);
+    REQUIRE(view.lighting.lights.size() == 1);
+    CHECK(view.lighting.lights[0].type == LightType::Point);
+    CHECK(view.lighting.lights[0].colour.r == 5.0f);
+    CHECK_FALSE(view.lighting.whiteDirectional());
+    // --light given: still the file's lights, and a warning naming the file.
+    options.light = {0, 0, 1};
+    options.explicitLight = true;
+    auto warned = loadScene(options);
+    REQUIRE(warned.ok());
+    REQUIRE(warned.value().warnings.size() == 1);
+    CHECK(warned.value().warnings[0].find("lit.gltf: --light is ignored") != std::string::npos);
+    // A file without lights: --light's one white directional light.
+    options.obj.clear();
+    SceneOptions plain;
+    const FrameView noLights = makeFrameView(resolveCamera(plain, scene.value()), 64, 48, {0, 0, 2}, {});
+    REQUIRE(noLights.lighting.lights.size() == 1);
+    CHECK(noLights.lighting.lights[0].toLight == Vec3(0, 0, 1));
+    CHECK(noLights.lighting.whiteDirectional());
+    // The built-in scene: --light's key light first, then its warm fill light.
+    auto builtIn = loadScene(options);
+    REQUIRE(builtIn.ok());
+    REQUIRE(builtIn.value().lights.size() == 2);
+    CHECK(builtIn.value().lights[0].toLight == Vec3(0, 0, 1));
+    CHECK(builtIn.value().lights[1].type == LightType::Point);
+    CHECK(builtIn.value().warnings.empty());
+}
