@@ -33,6 +33,25 @@ Specular withShininess(float s) {
     return sp;
 }
 
+// A unit quad at z = 0 facing +Z (two counter-clockwise triangles seen from +Z), normals +Z.
+Mesh unitQuad() {
+    Mesh quad;
+    quad.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
+    quad.normals.assign(4, {0.0f, 0.0f, 1.0f});
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    return quad;
+}
+
+// The view from (0, 0, eyeZ) toward the origin with a 1.5 degree field of view (the unit quad
+// fills most of a square target from |eyeZ| = 50), no far plane, the default lighting.
+FrameView viewAlongZ(float eyeZ) {
+    FrameView view;
+    view.eye = {0.0f, 0.0f, eyeZ};
+    view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
+    view.finiteFar = false;
+    return view;
+}
+
 } // namespace
 
 TEST_CASE("Blinn-Phong: light straight on, viewer straight on", "[render][shading]") {
@@ -202,15 +221,9 @@ TEST_CASE("drawMesh: a flat quad facing the light has the same colour in flat, G
     // Every interval lies inside one rounding bin, so the bound is exact: all covered pixels of
     // all three modes are (240, 212, 144). Unlit is kd alone: (0.4, 0.3, 0.06) * 255 =
     // (102, 76.5 -> 76 (ties to even), 15.3 -> 15).
-    Mesh quad;
-    quad.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
-    quad.normals.assign(4, {0.0f, 0.0f, 1.0f});
-    quad.indices = {0, 1, 2, 0, 2, 3};
+    const Mesh quad = unitQuad();
 
-    FrameView view;
-    view.eye = {0.0f, 0.0f, 50.0f};
-    view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
-    view.finiteFar = false;
+    FrameView view = viewAlongZ(50.0f);
     view.lighting.lights = {Light::directional({0.0f, 0.0f, 1.0f})};
     SurfaceMaterial material;
     material.kd = {0.4f, 0.3f, 0.06f};
@@ -379,14 +392,8 @@ TEST_CASE("drawMesh: a red light lights only the red channel, in flat, Gouraud a
     // ambient term alone, 0.1 kd (0.1 * 0.5 * 255 = 12.75 -> 13), red is lit as before
     // (kd 0.5: 0.55 + spec [0.4996, 0.5] -> 1.05: 255). Gouraud carries six terms here: with
     // its two grey ones, green would be lit too.
-    Mesh quad;
-    quad.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
-    quad.normals.assign(4, {0.0f, 0.0f, 1.0f});
-    quad.indices = {0, 1, 2, 0, 2, 3};
-    FrameView view;
-    view.eye = {0.0f, 0.0f, 50.0f};
-    view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
-    view.finiteFar = false;
+    const Mesh quad = unitQuad();
+    FrameView view = viewAlongZ(50.0f);
     view.lighting.lights = {Light::directional({0.0f, 0.0f, 1.0f}, {1.0f, 0.0f, 0.0f})};
     SurfaceMaterial material;
     material.kd = {0.5f, 0.5f, 0.5f};
@@ -409,15 +416,9 @@ TEST_CASE("drawMesh: a single-sided surface loses its back faces whatever the cu
           "[render][cull][materials]") {
     // The quad faces +Z; seen from +Z its triangles are counter-clockwise (front faces), from -Z
     // clockwise (back faces). Covered pixels are counted at 64x64.
-    Mesh quad;
-    quad.positions = {{-0.5f, -0.5f, 0.0f}, {0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 0.0f}, {-0.5f, 0.5f, 0.0f}};
-    quad.normals.assign(4, {0.0f, 0.0f, 1.0f});
-    quad.indices = {0, 1, 2, 0, 2, 3};
+    const Mesh quad = unitQuad();
     auto covered = [&](float eyeZ, CullMode cull, bool doubleSided) {
-        FrameView view;
-        view.eye = {0.0f, 0.0f, eyeZ};
-        view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
-        view.finiteFar = false;
+        const FrameView view = viewAlongZ(eyeZ);
         SurfaceMaterial material;
         material.doubleSided = doubleSided;
         FrameBuffer fb(64, 64);
