@@ -118,16 +118,14 @@ SR_SIMD_INLINE Rgb applyTerms(const Rgb& kd, Color ks, const TermsRgb& t) {
 SR_SIMD_INLINE F clampLanes(F x, F lo, F hi) { return select(x < lo, lo, select(hi < x, hi, x)); }
 
 // lightTerms (Shading.hpp) for any lights at world points p (px, py, pz) with unit normals n (nx,
-// ny, nz), seen from `eye`, lane by lane: the view vector as shadeGroup forms it, lightAt's
-// direction and factor, then the one-sided terms scaled by colour * a, the same operations in
-// the same order. Lanes whose light vector or half vector is off normalize's fast path lose
+// ny, nz) and unit view vectors v (vx, vy, vz), lane by lane: lightAt's direction and factor,
+// then the one-sided terms scaled by colour * a, the same operations in the same order. Lanes whose light vector or half vector is off normalize's fast path lose
 // `ok` (a point light exactly at the surface point, non-finite positions). Out of line (its cost
 // is per light; every kernel of the ISA shares one copy), with its vectors passed by value so
 // that the callers' white-light path keeps them in registers.
-SR_SIMD_NOINLINE TermsRgb lightsRgb(const Lighting& lighting, const Specular& material, Vec3 eye, F nx, F ny, F nz, F px,
-                                    F py, F pz, M ok) {
-    const V3 n{nx, ny, nz}, p{px, py, pz};
-    const V3 v = normalizeFast({fset(eye.x) - px, fset(eye.y) - py, fset(eye.z) - pz}, ok);
+SR_SIMD_NOINLINE TermsRgb lightsRgb(const Lighting& lighting, const Specular& material, F nx, F ny, F nz, F px, F py, F pz,
+                                    F vx, F vy, F vz, M ok) {
+    const V3 n{nx, ny, nz}, p{px, py, pz}, v{vx, vy, vz};
     const F ambient = fset(lighting.ambient);
     TermsRgb t{{ambient, ambient, ambient}, {fzero(), fzero(), fzero()}, ok};
     const bool specularOn = material.on();
@@ -446,7 +444,8 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
         const V3 toEye = normalizeFast({fset(eye.x) - v[kT], fset(eye.y) - v[kT + 1], fset(eye.z) - v[kT + 2]}, ok);
         // Coloured, point or spot lights: the out-of-line RGB path, kept off the white-light path's registers.
         if (SR_UNLIKELY(!d.whiteLights)) {
-            const TermsRgb t = lightsRgb(d.view.lighting, d.specular, eye, n.x, n.y, n.z, v[kT], v[kT + 1], v[kT + 2], ok);
+            const TermsRgb t = lightsRgb(d.view.lighting, d.specular, n.x, n.y, n.z, v[kT], v[kT + 1], v[kT + 2], toEye.x,
+                                         toEye.y, toEye.z, ok);
             ok = t.ok;
             out = packBgra8(applyTerms(kd, d.specular.ks, t));
         } else {
