@@ -1,4 +1,4 @@
-// "Over" blending of a transparent draw's colour onto the target, with a constant alpha.
+// "Over" blending of a transparent draw's colour onto the target, and the texel alpha modes.
 #pragma once
 
 #include "Math/Color.hpp"
@@ -14,5 +14,24 @@ inline Pixel blendOver(Pixel src, Pixel dst, float alpha) {
     const auto mix = [&](unsigned s, unsigned d) { return float(s) / 255.0f * alpha + float(d) / 255.0f * keep; };
     return packBgra8(Color{mix(pixelR(src), pixelR(dst)), mix(pixelG(src), pixelG(dst)), mix(pixelB(src), pixelB(dst)), 1.0f});
 }
+
+// Per-fragment opacity from the texture (glTF alphaMode MASK or BLEND with a base colour texture
+// whose alpha channel is not all 255): the fragment's alpha is a = factor x the filtered texel's
+// alpha (the same filter, wrap and lod as its colour).
+//  - Mask: the fragment is kept when a >= cutoff (float comparison) and discarded otherwise:
+//    neither its colour nor its depth is written (the depth write waits for the test). Drawn
+//    with the opaque draws.
+//  - Blend: the fragment is blended "over" the target with a (blendOver), depth tested and not
+//    written. Drawn with the transparent draws, sorted.
+// Off: no per-fragment alpha (the draw's constant alpha, if any, is all there is). A texture
+// without alpha below 255 never turns a mode on (the constant rule gives the same image for
+// less work: SceneDraw::texelAlpha is only read when Texture::hasAlpha()).
+enum class AlphaMode : unsigned char { Off, Mask, Blend };
+struct TexelAlpha {
+    AlphaMode mode = AlphaMode::Off;
+    float factor = 1.0f; // the material's constant alpha (glTF baseColorFactor alpha)
+    float cutoff = 0.5f; // Mask only (glTF alphaCutoff)
+    bool on() const { return mode != AlphaMode::Off; }
+};
 
 } // namespace sr

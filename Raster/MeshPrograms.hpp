@@ -43,6 +43,7 @@ struct DrawContext {
     float alpha;            // opacity: below 1 the draw is blended over the target (DrawState::blendAlpha)
     bool whiteLights;       // view.lighting.whiteDirectional(): one-number terms (blinnPhong), else RGB (lightTerms)
     bool doubleSided = true; // false: the draw's back faces are culled whatever settings.cull says
+    TexelAlpha texelAlpha;   // on only for a textured draw whose texture has alpha (activeTexelAlpha)
 };
 
 // The lighting terms at world point p with unit normal n and unit view vector v, per channel:
@@ -53,12 +54,11 @@ inline RgbTerms litTerms(const DrawContext& d, Vec3 n, Vec3 p, Vec3 v) {
     return lightTerms(d.view.lighting, d.specular, n, p, v);
 }
 
-// Diffuse colour at a fragment whose varyings 0 and 1 are (u, v): the texel times the draw's kd
-// (the reference's uKd * texture(uTex, vUV); kd 1 leaves the texel as it is). Trilinear
-// filtering needs the screen-space uv derivatives, taken analytically from the triangle's planes
-// (no quad shading).
+// The filtered texel at a fragment whose varyings 0 and 1 are (u, v). Trilinear filtering needs
+// the screen-space uv derivatives, taken analytically from the triangle's planes (no quad
+// shading).
 template <int kVaryings>
-inline Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
+inline Color sampleTexel(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
     const Vec2 uv{f.varyings[0], f.varyings[1]};
     float lod = 0.0f;
     if (d.settings.filter == TextureFilter::Trilinear) {
@@ -69,8 +69,23 @@ inline Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fr
                                     : uvDerivatives(*setup, kU, kV, f.invW, uv.x, uv.y);
         lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, d.texture->width(), d.texture->height());
     }
-    const Color texel = d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
+    return d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
+}
+
+// Diffuse colour at a textured fragment: the texel times the draw's kd (the reference's
+// uKd * texture(uTex, vUV); kd 1 leaves the texel as it is).
+template <int kVaryings>
+inline Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
+    const Color texel = sampleTexel(d, setup, f);
     return {d.kd.r * texel.r, d.kd.g * texel.g, d.kd.b * texel.b, 1.0f};
+}
+
+// The texel's alpha at a fragment of a draw with texel alpha (Blend.hpp's TexelAlpha; the
+// programs' fragmentAlpha): the same sample as its colour's. Untextured programs: 1.
+template <bool kTextured, int kVaryings>
+inline float texelAlphaAt(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
+    if constexpr (kTextured) return sampleTexel(d, setup, f).a;
+    else return 1.0f;
 }
 
 inline DrawState drawStateFor(const DrawContext& d) {
@@ -82,7 +97,12 @@ inline DrawState drawStateFor(const DrawContext& d) {
     s.stopAfter = d.settings.stopAfter;
     s.perspective = d.settings.perspective;
     if (d.texture != nullptr) s.rebase = {2, wrapPeriod(d.settings.wrap)}; // varyings 0-1 are the uv
-    if (d.alpha < 1.0f) { // transparent: tested against the depth buffer, never written to it
+    if (d.texelAlpha.on()) {
+        // Per-fragment alpha (Pipeline.hpp: the fill tests depth, the fragment decides): Blend
+        // never writes depth, Mask writes it for the fragments it keeps.
+        s.texelAlpha = d.texelAlpha;
+        s.depth = DepthMode::Test;
+    } else if (d.alpha < 1.0f) { // transparent: tested against the depth buffer, never written to it
         s.blendAlpha = std::max(d.alpha, 0.0f);
         s.depth = DepthMode::Test;
     }
@@ -116,6 +136,7 @@ struct UnlitProgram {
         if constexpr (kTextured) return packBgra8(sampleKd(*d, setup, f));
         else return flat;
     }
+    float fragmentAlpha(const Fragment<kVaryings>& f) const { return texelAlphaAt<kTextured>(*d, setup, f); }
 };
 
 // Flat: lit ONCE per triangle (face normal, view vector at the centroid), lazily: triangle()
@@ -155,6 +176,7 @@ struct FlatProgram {
         if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, terms));
         else return flat;
     }
+    float fragmentAlpha(const Fragment<kVaryings>& f) const { return texelAlphaAt<kTextured>(*d, setup, f); }
 };
 
 // Gouraud: Blinn-Phong per vertex; the diffuse and specular terms are interpolated
@@ -204,6 +226,7 @@ struct GouraudProgram {
             return packBgra8(applyTerms(kd, d->specular.ks, LightTerms{f.varyings[kT], f.varyings[kT + 1]}));
         }
     }
+    float fragmentAlpha(const Fragment<kVaryings>& f) const { return texelAlphaAt<kTextured>(*d, setup, f); }
 };
 
 // Phong shading: world position and normal interpolated (perspective-correct), the normal
@@ -235,6 +258,7 @@ struct PhongProgram {
         if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
         else return packBgra8(applyTerms(d->kd, d->specular.ks, t));
     }
+    float fragmentAlpha(const Fragment<kVaryings>& f) const { return texelAlphaAt<kTextured>(*d, setup, f); }
 };
 
 } // namespace sr::programs

@@ -82,7 +82,7 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& f
     if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong)) mode = ShadingMode::Flat;
     const DrawContext d{view,     settings, mesh, indices, textured ? material.texture : nullptr,
                         textured ? material.tint : material.kd, material.specular, material.alpha,
-                        view.lighting.whiteDirectional(), material.doubleSided};
+                        view.lighting.whiteDirectional(), material.doubleSided, activeTexelAlpha(material, mesh)};
     if (textured) drawShaded<true>(ctx, d, mode, indexCount);
     else drawShaded<false>(ctx, d, mode, indexCount);
 }

@@ -22,6 +22,18 @@ namespace sr {
 void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& settings, const Mesh& mesh,
               const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& material);
 
+// The texel alpha a draw of `material` on `mesh` uses: the material's mode when the draw is
+// textured (a texture and mesh uvs) and the texture has alpha below 255, else Off (Blend.hpp).
+inline TexelAlpha activeTexelAlpha(const SurfaceMaterial& material, const Mesh& mesh) {
+    const bool textured = material.texture != nullptr && mesh.hasUvs();
+    return textured && material.texture->hasAlpha() ? material.texelAlpha : TexelAlpha{};
+}
+// Whether such a draw is blended (drawn after the opaque draws, sorted): a constant alpha below
+// 1, or texel alpha in Blend mode.
+inline bool drawsBlended(const SurfaceMaterial& material, const Mesh& mesh) {
+    return material.alpha < 1.0f || activeTexelAlpha(material, mesh).mode == AlphaMode::Blend;
+}
+
 inline void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& settings, const Mesh& mesh,
                      const SurfaceMaterial& material) {
     drawMesh(ctx, view, settings, mesh, mesh.indices.data(), mesh.indices.size(), material);

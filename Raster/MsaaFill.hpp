@@ -88,9 +88,26 @@ const Centroid* centroidTable() {
     return table.data();
 }
 
+} // namespace detail
+
+// A multisampled draw with texel alpha (Blend.hpp) shades once per pixel like any other, and its
+// alpha travels with the colour in the shading row's X byte (the top byte, 0xFF otherwise) to
+// the per-sample write: Mask: 0xFF kept, 0 discarded (the float test a >= cutoff is made here,
+// exactly as the one-sample fill makes it); Blend: toUnorm8(a), the opacity the samples are
+// blended with (so, multisampled, a transparent texel's alpha is rounded to 8 bits first).
+inline Pixel withMsaaAlpha(Pixel colour, const TexelAlpha& texelAlpha, float a) {
+    std::uint32_t x = 0;
+    if (texelAlpha.mode == AlphaMode::Mask) x = a >= texelAlpha.cutoff ? 0xFFu : 0u;
+    else x = toUnorm8(a);
+    return (colour & 0x00FFFFFFu) | (x << 24);
+}
+
+namespace detail {
+
 template <int kN, DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
-                         ShadeRow& shadeRow, ShadeRuns& shadeRuns, std::uint64_t& shaded, float alpha) {
+                         ShadeRow& shadeRow, ShadeRuns& shadeRuns, std::uint64_t& shaded, float alpha,
+                         AlphaMode texelAlpha) {
     constexpr int n = kN;
     const SampleOffset* pattern = msaaPattern(n);
     const Centroid* centroids = centroidTable<kN>();
@@ -212,12 +229,34 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
         const Pixel* shadedRow = shadeRow(row.y);
         const std::uint8_t* passed = scratch.passed.data() + row.offset;
         Pixel* colour = target.colourRow(row.y);
+        double zStart[kN] = {};
+        if (texelAlpha == AlphaMode::Mask)
+            for (int k = 0; k < kN; ++k)
+                zStart[k] = t.planeAt(kPlaneZ, row.lo + 0.5 + double(pattern[k].x) / kSubPixelScale,
+                                      row.y + 0.5 + double(pattern[k].y) / kSubPixelScale);
         for (int x = row.lo; x < row.hi; ++x) {
             const unsigned pass = passed[x - row.lo];
             if (pass == 0) continue;
             ++shaded;
-            const Pixel c = shadedRow[x];
+            Pixel c = shadedRow[x];
             Pixel* samples = colour + std::size_t(x) * std::size_t(n);
+            if (texelAlpha == AlphaMode::Blend) { // per pixel: the opacity in c's X byte
+                const float a = float(c >> 24) / 255.0f;
+                for (int k = 0; k < n; ++k)
+                    if (pass & (1u << k)) samples[k] = blendOver(c, samples[k], a);
+                continue;
+            }
+            if (texelAlpha == AlphaMode::Mask) { // kept (X 0xFF) or discarded (X 0)
+                if ((c >> 24) == 0) {
+                    --shaded;
+                    continue;
+                }
+                c |= 0xFF000000u;
+                // The depth write the test left to this step (kDepth is Test): step 2's floats.
+                float* depth = target.depthRow(row.y) + std::size_t(x) * std::size_t(n);
+                for (int k = 0; k < n; ++k)
+                    if (pass & (1u << k)) depth[k] = float(zStart[k] + ddx * double(x - row.lo));
+            }
             if (alpha < 1.0f) { // a transparent draw: over each passing sample's own colour
                 for (int k = 0; k < n; ++k)
                     if (pass & (1u << k)) samples[k] = blendOver(c, samples[k], alpha);
@@ -241,17 +280,21 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
 //    when the centre is inside the triangle, otherwise at the centroid of the covered samples (no
 //    attribute is extrapolated outside the triangle), by one call shadeRuns(runs, count) per
 //    triangle (SpanRun), which writes the colours to shadeRow(y)[x] (pixel-sized scratch rows);
-//  - the colour goes to every covered sample that passed (alpha < 1: blended over each, Blend.hpp).
-// `shaded` counts the pixels shaded.
+//  - the colour goes to every covered sample that passed (alpha < 1: blended over each, Blend.hpp);
+//  - texelAlpha (Mask or Blend; kDepth is then Test): the shaded colour carries its alpha in the
+//    X byte (withMsaaAlpha): Blend blends it over each passing sample, Mask writes a kept pixel's
+//    colour and depth to its passing samples and leaves a discarded pixel's samples alone.
+// `shaded` counts the pixels shaded (and kept).
 template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleMsaa(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
-                      ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded, float alpha = 1.0f) {
+                      ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded, float alpha = 1.0f,
+                      AlphaMode texelAlpha = AlphaMode::Off) {
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
     switch (target.samples()) {
-    case 2: detail::fillTriangleSamples<2, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha); break;
-    case 4: detail::fillTriangleSamples<4, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha); break;
-    case 8: detail::fillTriangleSamples<8, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha); break;
-    default: detail::fillTriangleSamples<1, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha); break;
+    case 2: detail::fillTriangleSamples<2, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha); break;
+    case 4: detail::fillTriangleSamples<4, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha); break;
+    case 8: detail::fillTriangleSamples<8, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha); break;
+    default: detail::fillTriangleSamples<1, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha); break;
     }
 }
 

@@ -41,6 +41,10 @@ struct DrawState {
     // (Blend.hpp), per pixel or, multisampled, per sample; the span kernels blend as the scalar
     // loop does (their colours go through blendOver). Such a draw is drawn with DepthMode::Test.
     float blendAlpha = 1.0f;
+    // On: per-fragment alpha from the program's fragmentAlpha (Blend.hpp's TexelAlpha: Mask keeps
+    // or discards, Blend blends with it); the draw is then filled by the scalar loop with
+    // DepthMode::Test, a kept Mask fragment writing its own depth.
+    TexelAlpha texelAlpha;
 };
 
 namespace detail {
@@ -122,6 +126,14 @@ template <class Program>
 struct HasShadeRuns<Program, std::void_t<decltype(std::declval<Program&>().shadeRuns(
                                  std::declval<const TriangleSetup&>(), std::declval<FrameBuffer&>(),
                                  std::declval<const SpanRun*>(), 0))>> : std::true_type {};
+// ... and optionally float fragmentAlpha(const Fragment<kVaryings>&): the fragment's texel alpha,
+// for draws with DrawState::texelAlpha on.
+template <class Program, int kVaryings, class = void>
+struct HasFragmentAlpha : std::false_type {};
+template <class Program, int kVaryings>
+struct HasFragmentAlpha<Program, kVaryings,
+                        std::void_t<decltype(std::declval<const Program&>().fragmentAlpha(
+                            std::declval<const Fragment<kVaryings>&>()))>> : std::true_type {};
 template <class Program>
 struct HasFillKernel<Program, std::void_t<decltype(std::declval<Program&>().fillKernel(
                                   std::declval<const TriangleSetup&>(), std::declval<FrameBuffer&>(),
@@ -188,7 +200,23 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     // Count the fragments that pass the depth test (one add per pixel: overdraw statistics).
     std::uint64_t& shaded = lane.stats.fragmentsShaded;
     const float alpha = state.blendAlpha;
-    auto counted = [&shaded, &program, &fb, alpha](const Fragment<kVaryings>& f) {
+    const TexelAlpha texelAlpha = state.texelAlpha;
+    constexpr bool kFragmentAlpha = HasFragmentAlpha<Program, kVaryings>::value;
+    auto counted = [&shaded, &program, &fb, alpha, texelAlpha](const Fragment<kVaryings>& f) {
+        if constexpr (kFragmentAlpha) {
+            if (texelAlpha.on()) { // the fill tested depth (DepthMode::Test); this fragment decides the rest
+                const float a = texelAlpha.factor * program.fragmentAlpha(f);
+                const Pixel behind = fb.colorRow(f.y)[f.x];
+                if (texelAlpha.mode == AlphaMode::Mask) {
+                    if (!(a >= texelAlpha.cutoff)) return behind; // discarded: colour and depth stay
+                    fb.depthRow(f.y)[f.x] = f.z;
+                    ++shaded;
+                    return program.fragment(f);
+                }
+                ++shaded;
+                return blendOver(program.fragment(f), behind, a);
+            }
+        }
         ++shaded;
         if (alpha < 1.0f) return blendOver(program.fragment(f), fb.colorRow(f.y)[f.x], alpha);
         return program.fragment(f);
@@ -204,9 +232,16 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         auto shadeRow = [&fb](int y) -> const Pixel* { return fb.colorRow(y); };
         auto shadeRuns = [&](const SpanRun* runs, int count) {
             if constexpr (HasShadeRuns<Program>::value) {
-                if (program.shadeRuns(static_cast<const TriangleSetup&>(setup), fb, runs, count)) return;
+                if (!texelAlpha.on() && program.shadeRuns(static_cast<const TriangleSetup&>(setup), fb, runs, count)) return;
             }
-            auto fragment = [&program](const Fragment<kVaryings>& f) { return program.fragment(f); };
+            // With texel alpha, the alpha rides in the shading row's X byte (MsaaAlpha).
+            auto fragment = [&program, texelAlpha](const Fragment<kVaryings>& f) {
+                if constexpr (kFragmentAlpha) {
+                    if (texelAlpha.on())
+                        return withMsaaAlpha(program.fragment(f), texelAlpha, texelAlpha.factor * program.fragmentAlpha(f));
+                }
+                return program.fragment(f);
+            };
             for (int r = 0; r < count; ++r) {
                 if (runs[r].dx == 0.0 && runs[r].dy == 0.0) {
                     fillSpan<DepthMode::Off, kVaryings, kPersp>(setup, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
@@ -217,7 +252,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
                 fillSpan<DepthMode::Off, kVaryings, kPersp>(moved, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
             }
         };
-        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha);
+        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha, texelAlpha.mode);
     };
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
@@ -229,7 +264,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         }
         if constexpr (HasFillKernel<Program>::value) {
             // (A transparent draw's kernel blends each colour over the target itself, as `counted`.)
-            if (program.fillKernel(static_cast<const TriangleSetup&>(setup), fb, scissor, shaded)) return;
+            if (!texelAlpha.on() && program.fillKernel(static_cast<const TriangleSetup&>(setup), fb, scissor, shaded)) return;
         }
         if constexpr (kVaryings == 0) {
             fillTriangle<kDepth, kVaryings>(setup, fb, scissor, counted);

@@ -4,6 +4,7 @@
 #include <optional>
 
 #include "Math/Mat4.hpp"
+#include "Raster/Blend.hpp" // TexelAlpha
 #include "Raster/Cull.hpp"
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/PipelineModes.hpp" // PerspectiveMode, PipelineStop
@@ -45,6 +46,9 @@ struct SurfaceMaterial {
     Color tint{1.0f, 1.0f, 1.0f, 1.0f}; // multiplies the texel when textured (MTL Kd; 1: the texel alone)
     Specular specular;
     float alpha = 1.0f; // opacity; below 1 the draw is blended "over" what is behind it (Blend.hpp)
+    // Per-fragment alpha from the texture (glTF MASK / BLEND), used when the texture has alpha
+    // (activeTexelAlpha, MeshRenderer.hpp); its factor then replaces `alpha`.
+    TexelAlpha texelAlpha;
     bool doubleSided = true; // false: back faces (clockwise on screen) are culled whatever RenderSettings::cull says
     // The texture's own sampler (glTF), where it says: the draw's wrap and filter when the
     // settings let the file choose (RenderSettings::wrapFromFile / filterFromFile).

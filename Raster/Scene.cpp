@@ -27,6 +27,7 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
     material.tint = d.tint;
     material.specular = d.specular;
     material.alpha = d.alpha;
+    material.texelAlpha = d.texelAlpha;
     material.doubleSided = d.doubleSided;
     material.wrap = d.wrap;
     material.filter = d.filter;
@@ -47,12 +48,12 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         assert(d.mesh >= 0 && std::size_t(d.mesh) < scene.meshes.size());
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
         assert(std::size_t(d.firstIndex) + d.indexCount <= mesh.indices.size());
-        if (d.alpha < 1.0f) {
+        const SurfaceMaterial material = materialOf(scene, d, textureOverride);
+        if (drawsBlended(material, mesh)) {
             anyTransparent = true;
             continue;
         }
-        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount,
-                 materialOf(scene, d, textureOverride));
+        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
     }
     // Lines and points: depth-tested and written, before the transparent surfaces blend over them.
     const int lineWidth = std::max(1, ssaaFactor(settings.ssaa));
@@ -67,8 +68,8 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
     order.clear();
     for (std::size_t i = 0; i < scene.draws.size(); ++i) {
         const SceneDraw& d = scene.draws[i];
-        if (!(d.alpha < 1.0f)) continue;
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+        if (!drawsBlended(materialOf(scene, d, textureOverride), mesh)) continue;
         for (std::uint32_t k = 0; k + 2 < d.indexCount; k += 3) {
             const std::uint32_t* t = mesh.indices.data() + d.firstIndex + k;
             const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0f;

@@ -21,6 +21,7 @@ struct SceneDraw {
     Color tint{1.0f, 1.0f, 1.0f, 1.0f};  // multiplies the texel when textured (1: the texel alone)
     Specular specular;                   // ks and shininess (default: white 0.5, 32)
     float alpha = 1.0f;                  // opacity (MTL d, glTF BLEND); below 1: drawn after the opaque draws
+    TexelAlpha texelAlpha;               // glTF MASK / BLEND with the texture's alpha (SurfaceMaterial)
     bool doubleSided = true;             // false (a glTF single-sided material): back faces culled whatever the cull mode
     std::optional<WrapMode> wrap;        // the texture's sampler (glTF), where it says (SurfaceMaterial)
     std::optional<TextureFilter> filter;
@@ -47,7 +48,7 @@ struct Scene {
 };
 
 // Draws every opaque SceneDraw in order (the order matters only for exact depth ties: first
-// wins), then the lines and points (drawWorldLines, LineDraw.hpp), then, if any draw is transparent (alpha < 1), the triangles of the transparent draws
+// wins), then the lines and points (drawWorldLines, LineDraw.hpp), then, if any draw is transparent (drawsBlended: alpha < 1 or texel alpha Blend), the triangles of the transparent draws
 // sorted back to front by the clip-space w (view depth) of their centroids, ties in draw and
 // file order, each blended over what is behind it without writing depth. A scene without
 // transparent draws sorts nothing. `textureOverride`, when not null, replaces every draw's texture.

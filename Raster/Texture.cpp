@@ -124,7 +124,10 @@ Texture Texture::fromRgba8(int width, int height, const std::uint8_t* rgbaTopRow
     for (int y = 0; y < height; ++y) {
         const std::uint8_t* src = rgbaTopRowFirst + std::size_t(height - 1 - y) * std::size_t(width) * 4;
         std::uint32_t* dst = base.texels.data() + std::size_t(y) * std::size_t(width);
-        for (int x = 0; x < width; ++x, src += 4) dst[x] = packRgba(src[0], src[1], src[2], src[3]);
+        for (int x = 0; x < width; ++x, src += 4) {
+            dst[x] = packRgba(src[0], src[1], src[2], src[3]);
+            t.hasAlpha_ = t.hasAlpha_ || src[3] != 255;
+        }
     }
     t.levels_.push_back(std::move(base));
     while (t.levels_.back().width > 1 || t.levels_.back().height > 1) {

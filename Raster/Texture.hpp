@@ -82,6 +82,9 @@ public:
     int levelCount() const { return int(levels_.size()); }
     int levelWidth(int level) const { return levels_[std::size_t(level)].width; }
     int levelHeight(int level) const { return levels_[std::size_t(level)].height; }
+    // Whether any base-level texel has alpha below 255 (then so may every filtered value; else
+    // every sample's alpha is exactly 1). Found once, at creation.
+    bool hasAlpha() const { return hasAlpha_; }
 
     // Texel (x, y) of `level`, y = 0 the BOTTOM row. Preconditions (asserted): valid indices.
     std::uint32_t texel(int level, int x, int y) const;
@@ -138,6 +141,7 @@ private:
     static Level downsample(const Level& src);
 
     std::vector<Level> levels_; // levels_[0] is the base level; never empty
+    bool hasAlpha_ = false;
 };
 
 } // namespace sr

@@ -247,12 +247,19 @@ Material materialFrom(const tinygltf::Material& gm) {
     const double alpha = rough * rough;
     const double n = alpha > 0.0 ? 2.0 / (alpha * alpha) - 2.0 : 1024.0;
     m.shininess = float(std::clamp(std::round(n), 1.0, 1024.0));
-    // Alpha modes with the factor's alpha (texel alpha is not sampled): BLEND blends with it,
-    // MASK keeps the surface when it reaches alphaCutoff and drops it otherwise, OPAQUE ignores it.
+    // Alpha modes. With the factor's alpha alone (untextured, or a texture without alpha): BLEND
+    // blends with it, MASK keeps the surface when it reaches alphaCutoff and drops it otherwise,
+    // OPAQUE ignores it. With a base colour texture, texelAlpha holds the per-fragment rule (the
+    // factor times the texel's alpha), used when the texture has alpha.
     const double a = pbr.baseColorFactor.size() > 3 ? std::clamp(pbr.baseColorFactor[3], 0.0, 1.0) : 1.0;
     m.doubleSided = gm.doubleSided;
-    if (gm.alphaMode == "BLEND") m.alpha = float(a);
-    else if (gm.alphaMode == "MASK") m.alpha = a >= gm.alphaCutoff ? 1.0f : 0.0f;
+    if (gm.alphaMode == "BLEND") {
+        m.alpha = float(a);
+        m.texelAlpha = {AlphaMode::Blend, float(a), 0.5f};
+    } else if (gm.alphaMode == "MASK") {
+        m.alpha = a >= gm.alphaCutoff ? 1.0f : 0.0f;
+        m.texelAlpha = {AlphaMode::Mask, float(a), float(gm.alphaCutoff)};
+    }
     return m;
 }
 

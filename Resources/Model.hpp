@@ -9,6 +9,7 @@
 
 #include "Math/Color.hpp"
 #include "Math/Vec.hpp"
+#include "Raster/Blend.hpp" // TexelAlpha
 #include "Raster/Mesh.hpp"
 #include "Raster/Shading.hpp" // Light
 #include "Raster/Texture.hpp" // WrapMode, TextureFilter
@@ -30,6 +31,9 @@ struct Material {
     Color kd{0.0f, 0.0f, 0.0f, 1.0f}, ks{0.0f, 0.0f, 0.0f, 1.0f};
     float shininess = 1.0f;
     float alpha = 1.0f; // opacity: MTL d (or 1 - Tr); glTF baseColorFactor alpha under BLEND, 0 or 1 under MASK
+    // glTF MASK / BLEND with a base colour texture: the per-fragment rule, used when the texture
+    // has alpha (Raster/Blend.hpp; `alpha` above is then the rule for an opaque texture).
+    TexelAlpha texelAlpha;
     bool doubleSided = true; // glTF doubleSided (its default: false, back faces culled whatever --cull says); OBJ: true
     // glTF: the base colour texture's sampler, where it says (the draw's wrap and filter unless
     // --wrap / --filter chose them: RenderSettings::wrapFromFile, filterFromFile). OBJ: unset.

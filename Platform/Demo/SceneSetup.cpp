@@ -68,6 +68,7 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
             d.tint = d.kd;
             d.specular = Specular{m->ks, m->shininess};
             d.alpha = m->alpha;
+            d.texelAlpha = m->texelAlpha;
             if (!(d.alpha > 0.0f)) continue; // fully transparent (glTF MASK below its cutoff): nothing to draw
         }
         scene.draws.push_back(d);

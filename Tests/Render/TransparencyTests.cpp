@@ -1,7 +1,9 @@
-// Transparency (issue 16, item 3): "over" blending with a constant opacity, transparent triangles after the opaque ones, back to front, depth tested but not written.
+// Transparency (issue 16, item 3): "over" blending with a constant opacity, transparent triangles after the opaque ones, back to front, depth tested but not written; texel alpha (MASK, BLEND).
 #include "TestFramework.hpp"
 
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "Platform/Demo/SceneSetup.hpp"
 #include "Raster/Blend.hpp"
@@ -189,4 +191,196 @@ TEST_CASE("opacity from the files: MTL d and Tr, glTF BLEND and MASK; --material
     REQUIRE(gltf.value().scene.draws.size() == 2); // the MASK material below its cutoff is not drawn
     CHECK(gltf.value().scene.draws[0].alpha == 0.3f);
     CHECK(gltf.value().scene.draws[1].alpha == 1.0f); // MASK at its (default 0.5) cutoff: opaque
+}
+
+namespace {
+
+// A 4 x 1 texture: red texels with alphas a[0..3] (columns left to right).
+Texture alphaRamp(const std::uint8_t (&a)[4]) {
+    const std::uint8_t rgba[16] = {255, 0, 0, a[0], 255, 0, 0, a[1], 255, 0, 0, a[2], 255, 0, 0, a[3]};
+    return Texture::fromRgba8(4, 1, rgba);
+}
+
+// square(0, z) with uvs: u = (x + 1) / 2, v = (y + 1) / 2, so texel column c of a 4-wide texture
+// covers world x in [-1 + c / 2, -0.5 + c / 2).
+Mesh texturedSquare(float z) {
+    Mesh m = square(0.0f, z);
+    m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    return m;
+}
+
+// The textured square (draw 0, listed FIRST) at z = -1 with texel alpha `mode`, and an opaque
+// blue square behind it (z = -2). Unlit, nearest: each texel column shows its own colour.
+Scene texelAlphaScene(AlphaMode mode, float factor, float cutoff, const std::uint8_t (&a)[4]) {
+    Scene s;
+    s.meshes = {texturedSquare(-1.0f), square(0.0f, -2.0f)};
+    s.textures = {alphaRamp(a)};
+    SceneDraw top = drawOf(0, {1, 1, 1, 1}, 1.0f);
+    top.texture = 0;
+    top.texelAlpha = {mode, factor, cutoff};
+    if (mode == AlphaMode::Blend) top.alpha = factor;
+    s.draws = {top, drawOf(1, {0, 0, 1, 1}, 1.0f)};
+    return s;
+}
+
+RenderSettings unlitNearest() {
+    RenderSettings settings;
+    settings.shading = ShadingMode::Unlit;
+    settings.filter = TextureFilter::Nearest;
+    return settings;
+}
+
+// The pixels over the four texel columns' centres (x = -0.75, -0.25, 0.25, 0.75) at z = -1.
+std::vector<Pixel> columns(const FrameBuffer& fb, const FrameView& view) {
+    std::vector<Pixel> out;
+    for (const float x : {-0.75f, -0.25f, 0.25f, 0.75f}) out.push_back(pixelAt(fb, view, {x, 0.0f, -1.0f}));
+    return out;
+}
+
+} // namespace
+
+TEST_CASE("texel alpha MASK: a fragment below the cutoff writes neither colour nor depth", "[render][transparency]") {
+    const FrameView view = topView();
+    const Pixel red = packBgra(255, 0, 0), blue = packBgra(0, 0, 255);
+    // Alphas 1, 128/255 = 0.50196, 127/255 = 0.49804, 0 against the cutoff 0.5: kept, kept,
+    // discarded, discarded. A discarded fragment wrote no depth: the blue square drawn AFTER it,
+    // farther away, shows there.
+    const std::uint8_t ramp[4] = {255, 128, 127, 0};
+    const Scene scene = texelAlphaScene(AlphaMode::Mask, 1.0f, 0.5f, ramp);
+    FrameBuffer fb(kSize, kSize);
+    RenderContext ctx(fb);
+    renderSceneFrame(ctx, scene, view, unlitNearest());
+    CHECK(columns(fb, view) == std::vector<Pixel>{red, red, blue, blue});
+    CHECK(ctx.stats.trianglesSorted == 0); // masked, not blended: drawn with the opaque draws
+    // Where the red square was kept, its depth is the one stored (the blue square lost there).
+    FrameBuffer blueOnly(kSize, kSize);
+    {
+        Scene alone = scene;
+        alone.draws = {scene.draws[1]};
+        RenderContext c(blueOnly);
+        renderSceneFrame(c, alone, view, unlitNearest());
+    }
+    int keptDepth = 0, discardedDepth = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) {
+            if (fb.pixel(x, y) == red) keptDepth += fb.depth(x, y) > blueOnly.depth(x, y);
+            if (fb.pixel(x, y) == blue) discardedDepth += fb.depth(x, y) != blueOnly.depth(x, y);
+        }
+    CHECK(keptDepth > 100);
+    CHECK(discardedDepth == 0);
+
+    // The factor multiplies the texel: 0.99 x 0.50196 = 0.4969 < 0.5 drops the second column too;
+    // a cutoff of 0 keeps even alpha 0.
+    const Scene scaled = texelAlphaScene(AlphaMode::Mask, 0.99f, 0.5f, ramp);
+    FrameBuffer fs(kSize, kSize);
+    RenderContext cs(fs);
+    renderSceneFrame(cs, scaled, view, unlitNearest());
+    CHECK(columns(fs, view) == std::vector<Pixel>{red, blue, blue, blue});
+    const Scene zero = texelAlphaScene(AlphaMode::Mask, 1.0f, 0.0f, ramp);
+    FrameBuffer fz(kSize, kSize);
+    RenderContext cz(fz);
+    renderSceneFrame(cz, zero, view, unlitNearest());
+    CHECK(columns(fz, view) == std::vector<Pixel>{red, red, red, red});
+
+    // The same image from the scalar loop, on two threads, lit (Phong: the lighting plays no
+    // part in the test), and multisampled (4 samples: the columns' interiors are unchanged).
+    for (int variant = 0; variant < 4; ++variant) {
+        INFO("variant " << variant);
+        RenderSettings s = unlitNearest();
+        FrameBuffer other(kSize, kSize);
+        RenderContext c(other);
+        if (variant == 0) s.isa = Isa::Scalar;
+        if (variant == 1) c.setThreads(2);
+        if (variant == 2) s.shading = ShadingMode::Phong;
+        if (variant == 3) s.msaa = 4;
+        renderSceneFrame(c, scene, view, s);
+        if (variant < 2) {
+            int differing = 0;
+            for (int y = 0; y < kSize; ++y)
+                for (int x = 0; x < kSize; ++x) differing += other.pixel(x, y) != fb.pixel(x, y);
+            CHECK(differing == 0);
+        } else {
+            // Discarded: what the blue square alone shows there, under the same settings.
+            Scene alone = scene;
+            alone.draws = {scene.draws[1]};
+            FrameBuffer back(kSize, kSize);
+            RenderContext cb(back);
+            renderSceneFrame(cb, alone, view, s);
+            const std::vector<Pixel> got = columns(other, view), behind = columns(back, view);
+            CHECK(got[2] == behind[2]);
+            CHECK(got[3] == behind[3]);
+            CHECK(pixelB(behind[2]) > pixelR(behind[2]));
+            for (int c = 0; c < 2; ++c) { // kept: the red texel (lit: shaded, mostly red)
+                CHECK(got[std::size_t(c)] != blue);
+                CHECK(pixelR(got[std::size_t(c)]) > pixelB(got[std::size_t(c)]));
+            }
+        }
+    }
+}
+
+TEST_CASE("texel alpha BLEND: factor x texel alpha over what is behind, sorted with the transparent draws",
+          "[render][transparency]") {
+    const FrameView view = topView();
+    const Pixel red = packBgra(255, 0, 0), blue = packBgra(0, 0, 255);
+    // Alpha 64/255 = 0.25098 over blue: r = 0.25098 -> 64, b = 0.74902 -> 191. Alpha 0: blue.
+    // The blended square is listed first, yet drawn after the opaque blue one.
+    const std::uint8_t ramp[4] = {255, 128, 64, 0};
+    const Scene scene = texelAlphaScene(AlphaMode::Blend, 1.0f, 0.5f, ramp);
+    FrameBuffer fb(kSize, kSize);
+    RenderContext ctx(fb);
+    renderSceneFrame(ctx, scene, view, unlitNearest());
+    CHECK(columns(fb, view) == std::vector<Pixel>{red, packBgra(128, 0, 127), packBgra(64, 0, 191), blue});
+    CHECK(ctx.stats.trianglesSorted == 2);
+    // No depth written: the depth buffer is the blue square's alone.
+    FrameBuffer blueOnly(kSize, kSize);
+    {
+        Scene alone = scene;
+        alone.draws = {scene.draws[1]};
+        RenderContext c(blueOnly);
+        renderSceneFrame(c, alone, view, unlitNearest());
+    }
+    int depthDiffers = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) depthDiffers += fb.depth(x, y) != blueOnly.depth(x, y);
+    CHECK(depthDiffers == 0);
+    // The factor multiplies: 0.5 x 64/255 = 0.12549 -> r 32, b 223.
+    const Scene half = texelAlphaScene(AlphaMode::Blend, 0.5f, 0.5f, ramp);
+    FrameBuffer fh(kSize, kSize);
+    RenderContext ch(fh);
+    renderSceneFrame(ch, half, view, unlitNearest());
+    CHECK(columns(fh, view)[2] == packBgra(32, 0, 223));
+    // Scalar loop, two threads, 4 samples (alpha 64/255 is exact in 8 bits): the same colours.
+    for (int variant = 0; variant < 3; ++variant) {
+        INFO("variant " << variant);
+        RenderSettings s = unlitNearest();
+        FrameBuffer other(kSize, kSize);
+        RenderContext c(other);
+        if (variant == 0) s.isa = Isa::Scalar;
+        if (variant == 1) c.setThreads(2);
+        if (variant == 2) s.msaa = 4;
+        renderSceneFrame(c, scene, view, s);
+        CHECK(columns(other, view) == columns(fb, view));
+    }
+}
+
+TEST_CASE("texel alpha needs a texture with alpha: an opaque texture keeps the constant rule and the kernels",
+          "[render][transparency]") {
+    Mesh mesh = texturedSquare(-1.0f);
+    const std::uint8_t opaque[4] = {255, 255, 255, 255}, holes[4] = {255, 0, 255, 0};
+    const Texture solid = alphaRamp(opaque), holed = alphaRamp(holes);
+    SurfaceMaterial m;
+    m.texelAlpha = {AlphaMode::Blend, 1.0f, 0.5f};
+    CHECK(activeTexelAlpha(m, mesh).mode == AlphaMode::Off); // untextured
+    m.texture = &solid;
+    CHECK(activeTexelAlpha(m, mesh).mode == AlphaMode::Off); // every texel opaque
+    CHECK_FALSE(drawsBlended(m, mesh));
+    m.texture = &holed;
+    CHECK(activeTexelAlpha(m, mesh).mode == AlphaMode::Blend);
+    CHECK(drawsBlended(m, mesh));
+    m.texelAlpha.mode = AlphaMode::Mask;
+    CHECK_FALSE(drawsBlended(m, mesh));
+    mesh.uvs.clear(); // no uvs: not textured
+    CHECK(activeTexelAlpha(m, mesh).mode == AlphaMode::Off);
+    CHECK(solid.hasAlpha() == false);
+    CHECK(holed.hasAlpha() == true);
 }

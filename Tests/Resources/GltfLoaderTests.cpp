@@ -426,6 +426,54 @@ TEST_CASE("glTF samplers: wrap and filter per material, as one wrap mode and one
     CHECK(contains(errorOf(dir, "nosampler.gltf", asset("[]", 2).embedded()), "texture 0: sampler 0 does not exist"));
 }
 
+TEST_CASE("glTF alpha modes with a base colour texture: the per-fragment rule beside the constant one",
+          "[resources][gltf][materials][transparency]") {
+    const std::string dir = freshDir("gltf-texel-alpha");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {10, 20, 30, 255};
+    REQUIRE(writeImage(dir + "/t.png", one).ok());
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    std::string prims;
+    for (int k = 0; k < 5; ++k)
+        prims += std::string(k ? "," : "") + "{\"attributes\":{\"POSITION\":" + std::to_string(pos) +
+                 ",\"TEXCOORD_0\":" + std::to_string(uv) + "},\"material\":" + std::to_string(k) + "}";
+    a.meshes = "[{\"primitives\":[" + prims + "]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    // 0: MASK, cutoff 0.3, factor alpha 0.8; 1: MASK with the default cutoff 0.5, factor 0.25 (below
+    // it: the constant rule drops the surface); 2: BLEND, factor 0.6; 3: OPAQUE with a factor
+    // alpha 0.2 (ignored); 4: untextured MASK (nothing per fragment to read: the constant rule).
+    a.materials = "[{\"alphaMode\":\"MASK\",\"alphaCutoff\":0.3,\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,1,1,0.8],"
+                  "\"baseColorTexture\":{\"index\":0}}},"
+                  "{\"alphaMode\":\"MASK\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,1,1,0.25],\"baseColorTexture\":{\"index\":0}}},"
+                  "{\"alphaMode\":\"BLEND\",\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,1,1,0.6],\"baseColorTexture\":{\"index\":0}}},"
+                  "{\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,1,1,0.2],\"baseColorTexture\":{\"index\":0}}},"
+                  "{\"alphaMode\":\"MASK\",\"alphaCutoff\":0.9,\"pbrMetallicRoughness\":{\"baseColorFactor\":[1,1,1,0.95]}}]";
+    a.extra = ",\"images\":[{\"uri\":\"t.png\"}],\"textures\":[{\"source\":0}]";
+    auto r = load(dir, "alpha.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const std::vector<Material>& m = r.value().materials;
+    REQUIRE(m.size() == 5);
+    CHECK(m[0].alpha == 1.0f); // 0.8 >= 0.3: kept by the constant rule
+    CHECK(m[0].texelAlpha.mode == AlphaMode::Mask);
+    CHECK(m[0].texelAlpha.factor == 0.8f);
+    CHECK(m[0].texelAlpha.cutoff == 0.3f);
+    CHECK(m[1].alpha == 0.0f);
+    CHECK(m[1].texelAlpha.mode == AlphaMode::Mask);
+    CHECK(m[1].texelAlpha.factor == 0.25f);
+    CHECK(m[1].texelAlpha.cutoff == 0.5f);
+    CHECK(m[2].alpha == 0.6f);
+    CHECK(m[2].texelAlpha.mode == AlphaMode::Blend);
+    CHECK(m[2].texelAlpha.factor == 0.6f);
+    CHECK(m[3].alpha == 1.0f);
+    CHECK(m[3].texelAlpha.mode == AlphaMode::Off);
+    CHECK(m[4].alpha == 1.0f);
+    CHECK(m[4].texture == -1);
+}
+
 TEST_CASE("glTF: bad files are one-line errors naming the file and the problem", "[resources][gltf][errors]") {
     const std::string dir = freshDir("gltf-errors");
     SECTION("an index out of range") {

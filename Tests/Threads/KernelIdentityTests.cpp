@@ -176,7 +176,7 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                             // kd here is the texel's tint (an MTL Kd).
                             const DrawContext d{view,     settings, mesh, mesh.indices.data(), &texture, Color{0.7f, 0.4f, 0.2f, 1.0f},
                                                 specular,
-                                                1.0f, true};
+                                                1.0f, true, true, {}};
                             compareKernel<UnlitProgram<true>>(isa, key, [&] { return UnlitProgram<true>(&d, 0); }, rng, totals);
                             compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<true>>(isa, key, [&] { return GouraudProgram<true>(&d); }, rng, totals);
@@ -187,16 +187,16 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                             // textured Phong and untextured flat (the constant-colour path); such
                             // draws are drawn with DepthMode::Test only (drawStateFor).
                             const DrawContext t{view, settings, mesh, mesh.indices.data(), &textures[1],
-                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 0.4f, true};
+                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 0.4f, true, true, {}};
                             compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&t); }, rng, totals);
                             const DrawContext u{view, settings, mesh, mesh.indices.data(), nullptr,
-                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 0.4f, true};
+                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 0.4f, true, true, {}};
                             compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&u); }, rng, totals);
                         }
                         {
                             // Coloured, point and spot lights on the non-power-of-two texture.
                             const DrawContext d{colouredView, settings, mesh, mesh.indices.data(), &textures[0],
-                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 1.0f, false};
+                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 1.0f, false, true, {}};
                             compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<true, true>>(isa, key, [&] { return GouraudProgram<true, true>(&d); }, rng, totals);
                             compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&d); }, rng, totals);
@@ -204,13 +204,13 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                         // Untextured programs read neither filter nor wrap: once per depth and perspective.
                         if (filter != TextureFilter::Nearest || wrap != WrapMode::Repeat) continue;
                         for (const Specular& sp : speculars) {
-                            const DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f, true};
+                            const DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f, true, true, {}};
                             compareKernel<UnlitProgram<false>>(isa, key, [&] { return UnlitProgram<false>(&d, packBgra8(d.kd)); }, rng, totals);
                             compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<false>>(isa, key, [&] { return GouraudProgram<false>(&d); }, rng, totals);
                             compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&d); }, rng, totals);
                             const DrawContext c{colouredView, settings, mesh, mesh.indices.data(), nullptr,
-                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f, false};
+                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f, false, true, {}};
                             compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&c); }, rng, totals);
                             compareKernel<GouraudProgram<false, true>>(isa, key, [&] { return GouraudProgram<false, true>(&c); }, rng, totals);
                             compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&c); }, rng, totals);
