@@ -1,8 +1,9 @@
 // Which kernel ISAs this compiler and target can build, and the macros that compile a region for one.
 #pragma once
 
-// x86-64 only (the baseline has SSE2); elsewhere only the scalar reference exists.
-#if defined(__x86_64__) || defined(_M_X64)
+// x86-64 only (the baseline has SSE2); elsewhere, or built with SR_NO_KERNELS (CMake's
+// SR_KERNELS=OFF), only the scalar reference exists.
+#if (defined(__x86_64__) || defined(_M_X64)) && !defined(SR_NO_KERNELS)
 #define SR_KERNELS_X86 1
 #else
 #define SR_KERNELS_X86 0
