@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "Raster/Mesh.hpp"
 #include "Raster/Pipeline.hpp" // DrawState
@@ -80,14 +81,6 @@ inline Color sampleKd(const DrawContext& d, const TriangleSetup* setup, const Fr
     return {d.kd.r * texel.r, d.kd.g * texel.g, d.kd.b * texel.b, 1.0f};
 }
 
-// The texel's alpha at a fragment of a draw with texel alpha (Blend.hpp's TexelAlpha; the
-// programs' fragmentAlpha): the same sample as its colour's. Untextured programs: 1.
-template <bool kTextured, int kVaryings>
-inline float texelAlphaAt(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
-    if constexpr (kTextured) return sampleTexel(d, setup, f).a;
-    else return 1.0f;
-}
-
 inline DrawState drawStateFor(const DrawContext& d) {
     DrawState s;
     s.cull = d.doubleSided ? d.settings.cull : CullMode::CW; // single-sided: back faces (CW on screen) culled
@@ -136,7 +129,8 @@ struct UnlitProgram {
         if constexpr (kTextured) return packBgra8(sampleKd(*d, setup, f));
         else return flat;
     }
-    float fragmentAlpha(const Fragment<kVaryings>& f) const { return texelAlphaAt<kTextured>(*d, setup, f); }
+    template <bool kT = kTextured, std::enable_if_t<kT, int> = 0> // textured programs only (HasFragmentAlpha)
+    float fragmentAlpha(const Fragment<kVaryings>& f) const { return sampleTexel(*d, setup, f).a; }
 };
 
 // Flat: lit ONCE per triangle (face normal, view vector at the centroid), lazily: triangle()
@@ -176,7 +170,8 @@ struct FlatProgram {
         if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, terms));
         else return flat;
     }
-    float fragmentAlpha(const Fragment<kVaryings>& f) const { return texelAlphaAt<kTextured>(*d, setup, f); }
+    template <bool kT = kTextured, std::enable_if_t<kT, int> = 0> // textured programs only (HasFragmentAlpha)
+    float fragmentAlpha(const Fragment<kVaryings>& f) const { return sampleTexel(*d, setup, f).a; }
 };
 
 // Gouraud: Blinn-Phong per vertex; the diffuse and specular terms are interpolated
@@ -226,7 +221,8 @@ struct GouraudProgram {
             return packBgra8(applyTerms(kd, d->specular.ks, LightTerms{f.varyings[kT], f.varyings[kT + 1]}));
         }
     }
-    float fragmentAlpha(const Fragment<kVaryings>& f) const { return texelAlphaAt<kTextured>(*d, setup, f); }
+    template <bool kT = kTextured, std::enable_if_t<kT, int> = 0> // textured programs only (HasFragmentAlpha)
+    float fragmentAlpha(const Fragment<kVaryings>& f) const { return sampleTexel(*d, setup, f).a; }
 };
 
 // Phong shading: world position and normal interpolated (perspective-correct), the normal
@@ -258,7 +254,8 @@ struct PhongProgram {
         if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
         else return packBgra8(applyTerms(d->kd, d->specular.ks, t));
     }
-    float fragmentAlpha(const Fragment<kVaryings>& f) const { return texelAlphaAt<kTextured>(*d, setup, f); }
+    template <bool kT = kTextured, std::enable_if_t<kT, int> = 0> // textured programs only (HasFragmentAlpha)
+    float fragmentAlpha(const Fragment<kVaryings>& f) const { return sampleTexel(*d, setup, f).a; }
 };
 
 } // namespace sr::programs

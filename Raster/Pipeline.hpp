@@ -12,6 +12,7 @@
 #include "Raster/Blend.hpp"
 #include "Raster/Clipper.hpp"
 #include "Raster/Cull.hpp"
+#include "Raster/Kernels/KernelConfig.hpp" // SR_SIMD_NOINLINE, SR_UNLIKELY
 #include "Raster/Line.hpp"
 #include "Raster/MsaaFill.hpp"
 #include "Raster/PipelineModes.hpp" // PipelineStop, DepthMode, PerspectiveMode
@@ -48,6 +49,25 @@ struct DrawState {
 };
 
 namespace detail {
+
+// One fragment of a draw with texel alpha (DrawState::texelAlpha on; the fill tested depth with
+// DepthMode::Test): Mask keeps it (writing its depth and colour) or leaves colour and depth as
+// they were; Blend blends it over the target. Out of line: the span loops of every program
+// inline only the call.
+template <class Program, int kVaryings>
+SR_SIMD_NOINLINE Pixel texelAlphaFragment(const Program& program, FrameBuffer& fb, const TexelAlpha& texelAlpha,
+                                          const Fragment<kVaryings>& f, std::uint64_t& shaded) {
+    const float a = texelAlpha.factor * program.fragmentAlpha(f);
+    const Pixel behind = fb.colorRow(f.y)[f.x];
+    if (texelAlpha.mode == AlphaMode::Mask) {
+        if (!(a >= texelAlpha.cutoff)) return behind; // discarded: colour and depth stay
+        fb.depthRow(f.y)[f.x] = f.z;
+        ++shaded;
+        return program.fragment(f);
+    }
+    ++shaded;
+    return blendOver(program.fragment(f), behind, a);
+}
 
 // A clipped triangle's uv varyings rebased before clipping (VaryingRebase), so the clipper's
 // interpolation runs on small values too: for vertices offset by whole periods the shifted
@@ -204,18 +224,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     constexpr bool kFragmentAlpha = HasFragmentAlpha<Program, kVaryings>::value;
     auto counted = [&shaded, &program, &fb, alpha, texelAlpha](const Fragment<kVaryings>& f) {
         if constexpr (kFragmentAlpha) {
-            if (texelAlpha.on()) { // the fill tested depth (DepthMode::Test); this fragment decides the rest
-                const float a = texelAlpha.factor * program.fragmentAlpha(f);
-                const Pixel behind = fb.colorRow(f.y)[f.x];
-                if (texelAlpha.mode == AlphaMode::Mask) {
-                    if (!(a >= texelAlpha.cutoff)) return behind; // discarded: colour and depth stay
-                    fb.depthRow(f.y)[f.x] = f.z;
-                    ++shaded;
-                    return program.fragment(f);
-                }
-                ++shaded;
-                return blendOver(program.fragment(f), behind, a);
-            }
+            if (SR_UNLIKELY(texelAlpha.on())) return detail::texelAlphaFragment(program, fb, texelAlpha, f, shaded);
         }
         ++shaded;
         if (alpha < 1.0f) return blendOver(program.fragment(f), fb.colorRow(f.y)[f.x], alpha);

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 # Writes a glTF 2.0 scene with N punctual lights (KHR_lights_punctual): the lights benchmark (issue 16).
 """Usage: scripts/make-lights-scene.py OUT.gltf [--lights N] [--kind white|mixed] [--transparent]
+                                    [--texel-alpha opaque|mask|blend]
 
 The scene: a 40 x 40 floor of 32 x 32 quads at y = 0 and a 5 x 5 grid of UV spheres (radius 1.5,
 24 x 16 segments) standing on it, one material each for the floor and the spheres (grey, ks 0.04
@@ -13,6 +14,10 @@ from metallic 0 - a Blinn-Phong specular term), and a perspective camera looking
 --kind mixed: coloured lights cycling point, spot, directional (point and spot lights above the
   spheres, range 30): the RGB path.
 --transparent: every other sphere is BLEND with alpha 0.5 (drawn sorted, after the opaque ones).
+--texel-alpha: the floor gets uvs (8 repeats across) and an embedded 64 x 64 PNG of green discs
+  whose alpha is 255 inside and 0 outside (mask; alphaMode MASK, cutoff 0.5), falls from 255 to
+  0 outward (blend; alphaMode BLEND), or is 255 everywhere (opaque: the same texture and
+  alphaMode MASK, which the renderer draws as opaque: the baseline of the texel alpha cost).
 Python 3 standard library only; the same arguments give the same bytes.
 """
 import argparse
@@ -21,6 +26,34 @@ import json
 import math
 import struct
 import sys
+import zlib
+
+
+def png_rgba(width, height, pixel):
+    """A PNG (8-bit RGBA, no interlace) of pixel(x, y) -> (r, g, b, a), top row first."""
+    raw = bytearray()
+    for y in range(height):
+        raw.append(0)  # filter: none
+        for x in range(width):
+            raw.extend(pixel(x, y))
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0))
+            + chunk(b"IDAT", zlib.compress(bytes(raw), 9)) + chunk(b"IEND", b""))
+
+
+def disc_texel(mode):
+    def pixel(x, y):
+        d = math.hypot((x % 32) - 15.5, (y % 32) - 15.5) / 14.0  # four discs of radius 14 texels
+        if mode == "opaque":
+            a = 255
+        elif mode == "mask":
+            a = 255 if d <= 1.0 else 0
+        else:
+            a = max(0, min(255, int(round(255 * (1.0 - d)))))
+        return (40, 160 + (x * 3) % 64, 60, a)
+    return pixel
 
 
 def sphere(cx, cy, cz, r, seg=24, rings=16):
@@ -60,6 +93,7 @@ def main():
     ap.add_argument("--lights", type=int, default=1)
     ap.add_argument("--kind", choices=["white", "mixed"], default="white")
     ap.add_argument("--transparent", action="store_true")
+    ap.add_argument("--texel-alpha", choices=["opaque", "mask", "blend"])
     a = ap.parse_args()
     if not 1 <= a.lights <= 64:
         sys.exit("make-lights-scene: --lights must be in 1..64")
@@ -81,12 +115,15 @@ def main():
         accessors.append(acc)
         return len(accessors) - 1
 
-    def primitive(pos, nrm, idx, material):
-        return {"attributes": {"POSITION": add(pos, "f", 5126, "VEC3", 34962, True),
-                               "NORMAL": add(nrm, "f", 5126, "VEC3", 34962)},
-                "indices": add(idx, "I", 5125, "SCALAR", 34963), "material": material}
+    def primitive(pos, nrm, idx, material, uvs=None):
+        attributes = {"POSITION": add(pos, "f", 5126, "VEC3", 34962, True), "NORMAL": add(nrm, "f", 5126, "VEC3", 34962)}
+        if uvs:
+            attributes["TEXCOORD_0"] = add(uvs, "f", 5126, "VEC2", 34962)
+        return {"attributes": attributes, "indices": add(idx, "I", 5125, "SCALAR", 34963), "material": material}
 
-    meshes = [{"primitives": [primitive(*floor(40.0, 32), 0)]}]
+    fpos, fnrm, fidx = floor(40.0, 32)
+    fuvs = [(p[0] / 5.0, p[2] / 5.0) for p in fpos] if a.texel_alpha else None
+    meshes = [{"primitives": [primitive(fpos, fnrm, fidx, 0, fuvs)]}]
     nodes = [{"mesh": 0}]
     for k in range(25):
         gx, gz = k % 5, k // 5
@@ -136,6 +173,15 @@ def main():
     nodes.append({"camera": 0, "translation": [0.0, 22.0, 30.0], "rotation": [math.sin(tilt / 2), 0.0, 0.0, math.cos(tilt / 2)]})
 
     grey = {"baseColorFactor": [0.8, 0.8, 0.8, 1.0], "metallicFactor": 0.0, "roughnessFactor": 0.5}
+    floor_material = {"name": "floor", "pbrMetallicRoughness": grey}
+    textures = {}
+    if a.texel_alpha:
+        png = png_rgba(64, 64, disc_texel(a.texel_alpha))
+        floor_material = {"name": "floor", "alphaMode": "BLEND" if a.texel_alpha == "blend" else "MASK", "doubleSided": True,
+                          "pbrMetallicRoughness": dict(grey, baseColorFactor=[1.0, 1.0, 1.0, 1.0], baseColorTexture={"index": 0})}
+        textures = {"images": [{"uri": "data:image/png;base64," + base64.b64encode(png).decode()}],
+                    "textures": [{"source": 0, "sampler": 0}],
+                    "samplers": [{"magFilter": 9729, "minFilter": 9729, "wrapS": 10497, "wrapT": 10497}]}
     doc = {
         "asset": {"version": "2.0", "generator": "SoftRaster scripts/make-lights-scene.py"},
         "extensionsUsed": ["KHR_lights_punctual"],
@@ -144,7 +190,7 @@ def main():
         "scenes": [{"nodes": list(range(len(nodes)))}],
         "nodes": nodes,
         "meshes": meshes,
-        "materials": [{"name": "floor", "pbrMetallicRoughness": grey},
+        "materials": [floor_material,
                       {"name": "sphere", "pbrMetallicRoughness": dict(grey, baseColorFactor=[0.9, 0.9, 0.9, 1.0])},
                       {"name": "glass", "alphaMode": "BLEND",
                        "pbrMetallicRoughness": dict(grey, baseColorFactor=[0.6, 0.8, 1.0, 0.5])}],
@@ -152,6 +198,7 @@ def main():
         "buffers": [{"byteLength": len(blob), "uri": "data:application/octet-stream;base64," + base64.b64encode(bytes(blob)).decode()}],
         "bufferViews": views,
         "accessors": accessors,
+        **textures,
     }
     with open(a.out, "w") as f:
         json.dump(doc, f, separators=(",", ":"))
