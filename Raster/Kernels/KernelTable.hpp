@@ -16,7 +16,9 @@ namespace sr {
 
 // What a draw needs from its span kernel besides the program type (shading model, textured):
 // depth mode, perspective mode, filter and wrap. As llvmpipe's setup picks its triangle
-// function, drawMesh looks the kernel up ONCE per draw; per triangle only the walk runs.
+// function, drawMesh looks the kernel up ONCE per draw; per triangle only the walk runs. The
+// wrap mode is the one setting a kernel reads at run time (once per group of lanes, from the
+// draw's settings: Kernels.inl's sampleTexture), so it selects no separate kernel.
 struct KernelKey {
     DepthMode depth = DepthMode::TestWrite;
     PerspectiveMode perspective = PerspectiveMode::Exact;

@@ -367,7 +367,7 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
 // lanes off the vector path (NaN / Inf / huge uv) redone by the scalar sampler. `triangleLod`:
 // the affine triangle's mip level (trilinear only).
 template <PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap, class Prog>
-SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, F triangleLod) {
+SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, F u, F v, F invW, F triangleLod) {
     const Texture& texture = *p.d->texture;
     const M good = onVectorPath(u) & onVectorPath(v);
     const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
@@ -409,18 +409,32 @@ SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, F triangleLod)
     return kd;
 }
 
+// The draw's wrap mode is read here, per group of lanes, not made a template parameter of the
+// kernels: one predictable branch per group, and a third of the kernels' instantiations (and
+// compile time) for the textured programs, whose three wrap variants differ only in these
+// few instructions.
+template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
+SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, F triangleLod) {
+    switch (p.d->settings.wrap) {
+    case WrapMode::Clamp: return sampleTextureWrap<kPersp, kFilter, WrapMode::Clamp>(p, u, v, invW, triangleLod);
+    case WrapMode::Mirror: return sampleTextureWrap<kPersp, kFilter, WrapMode::Mirror>(p, u, v, invW, triangleLod);
+    case WrapMode::Repeat: break;
+    }
+    return sampleTextureWrap<kPersp, kFilter, WrapMode::Repeat>(p, u, v, invW, triangleLod);
+}
+
 // --- Shading: the programs' fragment(), lane by lane -----------------------------------------
 // Shades one group of fragments (pixel columns xs, rows ys, 1/w and the perspective-correct
 // varyings) and returns their packed colours. Lanes the vector code does not cover (a normal
 // or half vector off normalize's fast path) are redone by the scalar program.
-template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
 SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F triangleLod) {
     constexpr int kV = Prog::kVaryings;
     const DrawContext& d = *p.d;
     M ok = mAll();
     Rgb kd{fset(d.kd.r), fset(d.kd.g), fset(d.kd.b)};
     if constexpr (Prog::kIsTextured) {
-        const Rgb texel = sampleTexture<kPersp, kFilter, kWrap>(p, v[0], v[1], invW, triangleLod);
+        const Rgb texel = sampleTexture<kPersp, kFilter>(p, v[0], v[1], invW, triangleLod);
         kd = {kd.r * texel.r, kd.g * texel.g, kd.b * texel.b}; // sampleKd: the draw's kd times the texel
     }
     constexpr int kT = Prog::kIsTextured ? 2 : 0; // the first varying after the uv
@@ -494,7 +508,7 @@ struct FragmentQueue {
 // shaded at once and stored with one vector store; the passing lanes of the other groups go to
 // the queue (so the shading runs on few wasted lanes for small triangles). A draw whose
 // colour is constant per triangle (no varyings) stores it without shading anything.
-template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
 struct SpanKernel {
     static constexpr int kV = Prog::kVaryings;
     static constexpr int kPlanes = kV > 0 ? kPlaneVarying0 + kV : 1;
@@ -527,7 +541,7 @@ struct SpanKernel {
         F values[kV > 0 ? kV : 1];
         for (int k = 0; k < kV; ++k) values[k] = fload(queue.v[k]);
         alignas(64) std::uint32_t out[kLanes];
-        istore(out, shadeGroup<Prog, kPersp, kFilter, kWrap>(p, values, fload(queue.invW), iload(queue.x), iload(queue.y), triangleLod));
+        istore(out, shadeGroup<Prog, kPersp, kFilter>(p, values, fload(queue.invW), iload(queue.x), iload(queue.y), triangleLod));
         for (int i = 0; i < used; ++i) put(fb.colorRow(queue.y[i])[queue.x[i]], out[i]);
     }
 
@@ -616,7 +630,7 @@ struct SpanKernel {
                 }
                 const I columns = iset(x) + iiota();
                 if (passBits == bits(mAll())) {
-                    const I shaded = shadeGroup<Prog, kPersp, kFilter, kWrap>(p, values, invW, columns, row, triangleLod);
+                    const I shaded = shadeGroup<Prog, kPersp, kFilter>(p, values, invW, columns, row, triangleLod);
                     if (!blending()) {
                         istore(colour + x, shaded);
                     } else {
@@ -645,7 +659,7 @@ struct SpanKernel {
     }
 };
 
-template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
 void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) {
     assert(Prog::kVaryings <= t.varyingCount);
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= fb.width() && s.y1 <= fb.height());
@@ -654,10 +668,10 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
     static thread_local FragmentQueue<Prog::kVaryings> queue;
     queue.count = 0;
     assert(kDepth == DepthMode::Test || p.d->alpha >= 1.0f); // blending kernels: DepthMode::Test only
-    SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap> span{p, t, fb, shaded, queue, {}, fzero(), p.d->alpha};
+    SpanKernel<Prog, kDepth, kPersp, kFilter> span{p, t, fb, shaded, queue, {}, fzero(), p.d->alpha};
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));
-    for (int k = 0; k < SpanKernel<Prog, kDepth, kPersp, kFilter, kWrap>::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
+    for (int k = 0; k < SpanKernel<Prog, kDepth, kPersp, kFilter>::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
     forEachSpan(t, s, span);
     if constexpr (Prog::kVaryings > 0) span.flush();
 }
@@ -665,13 +679,13 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
 // The multisampled fill's shading (MsaaFill.hpp): the pixels of the given runs, shaded into fb's
 // rows without a depth test, as fillSpan<DepthMode::Off> with fragment() does (SpanKernel's very
 // loop, one span per run; the queue is flushed before returning).
-template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
 void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const SpanRun* runs, int count) {
     assert(Prog::kVaryings <= t.varyingCount);
     static thread_local FragmentQueue<Prog::kVaryings> queue;
     queue.count = 0;
     std::uint64_t shaded = 0; // the multisampled fill counts its pixels itself
-    using Span = SpanKernel<Prog, DepthMode::Off, kPersp, kFilter, kWrap>;
+    using Span = SpanKernel<Prog, DepthMode::Off, kPersp, kFilter>;
     // Runs shaded off the centre (centroids) go through a second span loop on a copy of the setup
     // with its origin moved (moveOrigin), made after the centre runs; both fill the one queue.
     Span span{p, t, fb, shaded, queue, {}, fzero()};
@@ -705,36 +719,24 @@ struct KernelPair {
     ShadeRunsKernel<Prog> runs = nullptr;
 };
 
-template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap>
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
 KernelPair<Prog> entries() {
-    return {&fillSpans<Prog, kDepth, kPersp, kFilter, kWrap>, &shadeRunSpans<Prog, kPersp, kFilter, kWrap>};
+    return {&fillSpans<Prog, kDepth, kPersp, kFilter>, &shadeRunSpans<Prog, kPersp, kFilter>};
 }
 
 // Resolves the key's run-time values into template arguments, one level at a time; a program
-// that does not read a setting gets the one instantiation that ignores it.
-template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
-KernelPair<Prog> pickWrap(const KernelKey& key) {
-    if constexpr (!Prog::kIsTextured) {
-        return entries<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>(); // wrap unused
-    } else {
-        switch (key.wrap) {
-        case WrapMode::Repeat: return entries<Prog, kDepth, kPersp, kFilter, WrapMode::Repeat>();
-        case WrapMode::Clamp: return entries<Prog, kDepth, kPersp, kFilter, WrapMode::Clamp>();
-        case WrapMode::Mirror: return entries<Prog, kDepth, kPersp, kFilter, WrapMode::Mirror>();
-        }
-        return {};
-    }
-}
-
+// that does not read a setting gets the one instantiation that ignores it. (The wrap mode is
+// read per group by sampleTexture: the key's wrap selects nothing here.)
 template <class Prog, DepthMode kDepth, PerspectiveMode kPersp>
 KernelPair<Prog> pickFilter(const KernelKey& key) {
     if constexpr (!Prog::kIsTextured) {
-        return pickWrap<Prog, kDepth, kPersp, TextureFilter::Bilinear>(key);
+        (void)key;
+        return entries<Prog, kDepth, kPersp, TextureFilter::Bilinear>();
     } else {
         switch (key.filter) {
-        case TextureFilter::Nearest: return pickWrap<Prog, kDepth, kPersp, TextureFilter::Nearest>(key);
-        case TextureFilter::Bilinear: return pickWrap<Prog, kDepth, kPersp, TextureFilter::Bilinear>(key);
-        case TextureFilter::Trilinear: return pickWrap<Prog, kDepth, kPersp, TextureFilter::Trilinear>(key);
+        case TextureFilter::Nearest: return entries<Prog, kDepth, kPersp, TextureFilter::Nearest>();
+        case TextureFilter::Bilinear: return entries<Prog, kDepth, kPersp, TextureFilter::Bilinear>();
+        case TextureFilter::Trilinear: return entries<Prog, kDepth, kPersp, TextureFilter::Trilinear>();
         }
         return {};
     }
