@@ -9,6 +9,7 @@
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/PipelineModes.hpp" // PerspectiveMode, PipelineStop
 #include "Raster/Shading.hpp"
+#include "Raster/Sky.hpp" // ViewRays
 #include "Raster/Texture.hpp"
 
 namespace sr {
@@ -36,6 +37,7 @@ struct FrameView {
     Vec3 eye;               // world-space camera position (for the view vector)
     bool finiteFar = true;  // the projection has a far plane to clip against
     Lighting lighting;
+    ViewRays rays;          // the eye ray through each image point (the sky; Sky.hpp)
 };
 
 // The surface of one draw: a texture (used when the mesh has uvs) times `tint`, or the flat

@@ -111,6 +111,10 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& v
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, settings, textureOverride);
         ctx.multisampling = false;
+        if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill) {
+            ctx.msaa.markDrawn();
+            ctx.forRows(out.height(), [&](int y0, int y1) { drawSkyMsaaRows(ctx.msaa, view.rays, scene.sky, y0, y1); });
+        }
         // Resolved and cleared for the next frame in one pass over the samples.
         ctx.forRows(out.height(), [&](int y0, int y1) {
             resolveAndClearMsaaRows(ctx.msaa, out, y0, y1, clearColour, FrameBuffer::kFarDepth);
@@ -126,12 +130,16 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& v
         plain.msaa = 1;
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, plain, textureOverride);
+        if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill)
+            ctx.forRows(out.height(), [&](int y0, int y1) { drawSkyRows(out, view.rays, scene.sky, y0, y1); });
         return (factor <= 1 && !multisample) || out.empty();
     }
     // The same view: clip space does not depend on the target size, only the viewport does.
     ctx.setTarget(ctx.samples);
     ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
     renderScene(ctx, scene, view, settings, textureOverride);
+    if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill)
+        ctx.forRows(ctx.samples.height(), [&](int y0, int y1) { drawSkyRows(ctx.samples, view.rays, scene.sky, y0, y1); });
     ctx.setTarget(out);
     ctx.forRows(out.height(), [&](int y0, int y1) { resolveBoxRows(ctx.samples, factor, out, y0, y1); });
     return true;

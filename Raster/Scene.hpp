@@ -42,6 +42,7 @@ struct Scene {
     std::vector<Texture> textures;
     std::vector<SceneDraw> draws;
     std::vector<SceneLines> lines; // drawn after the opaque triangles, before the transparent ones
+    Sky sky; // behind everything (renderSceneFrame); Kind::None: the clear colour
     Vec3 boundsMin{0, 0, 0}, boundsMax{0, 0, 0}; // for the auto-fit camera
 
     std::size_t triangleCount() const;
@@ -64,6 +65,9 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
 // frame is drawn multisampled into ctx.msaa and resolved the same way (Raster/Msaa.hpp,
 // MsaaFill.hpp); the sample memory is released by the next frame without multisampling. A target
 // above kMaxMsaaSamples samples is drawn with one sample and false is returned.
+// A scene with a sky (Scene::sky) gets it where its depth is still far after the draws (per
+// sample when supersampled or multisampled, before the resolve): drawSkyRows, Sky.hpp; not in
+// the partial pipelines (settings.stopAfter before Fill: the bench's stage timing).
 bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                       const Texture* textureOverride = nullptr, Pixel clearColour = packBgra(0, 0, 0));
 

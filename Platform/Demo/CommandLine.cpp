@@ -57,6 +57,9 @@ ParseResult parseCommandLine(const std::vector<std::string>& args) {
     ParseResult result;
     DemoOptions& o = result.options;
     bool modelGiven = false, threadsGiven = false;
+    // The demo shows the gradient sky unless --sky none or --skybox DIR say otherwise (the
+    // headless command keeps the black background, as the reference renderer draws it).
+    o.scene.sky = Sky::Kind::Gradient;
     for (std::size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         if (arg == "--help" || arg == "-h" || arg == "/?") {
@@ -138,7 +141,8 @@ std::string usageText(const std::string& programName) {
                        "                       without --frames) as PNG / BMP / PPM (by extension)\n"
                        "  --help               show this text\n"
                        "  (the demo renders on every hardware thread by default: --threads N overrides;\n"
-                       "  it starts at --quality balanced: 4 samples per pixel, trilinear, phong, exact)\n";
+                       "  it starts at --quality balanced: 4 samples per pixel, trilinear, phong, exact,\n"
+                       "  and with --sky gradient)\n";
     text += sceneFlagsHelp();
     text += "keys:\n";
     for (const KeyHelp& k : kKeyHelp) {

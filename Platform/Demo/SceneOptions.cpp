@@ -92,7 +92,8 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     static const char* const kFlags[] = {"--obj",   "--model",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
-                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera"};
+                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera",
+                                         "--sky",   "--skybox"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
@@ -126,6 +127,15 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     } else if (flag == "--texture") {
         if (value.empty()) return bad("a file path");
         o.texture = value;
+    } else if (flag == "--skybox") {
+        if (value.empty()) return bad("a folder");
+        o.skybox = value;
+        o.sky = Sky::Kind::Cube;
+    } else if (flag == "--sky") {
+        if (value == "none") o.sky = Sky::Kind::None;
+        else if (value == "gradient") o.sky = Sky::Kind::Gradient;
+        else return bad("none or gradient; --skybox DIR for a cube map");
+        o.skybox.clear();
     } else if (flag == "--width" || flag == "--height") {
         const auto v = parseInt(value);
         if (!v || *v < 1 || *v > FrameBuffer::kMaxDimension)
@@ -281,6 +291,9 @@ std::string sceneFlagsHelp() {
            "  --light x,y,z         direction to the light (default 1,1,1)\n"
            "  --shading MODE        unlit | flat | gouraud | phong (default phong)\n"
            "  --texture PATH        texture for every material (overrides map_Kd)\n"
+           "  --sky S               none (default: black) | gradient: what shows where nothing is drawn\n"
+           "  --skybox DIR          cube-map sky: DIR holds px, nx, py, ny, pz, nz images (OpenGL's\n"
+           "                        +X, -X, +Y, -Y, +Z, -Z faces, square, one size)\n"
            "  --cull MODE           none | cw | ccw (default none; front faces are CCW)\n"
            "  --threads N           render threads (default 1)\n"
            "quality:\n"

@@ -13,6 +13,7 @@
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Shading.hpp"
+#include "Raster/Sky.hpp"
 #include "Raster/Texture.hpp"
 #include "Raster/PipelineModes.hpp" // PerspectiveMode
 
@@ -78,6 +79,10 @@ struct SceneOptions {
     bool explicitSsaa = false, explicitMsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
     bool explicitWrap = false; // --wrap given (a glTF sampler's wrap applies otherwise)
     bool explicitLight = false; // --light given (ignored, with a warning, by a file with its own lights)
+    // The sky behind the scene: --sky none (default: the black clear colour) | gradient (the
+    // procedural SkyGradient), or --skybox DIR (six cube-map faces: Resources/Skybox.hpp).
+    Sky::Kind sky = Sky::Kind::None;
+    std::string skybox;
 };
 
 // Largest accepted --width / --height and --threads.

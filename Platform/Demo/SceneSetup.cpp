@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
 
 #include "Math/Conventions.hpp"
 #include "Math/DoubleMath.hpp"
@@ -13,6 +14,7 @@
 #include "Resources/DefaultScene.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/GltfLoader.hpp"
+#include "Resources/Skybox.hpp"
 
 namespace sr::demo {
 namespace {
@@ -222,6 +224,12 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         }
         out.scene = sceneFromModel(std::move(m), options.kd, options.materials);
     }
+    out.scene.sky.kind = options.sky;
+    if (options.sky == Sky::Kind::Cube) {
+        auto cube = loadSkybox(options.skybox);
+        if (!cube) return Result<LoadedScene>::failure(cube.error());
+        out.scene.sky.cube = std::make_shared<const CubeMap>(std::move(cube.value()));
+    }
     if (options.camera && std::size_t(*options.camera) >= out.cameras.size())
         return Result<LoadedScene>::failure((options.obj.empty() ? std::string("the built-in scene") : options.obj) +
                                             ": --camera " + std::to_string(*options.camera) + ": it has " +
@@ -293,6 +301,21 @@ FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light,
         for (int col = 0; col < 4; ++col) v.viewProj(r, col) = float(mvp.m[r][col]);
     v.eye = c.eye;
     v.finiteFar = !std::isinf(farZ);
+    // The eye rays for the sky: lookAtD's basis, scaled to the frustum's half extents (vertical
+    // fov, the image's aspect).
+    {
+        auto norm = [](Vec3d d) {
+            const double l = length(d);
+            return l > 0 ? d / l : d;
+        };
+        const Vec3d f = norm(Vec3d(c.target) - Vec3d(c.eye));
+        const Vec3d s = norm(cross(f, Vec3d(c.up)));
+        const Vec3d u = cross(s, f);
+        const double ty = std::tan(c.fovDegrees * 3.14159265358979323846 / 360.0), tx = ty * aspect;
+        v.rays.forward = Vec3(float(f.x), float(f.y), float(f.z));
+        v.rays.right = Vec3(float(s.x * tx), float(s.y * tx), float(s.z * tx));
+        v.rays.up = Vec3(float(u.x * ty), float(u.y * ty), float(u.z * ty));
+    }
     if (!sceneLights.empty()) {
         v.lighting.lights = sceneLights; // the scene's own lights; --light is for scenes without
         return v;

@@ -61,6 +61,10 @@ if(MODE STREQUAL "errors")
   file(WRITE "${WORK}/nolight.gltf" "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}}]}")
   expect_one_line("glTF light that does not exist" 1 "light 2 does not exist" render --model nolight.gltf ${tiny})
   expect_one_line("bad flag value" 2 "--width" render --width 100000 --quiet)
+  # A skybox folder without its faces, and a --sky value that is not one.
+  file(MAKE_DIRECTORY "${WORK}/emptysky")
+  expect_one_line("skybox without faces" 1 "'px' is missing" render --skybox emptysky ${tiny})
+  expect_one_line("bad --sky" 2 "--sky" render --sky cloudy --quiet)
   # A missing MTL is a warning (named), not an error: exit 0.
   file(WRITE "${WORK}/nomtl.obj" "mtllib absent.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
   softraster(render --obj nomtl.obj --width 32 --height 24 --out "${WORK}/y.png")

@@ -9,6 +9,8 @@
 #include "Raster/FrameBuffer.hpp"
 #include "Resources/FileIO.hpp"
 #include "Resources/Image.hpp"
+#include "Resources/Skybox.hpp"
+#include "ObjTestUtil.hpp"
 
 using namespace sr;
 
@@ -131,4 +133,49 @@ TEST_CASE("path helpers", "[resources][fileio]") {
     CHECK(parentDirectory("c.obj") == ".");
     CHECK(lowerExtension("x/Y.PNG") == ".png");
     CHECK(lowerExtension("x.d/noext") == "");
+}
+
+TEST_CASE("--skybox DIR: six faces px .. nz of one square size; every problem names its file", "[resources][image][sky]") {
+    const std::string dir = sr::objtest::freshDir("skybox");
+    const char* names[] = {"px", "nx", "py", "ny", "pz", "nz"};
+    const auto face = [](int size, int height, std::uint8_t shade) {
+        Image img;
+        img.width = size;
+        img.height = height;
+        img.rgba.assign(std::size_t(size) * std::size_t(height) * 4, 255);
+        for (std::size_t i = 0; i < img.rgba.size(); i += 4) img.rgba[i] = shade; // red = the face's shade
+        return img;
+    };
+    // Five faces: the sixth is missing.
+    for (int f = 0; f < 5; ++f) REQUIRE(writeImage(dir + "/" + names[f] + (f % 2 ? ".bmp" : ".png"), face(4, 4, std::uint8_t(40 * f))).ok());
+    auto missing = loadSkybox(dir);
+    REQUIRE_FALSE(missing.ok());
+    CHECK(missing.error().find("'nz' is missing") != std::string::npos);
+    CHECK(missing.error().find(dir) != std::string::npos);
+    // All six: loaded in OpenGL's face order (the face each axis sees has that file's shade).
+    REQUIRE(writeImage(dir + "/nz.ppm", face(4, 4, 200)).ok());
+    auto cube = loadSkybox(dir);
+    INFO((cube.ok() ? std::string() : cube.error()));
+    REQUIRE(cube.ok());
+    CHECK(cube.value().size() == 4);
+    const Vec3 axes[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    const int shades[] = {0, 40, 80, 120, 160, 200};
+    for (int f = 0; f < 6; ++f) CHECK(int(toUnorm8(cube.value().sample(axes[f]).r)) == shades[f]);
+    // A face of another size, a face that is not square, a face that does not decode.
+    REQUIRE(writeImage(dir + "/py.png", face(8, 8, 80)).ok());
+    auto sizes = loadSkybox(dir);
+    REQUIRE_FALSE(sizes.ok());
+    CHECK(sizes.error().find("py.png: skybox faces differ in size") != std::string::npos);
+    REQUIRE(writeImage(dir + "/py.png", face(4, 2, 80)).ok());
+    auto square = loadSkybox(dir);
+    REQUIRE_FALSE(square.ok());
+    CHECK(square.error().find("py.png: a skybox face must be square") != std::string::npos);
+    REQUIRE(writeFileBytes(dir + "/py.png", "not a png", 9).ok());
+    auto broken = loadSkybox(dir);
+    REQUIRE_FALSE(broken.ok());
+    CHECK(broken.error().find("py.png") != std::string::npos);
+    // Not a folder.
+    auto none = loadSkybox(dir + "/no-such-folder");
+    REQUIRE_FALSE(none.ok());
+    CHECK(none.error().find("not a folder") != std::string::npos);
 }
