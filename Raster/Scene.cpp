@@ -59,6 +59,16 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
     const int lineWidth = std::max(1, ssaaFactor(settings.ssaa));
     for (const SceneLines& l : scene.lines)
         drawWorldLines(ctx, view, l.positions, l.indices, l.points, packBgra8(l.colour), lineWidth);
+    // The sky where nothing opaque was drawn, before the transparent surfaces blend over it.
+    if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill) {
+        if (MsaaBuffer* samples = ctx.multisampleTarget()) {
+            samples->markDrawn();
+            ctx.forRows(samples->height(), [&](int y0, int y1) { drawSkyMsaaRows(*samples, view.rays, scene.sky, y0, y1); });
+        } else {
+            FrameBuffer& target = ctx.target();
+            ctx.forRows(target.height(), [&](int y0, int y1) { drawSkyRows(target, view.rays, scene.sky, y0, y1); });
+        }
+    }
     if (!anyTransparent) return;
 
     // Transparent triangles back to front (largest w first; equal keys in draw and file order),
@@ -111,10 +121,6 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& v
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, settings, textureOverride);
         ctx.multisampling = false;
-        if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill) {
-            ctx.msaa.markDrawn();
-            ctx.forRows(out.height(), [&](int y0, int y1) { drawSkyMsaaRows(ctx.msaa, view.rays, scene.sky, y0, y1); });
-        }
         // Resolved and cleared for the next frame in one pass over the samples.
         ctx.forRows(out.height(), [&](int y0, int y1) {
             resolveAndClearMsaaRows(ctx.msaa, out, y0, y1, clearColour, FrameBuffer::kFarDepth);
@@ -130,16 +136,12 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& v
         plain.msaa = 1;
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, plain, textureOverride);
-        if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill)
-            ctx.forRows(out.height(), [&](int y0, int y1) { drawSkyRows(out, view.rays, scene.sky, y0, y1); });
         return (factor <= 1 && !multisample) || out.empty();
     }
     // The same view: clip space does not depend on the target size, only the viewport does.
     ctx.setTarget(ctx.samples);
     ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
     renderScene(ctx, scene, view, settings, textureOverride);
-    if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill)
-        ctx.forRows(ctx.samples.height(), [&](int y0, int y1) { drawSkyRows(ctx.samples, view.rays, scene.sky, y0, y1); });
     ctx.setTarget(out);
     ctx.forRows(out.height(), [&](int y0, int y1) { resolveBoxRows(ctx.samples, factor, out, y0, y1); });
     return true;

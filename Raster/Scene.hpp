@@ -49,7 +49,7 @@ struct Scene {
 };
 
 // Draws every opaque SceneDraw in order (the order matters only for exact depth ties: first
-// wins), then the lines and points (drawWorldLines, LineDraw.hpp), then, if any draw is transparent (drawsBlended: alpha < 1 or texel alpha Blend), the triangles of the transparent draws
+// wins), then the lines and points (drawWorldLines, LineDraw.hpp), then the sky (Scene::sky), then, if any draw is transparent (drawsBlended: alpha < 1 or texel alpha Blend), the triangles of the transparent draws
 // sorted back to front by the clip-space w (view depth) of their centroids, ties in draw and
 // file order, each blended over what is behind it without writing depth. A scene without
 // transparent draws sorts nothing. `textureOverride`, when not null, replaces every draw's texture.
@@ -65,9 +65,10 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
 // frame is drawn multisampled into ctx.msaa and resolved the same way (Raster/Msaa.hpp,
 // MsaaFill.hpp); the sample memory is released by the next frame without multisampling. A target
 // above kMaxMsaaSamples samples is drawn with one sample and false is returned.
-// A scene with a sky (Scene::sky) gets it where its depth is still far after the draws (per
-// sample when supersampled or multisampled, before the resolve): drawSkyRows, Sky.hpp; not in
-// the partial pipelines (settings.stopAfter before Fill: the bench's stage timing).
+// A scene with a sky (Scene::sky) gets it (renderScene) where the depth is still far after the
+// opaque draws and the lines, before the transparent draws blend over it, per sample when
+// supersampled or multisampled: drawSkyRows, Sky.hpp; not in the partial pipelines
+// (settings.stopAfter before Fill: the bench's stage timing).
 bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                       const Texture* textureOverride = nullptr, Pixel clearColour = packBgra(0, 0, 0));
 

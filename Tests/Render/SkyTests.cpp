@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "Platform/Demo/SceneSetup.hpp"
+#include "Raster/Blend.hpp"
 #include "Raster/Sky.hpp"
 
 using namespace sr;
@@ -229,4 +230,35 @@ TEST_CASE("the sky is drawn only where no geometry was, per sample before the re
     RenderContext cs(fs);
     renderSceneFrame(cs, withSky, view, ssaa);
     CHECK(pixelB(fs.pixel(kSize / 2, 1)) > 0); // above the square: sky, not black
+}
+
+TEST_CASE("transparent surfaces blend over the sky, which is drawn before them", "[render][sky][transparency]") {
+    // A half-transparent red square against a gradient sky: its pixels are red over the sky
+    // colour along their rays, not the sky alone (a sky drawn after it would cover it: the
+    // square writes no depth).
+    Scene scene;
+    Mesh m;
+    m.positions = {{-1, -1, -3}, {1, -1, -3}, {1, 1, -3}, {-1, 1, -3}};
+    m.normals.assign(4, {0, 0, 1});
+    m.indices = {0, 1, 2, 0, 2, 3};
+    scene.meshes = {m};
+    SceneDraw d;
+    d.indexCount = 6;
+    d.kd = {1, 0, 0, 1};
+    d.alpha = 0.5f;
+    scene.draws = {d};
+    scene.sky.kind = Sky::Kind::Gradient;
+    const FrameView view = lookingAlong({0, 0, -1}, {0, 1, 0});
+    RenderSettings settings;
+    settings.shading = ShadingMode::Unlit;
+    for (const int msaa : {1, 4}) {
+        INFO("msaa " << msaa);
+        settings.msaa = msaa;
+        FrameBuffer fb(kSize, kSize);
+        RenderContext ctx(fb);
+        renderSceneFrame(ctx, scene, view, settings);
+        const int x = kSize / 2, y = kSize / 2 - 4; // inside the square
+        const Vec3 r = view.rays.at(2.0 * (x + 0.5) / kSize - 1.0, 1.0 - 2.0 * (y + 0.5) / kSize);
+        CHECK(fb.pixel(x, y) == blendOver(packBgra(255, 0, 0), packBgra8(scene.sky.sample(r)), 0.5f));
+    }
 }
