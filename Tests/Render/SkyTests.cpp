@@ -56,6 +56,22 @@ FrameView lookingAlong(Vec3 forward, Vec3 up) {
     return demo::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
 }
 
+// A red square (side 2, unlit colour) facing +z at z = -3, with opacity `alpha`.
+Scene redSquare(float alpha) {
+    Scene scene;
+    Mesh m;
+    m.positions = {{-1, -1, -3}, {1, -1, -3}, {1, 1, -3}, {-1, 1, -3}};
+    m.normals.assign(4, {0, 0, 1});
+    m.indices = {0, 1, 2, 0, 2, 3};
+    scene.meshes = {m};
+    SceneDraw d;
+    d.indexCount = 6;
+    d.kd = {1, 0, 0, 1};
+    d.alpha = alpha;
+    scene.draws = {d};
+    return scene;
+}
+
 } // namespace
 
 TEST_CASE("cube map: the face and texel OpenGL's table 8.19 gives each direction", "[render][sky]") {
@@ -159,16 +175,7 @@ TEST_CASE("the sky seen along each axis: the face the table gives, oriented as O
 
 TEST_CASE("the sky is drawn only where no geometry was, per sample before the resolve", "[render][sky]") {
     // A red unlit square in front of the camera (looking down -z) covering the middle.
-    Scene scene;
-    Mesh m;
-    m.positions = {{-1, -1, -3}, {1, -1, -3}, {1, 1, -3}, {-1, 1, -3}};
-    m.normals.assign(4, {0, 0, 1});
-    m.indices = {0, 1, 2, 0, 2, 3};
-    scene.meshes = {m};
-    SceneDraw d;
-    d.indexCount = 6;
-    d.kd = {1, 0, 0, 1};
-    scene.draws = {d};
+    const Scene scene = redSquare(1.0f);
     const FrameView view = lookingAlong({0, 0, -1}, {0, 1, 0});
     RenderSettings settings;
     settings.shading = ShadingMode::Unlit;
@@ -236,17 +243,7 @@ TEST_CASE("transparent surfaces blend over the sky, which is drawn before them",
     // A half-transparent red square against a gradient sky: its pixels are red over the sky
     // colour along their rays, not the sky alone (a sky drawn after it would cover it: the
     // square writes no depth).
-    Scene scene;
-    Mesh m;
-    m.positions = {{-1, -1, -3}, {1, -1, -3}, {1, 1, -3}, {-1, 1, -3}};
-    m.normals.assign(4, {0, 0, 1});
-    m.indices = {0, 1, 2, 0, 2, 3};
-    scene.meshes = {m};
-    SceneDraw d;
-    d.indexCount = 6;
-    d.kd = {1, 0, 0, 1};
-    d.alpha = 0.5f;
-    scene.draws = {d};
+    Scene scene = redSquare(0.5f);
     scene.sky.kind = Sky::Kind::Gradient;
     const FrameView view = lookingAlong({0, 0, -1}, {0, 1, 0});
     RenderSettings settings;
