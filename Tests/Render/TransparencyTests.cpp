@@ -61,6 +61,25 @@ Pixel pixelAt(const FrameBuffer& fb, const FrameView& v, Vec3 p) {
     return fb.pixel(px, py);
 }
 
+// One frame of `scene` on `threads` render threads (its triangles-sorted counter into *sorted
+// when given).
+FrameBuffer frameOf(const Scene& scene, const FrameView& view, const RenderSettings& settings,
+                    std::uint64_t* sorted = nullptr, int threads = 1) {
+    FrameBuffer fb(kSize, kSize);
+    RenderContext ctx(fb);
+    ctx.setThreads(threads);
+    renderSceneFrame(ctx, scene, view, settings);
+    if (sorted) *sorted = ctx.stats.trianglesSorted;
+    return fb;
+}
+
+int differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
+    int n = 0;
+    for (int y = 0; y < kSize; ++y)
+        for (int x = 0; x < kSize; ++x) n += a.pixel(x, y) != b.pixel(x, y);
+    return n;
+}
+
 } // namespace
 
 TEST_CASE("blendOver: alpha x src + (1 - alpha) x dst per channel, rounded as packBgra8", "[render][transparency]") {
@@ -106,17 +125,11 @@ TEST_CASE("transparent draws: after the opaque ones, back to front, over what is
     for (int variant = 0; variant < 3; ++variant) {
         INFO("variant " << variant);
         RenderSettings s = settings;
-        FrameBuffer other(kSize, kSize);
-        RenderContext c(other);
-        if (variant == 0) c.setThreads(2);
         if (variant == 1) s.isa = Isa::Scalar;
         if (variant == 2) s.msaa = 4;
-        renderSceneFrame(c, scene, view, s);
+        const FrameBuffer other = frameOf(scene, view, s, nullptr, variant == 0 ? 2 : 1);
         if (variant < 2) {
-            int differing = 0;
-            for (int y = 0; y < kSize; ++y)
-                for (int x = 0; x < kSize; ++x) differing += other.pixel(x, y) != fb.pixel(x, y);
-            CHECK(differing == 0);
+            CHECK(differingPixels(other, fb) == 0);
         } else {
             CHECK(pixelAt(other, view, {0.25f, 0.0f, -1.0f}) == packBgra(115, 102, 38));
             CHECK(pixelAt(other, view, {1.3f, 0.0f, -1.0f}) == packBgra(0, 102, 0));
@@ -237,6 +250,13 @@ std::vector<Pixel> columns(const FrameBuffer& fb, const FrameView& view) {
     return out;
 }
 
+// The same scene with the blue square behind (draw 1) alone.
+FrameBuffer behindAlone(const Scene& scene, const FrameView& view, const RenderSettings& settings) {
+    Scene alone = scene;
+    alone.draws = {scene.draws[1]};
+    return frameOf(alone, view, settings);
+}
+
 } // namespace
 
 TEST_CASE("texel alpha MASK: a fragment below the cutoff writes neither colour nor depth", "[render][transparency]") {
@@ -247,19 +267,12 @@ TEST_CASE("texel alpha MASK: a fragment below the cutoff writes neither colour n
     // farther away, shows there.
     const std::uint8_t ramp[4] = {255, 128, 127, 0};
     const Scene scene = texelAlphaScene(AlphaMode::Mask, 1.0f, 0.5f, ramp);
-    FrameBuffer fb(kSize, kSize);
-    RenderContext ctx(fb);
-    renderSceneFrame(ctx, scene, view, unlitNearest());
+    std::uint64_t sorted = 1;
+    const FrameBuffer fb = frameOf(scene, view, unlitNearest(), &sorted);
     CHECK(columns(fb, view) == std::vector<Pixel>{red, red, blue, blue});
-    CHECK(ctx.stats.trianglesSorted == 0); // masked, not blended: drawn with the opaque draws
+    CHECK(sorted == 0); // masked, not blended: drawn with the opaque draws
     // Where the red square was kept, its depth is the one stored (the blue square lost there).
-    FrameBuffer blueOnly(kSize, kSize);
-    {
-        Scene alone = scene;
-        alone.draws = {scene.draws[1]};
-        RenderContext c(blueOnly);
-        renderSceneFrame(c, alone, view, unlitNearest());
-    }
+    const FrameBuffer blueOnly = behindAlone(scene, view, unlitNearest());
     int keptDepth = 0, discardedDepth = 0;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) {
@@ -271,42 +284,25 @@ TEST_CASE("texel alpha MASK: a fragment below the cutoff writes neither colour n
 
     // The factor multiplies the texel: 0.99 x 0.50196 = 0.4969 < 0.5 drops the second column too;
     // a cutoff of 0 keeps even alpha 0.
-    const Scene scaled = texelAlphaScene(AlphaMode::Mask, 0.99f, 0.5f, ramp);
-    FrameBuffer fs(kSize, kSize);
-    RenderContext cs(fs);
-    renderSceneFrame(cs, scaled, view, unlitNearest());
-    CHECK(columns(fs, view) == std::vector<Pixel>{red, blue, blue, blue});
-    const Scene zero = texelAlphaScene(AlphaMode::Mask, 1.0f, 0.0f, ramp);
-    FrameBuffer fz(kSize, kSize);
-    RenderContext cz(fz);
-    renderSceneFrame(cz, zero, view, unlitNearest());
-    CHECK(columns(fz, view) == std::vector<Pixel>{red, red, red, red});
+    CHECK(columns(frameOf(texelAlphaScene(AlphaMode::Mask, 0.99f, 0.5f, ramp), view, unlitNearest()), view) ==
+          std::vector<Pixel>{red, blue, blue, blue});
+    CHECK(columns(frameOf(texelAlphaScene(AlphaMode::Mask, 1.0f, 0.0f, ramp), view, unlitNearest()), view) ==
+          std::vector<Pixel>{red, red, red, red});
 
     // The same image from the scalar loop, on two threads, lit (Phong: the lighting plays no
     // part in the test), and multisampled (4 samples: the columns' interiors are unchanged).
     for (int variant = 0; variant < 4; ++variant) {
         INFO("variant " << variant);
         RenderSettings s = unlitNearest();
-        FrameBuffer other(kSize, kSize);
-        RenderContext c(other);
         if (variant == 0) s.isa = Isa::Scalar;
-        if (variant == 1) c.setThreads(2);
         if (variant == 2) s.shading = ShadingMode::Phong;
         if (variant == 3) s.msaa = 4;
-        renderSceneFrame(c, scene, view, s);
+        const FrameBuffer other = frameOf(scene, view, s, nullptr, variant == 1 ? 2 : 1);
         if (variant < 2) {
-            int differing = 0;
-            for (int y = 0; y < kSize; ++y)
-                for (int x = 0; x < kSize; ++x) differing += other.pixel(x, y) != fb.pixel(x, y);
-            CHECK(differing == 0);
+            CHECK(differingPixels(other, fb) == 0);
         } else {
             // Discarded: what the blue square alone shows there, under the same settings.
-            Scene alone = scene;
-            alone.draws = {scene.draws[1]};
-            FrameBuffer back(kSize, kSize);
-            RenderContext cb(back);
-            renderSceneFrame(cb, alone, view, s);
-            const std::vector<Pixel> got = columns(other, view), behind = columns(back, view);
+            const std::vector<Pixel> got = columns(other, view), behind = columns(behindAlone(scene, view, s), view);
             CHECK(got[2] == behind[2]);
             CHECK(got[3] == behind[3]);
             CHECK(pixelB(behind[2]) > pixelR(behind[2]));
@@ -326,29 +322,19 @@ TEST_CASE("texel alpha BLEND: factor x texel alpha over what is behind, sorted w
     // The blended square is listed first, yet drawn after the opaque blue one.
     const std::uint8_t ramp[4] = {255, 128, 64, 0};
     const Scene scene = texelAlphaScene(AlphaMode::Blend, 1.0f, 0.5f, ramp);
-    FrameBuffer fb(kSize, kSize);
-    RenderContext ctx(fb);
-    renderSceneFrame(ctx, scene, view, unlitNearest());
+    std::uint64_t sorted = 0;
+    const FrameBuffer fb = frameOf(scene, view, unlitNearest(), &sorted);
     CHECK(columns(fb, view) == std::vector<Pixel>{red, packBgra(128, 0, 127), packBgra(64, 0, 191), blue});
-    CHECK(ctx.stats.trianglesSorted == 2);
+    CHECK(sorted == 2);
     // No depth written: the depth buffer is the blue square's alone.
-    FrameBuffer blueOnly(kSize, kSize);
-    {
-        Scene alone = scene;
-        alone.draws = {scene.draws[1]};
-        RenderContext c(blueOnly);
-        renderSceneFrame(c, alone, view, unlitNearest());
-    }
+    const FrameBuffer blueOnly = behindAlone(scene, view, unlitNearest());
     int depthDiffers = 0;
     for (int y = 0; y < kSize; ++y)
         for (int x = 0; x < kSize; ++x) depthDiffers += fb.depth(x, y) != blueOnly.depth(x, y);
     CHECK(depthDiffers == 0);
     // The factor multiplies: 0.5 x 64/255 = 0.12549 -> r 32, b 223.
-    const Scene half = texelAlphaScene(AlphaMode::Blend, 0.5f, 0.5f, ramp);
-    FrameBuffer fh(kSize, kSize);
-    RenderContext ch(fh);
-    renderSceneFrame(ch, half, view, unlitNearest());
-    CHECK(columns(fh, view)[2] == packBgra(32, 0, 223));
+    CHECK(columns(frameOf(texelAlphaScene(AlphaMode::Blend, 0.5f, 0.5f, ramp), view, unlitNearest()), view)[2] ==
+          packBgra(32, 0, 223));
     // Scalar loop, two threads, 4 samples (alpha 64/255 is exact in 8 bits): the same colours.
     for (int variant = 0; variant < 3; ++variant) {
         INFO("variant " << variant);
