@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 #include "Raster/Msaa.hpp"
 
@@ -117,13 +118,59 @@ Color CubeMap::sample(Vec3 r) const {
     return {mix(0), mix(8), mix(16), mix(24)};
 }
 
+std::uint32_t CubeMap::samplePacked(float rx, float ry, float rz) const {
+    if (!(std::isfinite(rx) && std::isfinite(ry) && std::isfinite(rz)) || (rx == 0.0f && ry == 0.0f && rz == 0.0f)) {
+        rx = 1.0f;
+        ry = rz = 0.0f;
+    }
+    // faceOf in float: the same comparisons on the same values pick the same face.
+    const float ax = std::fabs(rx), ay = std::fabs(ry), az = std::fabs(rz);
+    int face;
+    float sc, tc, ma;
+    if (ax >= ay && ax >= az) {
+        face = rx >= 0.0f ? int(CubeFace::PosX) : int(CubeFace::NegX);
+        sc = rx >= 0.0f ? -rz : rz;
+        tc = -ry;
+        ma = ax;
+    } else if (ay >= az) {
+        face = ry >= 0.0f ? int(CubeFace::PosY) : int(CubeFace::NegY);
+        sc = rx;
+        tc = ry >= 0.0f ? rz : -rz;
+        ma = ay;
+    } else {
+        face = rz >= 0.0f ? int(CubeFace::PosZ) : int(CubeFace::NegZ);
+        sc = rz >= 0.0f ? rx : -rx;
+        tc = -ry;
+        ma = az;
+    }
+    const float half = 0.5f * float(size_), inv = 1.0f / ma;
+    const float u = (sc * inv + 1.0f) * half - 0.5f, v = (tc * inv + 1.0f) * half - 0.5f;
+    const float fu = std::floor(u), fv = std::floor(v);
+    const int x0 = std::clamp(int(fu), -1, size_ - 1), y0 = std::clamp(int(fv), -1, size_ - 1);
+    const float fx = std::clamp(u - float(x0), 0.0f, 1.0f), fy = std::clamp(v - float(y0), 0.0f, 1.0f);
+    const std::uint32_t* row0 =
+        &texels_[(std::size_t(face) * std::size_t(stride_) + std::size_t(y0 + 1)) * std::size_t(stride_) + std::size_t(x0 + 1)];
+    const std::uint32_t* row1 = row0 + stride_;
+    const std::uint32_t t00 = row0[0], t10 = row0[1], t01 = row1[0], t11 = row1[1];
+    const auto mix = [&](int shift) -> std::uint32_t {
+        const auto c = [shift](std::uint32_t t) { return float((t >> shift) & 0xFFu); };
+        const float top = c(t00) + (c(t10) - c(t00)) * fx, bottom = c(t01) + (c(t11) - c(t01)) * fx;
+        const float m = top + (bottom - top) * fy; // in [0, 255]
+        return std::uint32_t(std::clamp(m + 0.5f, 0.0f, 255.0f));
+    };
+    return 0xFF000000u | mix(0) << 16 | mix(8) << 8 | mix(16); // RGBA texel -> BGRX pixel
+}
+
+Color SkyGradient::above(float t) const {
+    return {horizon.r + (zenith.r - horizon.r) * t, horizon.g + (zenith.g - horizon.g) * t,
+            horizon.b + (zenith.b - horizon.b) * t, 1.0f};
+}
+
 Color SkyGradient::sample(Vec3 r) const {
     const double len = std::sqrt(double(r.x) * r.x + double(r.y) * r.y + double(r.z) * r.z);
     const double e = len > 0.0 && std::isfinite(len) ? double(r.y) / len : 0.0;
     if (e < 0.0) return ground;
-    const float t = float(std::min(e, 1.0));
-    return {horizon.r + (zenith.r - horizon.r) * t, horizon.g + (zenith.g - horizon.g) * t,
-            horizon.b + (zenith.b - horizon.b) * t, 1.0f};
+    return above(float(std::min(e, 1.0)));
 }
 
 Color Sky::sample(Vec3 r) const {
@@ -142,22 +189,75 @@ Vec3 ViewRays::at(double ndcX, double ndcY) const {
 
 namespace {
 
-// The direction through the centre of pixel (x, y) of a w x h image.
-Vec3 rayThrough(const ViewRays& rays, int x, int y, int w, int h) {
-    return rays.at(2.0 * (x + 0.5) / w - 1.0, 1.0 - 2.0 * (y + 0.5) / h);
-}
+// The sky pass's colour per pixel centre, set up once per call: the ray of ViewRays::at term for
+// term (the same float ray as rays.at(ndcX, ndcY)); the gradient from a table of
+// kGradientSteps + 1 colours by elevation (the elevation in float, rounded to the nearest step:
+// off by at most 1/(2 kGradientSteps) in t, so within one unit per channel of Sky::sample), the
+// cube map through CubeMap::samplePacked. The reference Sky::sample costs a double sqrt, a
+// division, a Color and a packBgra8 per pixel; this costs a table load (gradient) or the float
+// bilinear (cube).
+class SkyPainter {
+public:
+    SkyPainter(const Sky& sky, const ViewRays& rays, int width, int height)
+        : sky_(sky), rays_(rays), width_(width), height_(height) {
+        if (sky.kind != Sky::Kind::Gradient) return;
+        ground_ = packBgra8(sky.gradient.ground);
+        for (int i = 0; i <= kGradientSteps; ++i)
+            table_[std::size_t(i)] = packBgra8(sky.gradient.above(float(i) / float(kGradientSteps)));
+    }
+
+    void setRow(int y) {
+        const double ndcY = 1.0 - 2.0 * (y + 0.5) / height_;
+        upX_ = ndcY * rays_.up.x;
+        upY_ = ndcY * rays_.up.y;
+        upZ_ = ndcY * rays_.up.z;
+    }
+
+    std::uint32_t at(int x) const {
+        const double ndcX = 2.0 * (x + 0.5) / width_ - 1.0;
+        const float rx = float(rays_.forward.x + ndcX * rays_.right.x + upX_);
+        const float ry = float(rays_.forward.y + ndcX * rays_.right.y + upY_);
+        const float rz = float(rays_.forward.z + ndcX * rays_.right.z + upZ_);
+        switch (sky_.kind) {
+        case Sky::Kind::Gradient: {
+            const float len2 = rx * rx + ry * ry + rz * rz;
+            if (!(len2 > 0.0f && len2 <= std::numeric_limits<float>::max())) // zero, NaN, overflow:
+                return packBgra8(sky_.sample({rx, ry, rz}));                 // the reference decides
+            const float e = ry / std::sqrt(len2);
+            if (e < 0.0f) return ground_;
+            return table_[std::size_t(std::min(e, 1.0f) * float(kGradientSteps) + 0.5f)];
+        }
+        case Sky::Kind::Cube:
+            if (sky_.cube) return sky_.cube->samplePacked(rx, ry, rz);
+            return packBgra8(sky_.sample({rx, ry, rz}));
+        case Sky::Kind::None: break;
+        }
+        return packBgra8(sky_.sample({rx, ry, rz}));
+    }
+
+private:
+    static constexpr int kGradientSteps = 1024;
+    const Sky& sky_;
+    const ViewRays& rays_;
+    int width_, height_;
+    double upX_ = 0.0, upY_ = 0.0, upZ_ = 0.0;
+    std::uint32_t ground_ = 0;
+    std::array<std::uint32_t, kGradientSteps + 1> table_{};
+};
 
 } // namespace
 
 std::uint64_t drawSkyRows(FrameBuffer& fb, const ViewRays& rays, const Sky& sky, int y0, int y1) {
     std::uint64_t drawn = 0;
     if (!sky.on()) return 0;
+    SkyPainter painter(sky, rays, fb.width(), fb.height());
     for (int y = y0; y < y1; ++y) {
         Pixel* colour = fb.colorRow(y);
         const float* depth = fb.depthRow(y);
+        painter.setRow(y);
         for (int x = 0; x < fb.width(); ++x) {
             if (depth[x] != FrameBuffer::kFarDepth) continue;
-            colour[x] = packBgra8(sky.sample(rayThrough(rays, x, y, fb.width(), fb.height())));
+            colour[x] = painter.at(x);
             ++drawn;
         }
     }
@@ -168,15 +268,17 @@ std::uint64_t drawSkyMsaaRows(MsaaBuffer& target, const ViewRays& rays, const Sk
     std::uint64_t drawn = 0;
     if (!sky.on()) return 0;
     const int n = target.samples();
+    SkyPainter painter(sky, rays, target.width(), target.height());
     for (int y = y0; y < y1; ++y) {
         Pixel* colour = target.colourRow(y);
         const float* depth = target.depthRow(y);
+        painter.setRow(y);
         for (int x = 0; x < target.width(); ++x) {
             const std::size_t first = std::size_t(x) * std::size_t(n);
             bool any = false;
             for (int k = 0; k < n; ++k) any = any || depth[first + std::size_t(k)] == FrameBuffer::kFarDepth;
             if (!any) continue;
-            const Pixel c = packBgra8(sky.sample(rayThrough(rays, x, y, target.width(), target.height())));
+            const Pixel c = painter.at(x);
             for (int k = 0; k < n; ++k)
                 if (depth[first + std::size_t(k)] == FrameBuffer::kFarDepth) colour[first + std::size_t(k)] = c;
             ++drawn;

@@ -38,7 +38,11 @@ public:
 
     int size() const { return size_; }
     // The colour seen along direction r (any length > 0; NaN or zero: face +X's centre).
+    // The reference: double arithmetic throughout.
     Color sample(Vec3 r) const;
+    // The same texel footprint in float arithmetic, packed as packBgra8 packs (the sky pass's
+    // per-pixel path): within one unit per channel of packBgra8(sample(r)) (Tests: SkyTests).
+    std::uint32_t samplePacked(float rx, float ry, float rz) const;
 
 private:
     int size_ = 0;
@@ -54,6 +58,8 @@ struct SkyGradient {
     Color horizon{0.70f, 0.80f, 0.92f, 1.0f};
     Color ground{0.22f, 0.21f, 0.20f, 1.0f};
     Color sample(Vec3 r) const;
+    // The colour at elevation t in [0, 1] (sample's formula above the horizon).
+    Color above(float t) const;
 };
 
 // What a scene shows behind its geometry: nothing (the clear colour), a gradient or a cube map.

@@ -6,10 +6,12 @@
 #include <cstdint>
 #include <cstdlib>
 #include <memory>
+#include <random>
 #include <vector>
 
 #include "Platform/Demo/SceneSetup.hpp"
 #include "Raster/Blend.hpp"
+#include "Raster/Msaa.hpp"
 #include "Raster/Sky.hpp"
 
 using namespace sr;
@@ -70,6 +72,19 @@ Scene redSquare(float alpha) {
     d.alpha = alpha;
     scene.draws = {d};
     return scene;
+}
+
+// Every colour channel of a and b within one unit (the sky pass's float path against the double
+// reference, Sky::sample).
+bool withinOne(Pixel a, Pixel b) {
+    return std::abs(int(pixelR(a)) - int(pixelR(b))) <= 1 && std::abs(int(pixelG(a)) - int(pixelG(b))) <= 1 &&
+           std::abs(int(pixelB(a)) - int(pixelB(b))) <= 1;
+}
+
+// The reference colour of pixel (x, y) of a kSize x kSize image: the ray of its centre, sampled in
+// double.
+Pixel referenceSky(const Sky& sky, const FrameView& view, int x, int y, int size = kSize) {
+    return packBgra8(sky.sample(view.rays.at(2.0 * (x + 0.5) / size - 1.0, 1.0 - 2.0 * (y + 0.5) / size)));
 }
 
 } // namespace
@@ -199,8 +214,7 @@ TEST_CASE("the sky is drawn only where no geometry was, per sample before the re
                 CHECK(fb.pixel(x, y) == plain.pixel(x, y));
                 ++geometry;
             } else { // background: the sky along that pixel's ray
-                const Vec3 r = view.rays.at(2.0 * (x + 0.5) / kSize - 1.0, 1.0 - 2.0 * (y + 0.5) / kSize);
-                CHECK(fb.pixel(x, y) == packBgra8(withSky.sky.sample(r)));
+                CHECK(withinOne(fb.pixel(x, y), referenceSky(withSky.sky, view, x, y)));
                 ++sky;
             }
         }
@@ -255,7 +269,62 @@ TEST_CASE("transparent surfaces blend over the sky, which is drawn before them",
         RenderContext ctx(fb);
         renderSceneFrame(ctx, scene, view, settings);
         const int x = kSize / 2, y = kSize / 2 - 4; // inside the square
-        const Vec3 r = view.rays.at(2.0 * (x + 0.5) / kSize - 1.0, 1.0 - 2.0 * (y + 0.5) / kSize);
-        CHECK(fb.pixel(x, y) == blendOver(packBgra(255, 0, 0), packBgra8(scene.sky.sample(r)), 0.5f));
+        CHECK(withinOne(fb.pixel(x, y), blendOver(packBgra(255, 0, 0), referenceSky(scene.sky, view, x, y), 0.5f)));
+        CHECK(fb.pixel(x, y) != referenceSky(scene.sky, view, x, y));
     }
+}
+
+TEST_CASE("the sky pass's float path agrees with the double reference within one unit", "[render][sky]") {
+    // Random views (fixed seed; every direction, roll, field of view 20-150 degrees) of a random
+    // gradient and of a cube map of random texels (so the bilinear weights matter everywhere):
+    // every pixel of the pass (one sample and MSAA 4) within one unit per channel of the reference
+    // Sky::sample along the same ray, and most of them exact. A wrong face, orientation, texel
+    // offset or gradient step would be off by far more on a large share of pixels.
+    std::mt19937 rng(1234);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f), colour(0.0f, 1.0f);
+    std::vector<std::uint8_t> faces[kCubeFaces];
+    std::array<const std::uint8_t*, kCubeFaces> ptrs{};
+    for (int f = 0; f < kCubeFaces; ++f) {
+        for (int i = 0; i < 16 * 16 * 4; ++i) faces[f].push_back(std::uint8_t(rng() & 0xFFu));
+        ptrs[std::size_t(f)] = faces[f].data();
+    }
+    Sky cube;
+    cube.kind = Sky::Kind::Cube;
+    cube.cube = std::make_shared<CubeMap>(CubeMap::fromRgba8(16, ptrs));
+    constexpr int kViews = 24;
+    long pixels = 0, exact = 0;
+    for (int v = 0; v < kViews; ++v) {
+        Sky gradient;
+        gradient.kind = Sky::Kind::Gradient;
+        gradient.gradient.zenith = {colour(rng), colour(rng), colour(rng), 1.0f};
+        gradient.gradient.horizon = {colour(rng), colour(rng), colour(rng), 1.0f};
+        gradient.gradient.ground = {colour(rng), colour(rng), colour(rng), 1.0f};
+        demo::CameraSetup c;
+        c.eye = {0, 0, 0};
+        c.target = {unit(rng), unit(rng), unit(rng)};
+        c.up = {unit(rng), unit(rng), unit(rng)};
+        c.fovDegrees = 20.0 + 130.0 * colour(rng);
+        const FrameView view = demo::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
+        for (const Sky* sky : {&gradient, &cube}) {
+            INFO("view " << v << (sky == &cube ? " cube" : " gradient"));
+            FrameBuffer fb(kSize, kSize);
+            fb.clear(0u, FrameBuffer::kFarDepth);
+            CHECK(drawSkyRows(fb, view.rays, *sky, 0, kSize) == std::uint64_t(kSize) * kSize);
+            MsaaBuffer ms;
+            REQUIRE(ms.resize(kSize, kSize, 4));
+            ms.clearRows(0, kSize, 0u, FrameBuffer::kFarDepth);
+            CHECK(drawSkyMsaaRows(ms, view.rays, *sky, 0, kSize) == std::uint64_t(kSize) * kSize);
+            int bad = 0;
+            for (int y = 0; y < kSize; ++y)
+                for (int x = 0; x < kSize; ++x) {
+                    const Pixel ref = referenceSky(*sky, view, x, y);
+                    bad += !withinOne(fb.pixel(x, y), ref);
+                    bad += ms.colourRow(y)[std::size_t(x) * 4 + 3] != fb.pixel(x, y); // the same colour
+                    exact += fb.pixel(x, y) == ref;
+                    ++pixels;
+                }
+            CHECK(bad == 0);
+        }
+    }
+    CHECK(exact > pixels * 9 / 10);
 }
