@@ -19,6 +19,7 @@ bool FrameBuffer::resize(int width, int height) {
     // std::vector::resize never shrinks capacity, so going back to a size seen before is free.
     color_.resize(count);
     depth_.resize(count);
+    if (hasStencil_) stencil_.resize(count);
     width_ = width;
     height_ = height;
     return true;
@@ -62,6 +63,18 @@ void FrameBuffer::clear(Pixel colour, float depth) {
     clearColor(colour);
     clearDepth(depth);
 }
+
+void FrameBuffer::enableStencil() {
+    hasStencil_ = true;
+    stencil_.resize(color_.size());
+}
+
+void FrameBuffer::releaseStencil() {
+    hasStencil_ = false;
+    std::vector<std::uint8_t>().swap(stencil_);
+}
+
+void FrameBuffer::clearStencil(std::uint8_t value) { std::fill(stencil_.begin(), stencil_.end(), value); }
 
 void FrameBuffer::clearColor(Pixel colour) { fillWords(color_.data(), color_.size(), colour); }
 

@@ -67,6 +67,17 @@ public:
     float* depthRow(int y) { return depth_.data() + std::size_t(y) * std::size_t(width_); }
     const float* depthRow(int y) const { return depth_.data() + std::size_t(y) * std::size_t(width_); }
 
+    // The 8-bit stencil buffer (Raster/Stencil.hpp), one value per pixel in the colour's layout:
+    // allocated only by enableStencil (a frame that uses it), sized by later resizes while it
+    // exists, given back by releaseStencil. Contents unspecified until clearStencil.
+    void enableStencil();
+    void releaseStencil();
+    bool hasStencil() const { return hasStencil_; }
+    void clearStencil(std::uint8_t value);
+    std::uint8_t* stencilRow(int y) { return stencil_.data() + std::size_t(y) * std::size_t(width_); }
+    const std::uint8_t* stencilRow(int y) const { return stencil_.data() + std::size_t(y) * std::size_t(width_); }
+    std::uint8_t stencil(int x, int y) const { return stencilRow(y)[x]; }
+
     Pixel pixel(int x, int y) const { return colorRow(y)[x]; }
     float depth(int x, int y) const { return depthRow(y)[x]; }
     void setPixel(int x, int y, Pixel p) { colorRow(y)[x] = p; }
@@ -76,6 +87,8 @@ private:
     int height_ = 0;
     std::vector<Pixel> color_;
     std::vector<float> depth_;
+    std::vector<std::uint8_t> stencil_; // empty unless enableStencil
+    bool hasStencil_ = false;
 };
 
 } // namespace sr

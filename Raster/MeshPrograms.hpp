@@ -99,6 +99,10 @@ inline DrawState drawStateFor(const DrawContext& d) {
         s.blendAlpha = std::max(d.alpha, 0.0f);
         s.depth = DepthMode::Test;
     }
+    s.stencil = d.settings.stencil;
+    s.colourWrite = d.settings.colourWrite;
+    s.depthEqualPasses = d.settings.depthEqualPasses;
+    if (!d.settings.depthTest) s.depth = DepthMode::Off;
     return s;
 }
 

@@ -18,6 +18,7 @@
 #include "Raster/PipelineModes.hpp" // PipelineStop, DepthMode, PerspectiveMode
 #include "Raster/RenderContext.hpp"
 #include "Raster/ScanlineFill.hpp"
+#include "Raster/Stencil.hpp"
 #include "Raster/ThreadPool.hpp"
 #include "Raster/TriangleSetup.hpp"
 #include "Raster/Viewport.hpp"
@@ -46,6 +47,16 @@ struct DrawState {
     // or discards, Blend blends with it); the draw is then filled by the scalar loop with
     // DepthMode::Test, a kept Mask fragment writing its own depth.
     TexelAlpha texelAlpha;
+    // On (and the target has a stencil buffer, FrameBuffer::enableStencil): the stencil test and
+    // operations per fragment (Raster/Stencil.hpp), before the depth test, as OpenGL orders them;
+    // the draw is then filled by the scalar loop (detail::stencilFragment). Not applied to a
+    // multisampled target (the buffer is per pixel): renderScene draws no stencil passes there.
+    StencilState stencil;
+    // Honoured by the stencil path only (draws with `stencil` on): colourWrite false leaves the
+    // colour as it was (glColorMask off), depthEqualPasses makes the depth test GEQUAL instead of
+    // GREATER (a draw of the same triangles again passes where they are what is visible).
+    bool colourWrite = true;
+    bool depthEqualPasses = false;
 };
 
 namespace detail {
@@ -160,6 +171,47 @@ struct HasFillKernel<Program, std::void_t<decltype(std::declval<Program&>().fill
                                   std::declval<const Scissor&>(), std::declval<std::uint64_t&>()))>>
     : std::true_type {};
 
+
+// One fragment of a draw with the stencil test on (DrawState::stencil; the fill ran without a
+// depth test, which is made here after the stencil test). OpenGL's order: a texel-alpha Mask
+// discard first (a discarded fragment touches nothing), then the stencil test (fail: the `fail`
+// operation), the depth test per `depth` (fail: `depthFail`), then `pass`, the depth write and
+// the colour (blended when the draw is transparent; none without colourWrite). Returns the colour the pixel ends with.
+template <class Program, int kVaryings>
+SR_SIMD_NOINLINE Pixel stencilFragment(Program& program, FrameBuffer& fb, const DrawState& state,
+                                       const Fragment<kVaryings>& f, std::uint64_t& shaded) {
+    const Pixel behind = fb.colorRow(f.y)[f.x];
+    float a = state.blendAlpha;
+    if constexpr (HasFragmentAlpha<Program, kVaryings>::value) {
+        if (state.texelAlpha.on()) {
+            a = state.texelAlpha.factor * program.fragmentAlpha(f);
+            if (state.texelAlpha.mode == AlphaMode::Mask) {
+                if (!(a >= state.texelAlpha.cutoff)) return behind;
+                a = 1.0f;
+            }
+        }
+    }
+    const StencilState& st = state.stencil;
+    std::uint8_t& stored = fb.stencilRow(f.y)[f.x];
+    if (!stencilPasses(st.func, st.ref, stored, st.readMask)) {
+        stored = stencilApply(st.fail, stored, st.ref, st.writeMask);
+        return behind;
+    }
+    float& depth = fb.depthRow(f.y)[f.x];
+    if (state.depth != DepthMode::Off && !(state.depthEqualPasses ? f.z >= depth : f.z > depth)) {
+        stored = stencilApply(st.depthFail, stored, st.ref, st.writeMask);
+        return behind;
+    }
+    stored = stencilApply(st.pass, stored, st.ref, st.writeMask);
+    if (state.depth == DepthMode::TestWrite || (state.texelAlpha.on() && state.texelAlpha.mode == AlphaMode::Mask))
+        depth = f.z;
+    if (!state.colourWrite) return behind;
+    ++shaded;
+    if (a < 1.0f) return blendOver(program.fragment(f), behind, a);
+    return program.fragment(f);
+}
+
+
 // Snapped pixel-row range [begin, end) whose centres a screen triangle can cover (the rows
 // setupTriangle computes), from the y coordinates only: a cheap band test before the setup.
 inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, int& begin,
@@ -269,6 +321,15 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
             if (kVaryings > 0 && state.perspective == PerspectiveMode::Affine)
                 fillSamples(depthTag, scissor, std::integral_constant<PerspectiveMode, PerspectiveMode::Affine>{});
             else fillSamples(depthTag, scissor, std::integral_constant<PerspectiveMode, PerspectiveMode::Exact>{});
+            return;
+        }
+        if (SR_UNLIKELY(state.stencil.on() && fb.hasStencil())) {
+            auto stencilled = [&program, &fb, &state, &shaded](const Fragment<kVaryings>& f) {
+                return stencilFragment(program, fb, state, f, shaded);
+            };
+            if (kVaryings > 0 && state.perspective == PerspectiveMode::Affine)
+                fillTriangle<DepthMode::Off, kVaryings, PerspectiveMode::Affine>(setup, fb, scissor, stencilled);
+            else fillTriangle<DepthMode::Off, kVaryings, PerspectiveMode::Exact>(setup, fb, scissor, stencilled);
             return;
         }
         if constexpr (HasFillKernel<Program>::value) {

@@ -10,9 +10,28 @@
 #include "Raster/PipelineModes.hpp" // PerspectiveMode, PipelineStop
 #include "Raster/Shading.hpp"
 #include "Raster/Sky.hpp" // ViewRays
+#include "Raster/Stencil.hpp"
 #include "Raster/Texture.hpp"
 
 namespace sr {
+
+// A selection outline (issue 17, the stencil buffer's use): after the opaque draws, scene draw
+// `draw` (an opaque one) is drawn again without colour and with the GEQUAL depth test, marking 1
+// in the stencil buffer (the Replace operation) the pixels where it is what is visible; after
+// everything else, every pixel not marked within `width` output pixels (horizontally and
+// vertically: a square neighbourhood) of a marked one takes `colour`: a band around what shows
+// of the object, over everything. Not drawn multisampled (the
+// stencil buffer is per pixel) nor in partial pipelines. draw < 0: off, and no stencil buffer
+// is allocated.
+struct Outline {
+    int draw = -1;
+    Color colour{1.0f, 0.78f, 0.1f, 1.0f};
+    float width = 3.0f;
+    // The demo's and the headless command's --outline: demo::renderFrame sets `draw` each frame to
+    // the draw at the image centre (pickDraw, Scene.hpp); renderScene reads only `draw`.
+    bool pickCentre = false;
+    bool on() const { return draw >= 0; }
+};
 
 struct RenderSettings {
     ShadingMode shading = ShadingMode::Phong;
@@ -29,6 +48,14 @@ struct RenderSettings {
     // `wrap` / `filter` for its draw while these are true; false once the user chose them
     // (--wrap, --filter, the demo's T key, the report's sweep).
     bool wrapFromFile = true, filterFromFile = true;
+    // A selection outline around one opaque draw of the scene (Outline above; renderScene).
+    Outline outline;
+    // Per-draw fixed-function state that renderScene sets for its own passes (the outline's):
+    // the stencil test and operations (DrawState::stencil), the depth test turned off, the colour
+// write turned off and the GEQUAL depth test (DrawState::colourWrite, depthEqualPasses).
+    StencilState stencil;
+    bool depthTest = true;
+    bool colourWrite = true, depthEqualPasses = false; // DrawState's (the stencil path only)
 };
 
 // What every draw of one frame shares.

@@ -5,6 +5,8 @@
 #include <cassert>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <limits>
 #include <vector>
 
 #include "Raster/LineDraw.hpp"
@@ -36,41 +38,83 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
     return material;
 }
 
-} // namespace
-
-void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
-                 const Texture* textureOverride) {
-    // The meshes and the view are constant during the loop: draws of one mesh with the same
-    // shading program transform its vertices once (issue 14: cost linear in material switches).
-    const VertexReuseScope reuse(ctx);
-    bool anyTransparent = false;
-    for (const SceneDraw& d : scene.draws) {
-        assert(d.mesh >= 0 && std::size_t(d.mesh) < scene.meshes.size());
-        const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
-        assert(std::size_t(d.firstIndex) + d.indexCount <= mesh.indices.size());
-        const SurfaceMaterial material = materialOf(scene, d, textureOverride);
-        if (drawsBlended(material, mesh)) {
-            anyTransparent = true;
-            continue;
-        }
-        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
+// The outline's band (renderScene): every pixel of `target` that the stencil test NotEqual 1
+// passes (not the selected draw's) within `radius` pixels, in x and in y, of one marked 1 (the
+// draw's), in `colour`. Separable, inside the mark's bounding box grown by `radius`: each row's
+// unmarked pixels within `radius` of a mark in the row are marked 2 (the Replace operation); then
+// a pixel passing the test is in the band when a pixel 1 or 2 lies within `radius` of it in its
+// column. Rows in parallel (ctx.forRows), two passes.
+void drawOutlineBand(RenderContext& ctx, FrameBuffer& target, Pixel colour, int radius) {
+    const int w = target.width(), h = target.height();
+    int bx0 = w, bx1 = -1, by0 = h, by1 = -1; // the mark's bounding box
+    for (int y = 0; y < h; ++y) {
+        const std::uint8_t* s = target.stencilRow(y);
+        const void* first = std::memchr(s, 1, std::size_t(w));
+        if (!first) continue;
+        int last = w - 1;
+        while (s[last] != 1) --last;
+        bx0 = std::min(bx0, int(static_cast<const std::uint8_t*>(first) - s));
+        bx1 = std::max(bx1, last);
+        by0 = std::min(by0, y);
+        by1 = y;
     }
-    // Lines and points: depth-tested and written, before the transparent surfaces blend over them.
-    const int lineWidth = std::max(1, ssaaFactor(settings.ssaa));
-    for (const SceneLines& l : scene.lines)
-        drawWorldLines(ctx, view, l.positions, l.indices, l.points, packBgra8(l.colour), lineWidth);
-    // The sky where nothing opaque was drawn, before the transparent surfaces blend over it.
-    if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill) {
-        if (MsaaBuffer* samples = ctx.multisampleTarget()) {
-            samples->markDrawn();
-            ctx.forRows(samples->height(), [&](int y0, int y1) { drawSkyMsaaRows(*samples, view.rays, scene.sky, y0, y1); });
-        } else {
-            FrameBuffer& target = ctx.target();
-            ctx.forRows(target.height(), [&](int y0, int y1) { drawSkyRows(target, view.rays, scene.sky, y0, y1); });
+    if (bx1 < 0) return; // nothing of the draw shows
+    const int x0 = std::max(0, bx0 - radius), x1 = std::min(w - 1, bx1 + radius);
+    ctx.forRows(h, [&](int r0, int r1) {
+        for (int y = std::max(r0, by0); y < std::min(r1, by1 + 1); ++y) {
+            std::uint8_t* s = target.stencilRow(y);
+            int last = -radius - 1; // nearest mark at or left of x
+            for (int x = x0; x <= x1; ++x) {
+                if (s[x] == 1) last = x;
+                else if (x - last <= radius) s[x] = stencilApply(StencilOp::Replace, s[x], 2, 0xFF);
+            }
+            int next = w + radius + 1; // nearest mark at or right of x
+            for (int x = x1; x >= x0; --x) {
+                if (s[x] == 1) next = x;
+                else if (next - x <= radius) s[x] = stencilApply(StencilOp::Replace, s[x], 2, 0xFF);
+            }
         }
-    }
-    if (!anyTransparent) return;
+    });
+    ctx.forRows(h, [&](int r0, int r1) {
+        for (int y = std::max(r0, by0 - radius); y < std::min(r1, by1 + radius + 1); ++y) {
+            const std::uint8_t* s = target.stencilRow(y);
+            Pixel* c = target.colorRow(y);
+            const int ya = std::max(by0, y - radius), yb = std::min(by1, y + radius);
+            for (int x = x0; x <= x1; ++x) {
+                if (!stencilPasses(StencilFunc::NotEqual, 1, s[x], 0xFF)) continue;
+                for (int yy = ya; yy <= yb; ++yy) {
+                    const std::uint8_t v = target.stencilRow(yy)[x];
+                    if (v == 1 || v == 2) {
+                        c[x] = colour;
+                        break;
+                    }
+                }
+            }
+        }
+    });
+}
 
+// Whether the segment-free ray o + t d (t > 0) meets triangle (a, b, c), and where (Moeller-Trumbore, double).
+bool rayHits(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c, double& tHit) {
+    const double e1[3] = {double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z};
+    const double e2[3] = {double(c.x) - a.x, double(c.y) - a.y, double(c.z) - a.z};
+    const double dd[3] = {d.x, d.y, d.z};
+    const double p[3] = {dd[1] * e2[2] - dd[2] * e2[1], dd[2] * e2[0] - dd[0] * e2[2], dd[0] * e2[1] - dd[1] * e2[0]};
+    const double det = e1[0] * p[0] + e1[1] * p[1] + e1[2] * p[2];
+    if (!(std::fabs(det) > 0.0)) return false; // parallel, degenerate or NaN
+    const double s[3] = {double(o.x) - a.x, double(o.y) - a.y, double(o.z) - a.z};
+    const double u = (s[0] * p[0] + s[1] * p[1] + s[2] * p[2]) / det;
+    if (!(u >= 0.0 && u <= 1.0)) return false;
+    const double q[3] = {s[1] * e1[2] - s[2] * e1[1], s[2] * e1[0] - s[0] * e1[2], s[0] * e1[1] - s[1] * e1[0]};
+    const double v = (dd[0] * q[0] + dd[1] * q[1] + dd[2] * q[2]) / det;
+    if (!(v >= 0.0 && u + v <= 1.0)) return false;
+    tHit = (e2[0] * q[0] + e2[1] * q[1] + e2[2] * q[2]) / det;
+    return tHit > 0.0;
+}
+
+// The transparent draws' triangles, sorted (renderScene).
+void drawTransparent(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
+                     const Texture* textureOverride) {
     // Transparent triangles back to front (largest w first; equal keys in draw and file order),
     // drawn as runs of consecutive triangles of one draw.
     using Sorted = RenderContext::TransparentTriangle;
@@ -104,6 +148,96 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
             indices.insert(indices.end(), mesh.indices.begin() + order[r].first, mesh.indices.begin() + order[r].first + 3);
         drawMesh(ctx, view, settings, mesh, indices.data(), indices.size(), materialOf(scene, d, textureOverride));
     }
+}
+
+} // namespace
+
+int pickDraw(const Scene& scene, Vec3 origin, Vec3 dir) {
+    int best = -1;
+    double bestT = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < scene.draws.size(); ++i) {
+        const SceneDraw& d = scene.draws[i];
+        if (d.mesh < 0 || std::size_t(d.mesh) >= scene.meshes.size()) continue;
+        const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+        if (std::size_t(d.firstIndex) + d.indexCount > mesh.indices.size()) continue;
+        if (drawsBlended(materialOf(scene, d, nullptr), mesh)) continue;
+        const std::uint32_t* idx = mesh.indices.data() + d.firstIndex;
+        for (std::uint32_t k = 0; k + 2 < d.indexCount; k += 3) {
+            double t = 0.0;
+            if (rayHits(origin, dir, mesh.positions[idx[k]], mesh.positions[idx[k + 1]], mesh.positions[idx[k + 2]], t) &&
+                t < bestT) {
+                bestT = t;
+                best = int(i);
+            }
+        }
+    }
+    return best;
+}
+
+void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
+                 const Texture* textureOverride) {
+    // The meshes and the view are constant during the loop: draws of one mesh with the same
+    // shading program transform its vertices once (issue 14: cost linear in material switches).
+    const VertexReuseScope reuse(ctx);
+    // The selection outline: a stencil buffer for this frame's target, its mark drawn with the draw.
+    const Outline& outline = settings.outline;
+    const bool outlined = outline.on() && std::size_t(outline.draw) < scene.draws.size() &&
+                          settings.stopAfter == PipelineStop::Fill && !ctx.multisampleTarget();
+    FrameBuffer& target = ctx.target();
+    if (outlined) {
+        target.enableStencil();
+        target.clearStencil(0);
+    } else if (target.hasStencil()) {
+        target.releaseStencil(); // memory only while outlining
+    }
+    bool anyTransparent = false;
+    for (std::size_t i = 0; i < scene.draws.size(); ++i) {
+        const SceneDraw& d = scene.draws[i];
+        assert(d.mesh >= 0 && std::size_t(d.mesh) < scene.meshes.size());
+        const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+        assert(std::size_t(d.firstIndex) + d.indexCount <= mesh.indices.size());
+        const SurfaceMaterial material = materialOf(scene, d, textureOverride);
+        if (drawsBlended(material, mesh)) {
+            anyTransparent = true;
+            continue;
+        }
+        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
+    }
+    // Lines and points: depth-tested and written, before the transparent surfaces blend over them.
+    const int lineWidth = std::max(1, ssaaFactor(settings.ssaa));
+    for (const SceneLines& l : scene.lines)
+        drawWorldLines(ctx, view, l.positions, l.indices, l.points, packBgra8(l.colour), lineWidth);
+    // The outline's mark: the selected draw again, no colour, GEQUAL: stencil 1 where it shows.
+    if (outlined) {
+        const SceneDraw& d = scene.draws[std::size_t(outline.draw)];
+        const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+        RenderSettings mark = settings;
+        mark.shading = ShadingMode::Unlit;
+        mark.wireframe = false;
+        mark.colourWrite = false;
+        mark.depthEqualPasses = true;
+        mark.stencil.enabled = true;
+        mark.stencil.ref = 1;
+        mark.stencil.pass = StencilOp::Replace;
+        SurfaceMaterial plain; // untextured: nothing to sample (no colour is written)
+        plain.doubleSided = materialOf(scene, d, textureOverride).doubleSided;
+        drawMesh(ctx, view, mark, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, plain);
+    }
+    // The sky where nothing opaque was drawn, before the transparent surfaces blend over it.
+    if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill) {
+        if (MsaaBuffer* samples = ctx.multisampleTarget()) {
+            samples->markDrawn();
+            ctx.forRows(samples->height(), [&](int y0, int y1) { drawSkyMsaaRows(*samples, view.rays, scene.sky, y0, y1); });
+        } else {
+            ctx.forRows(target.height(), [&](int y0, int y1) { drawSkyRows(target, view.rays, scene.sky, y0, y1); });
+        }
+    }
+    if (anyTransparent) drawTransparent(ctx, scene, view, settings, textureOverride);
+    if (!outlined) return;
+    // The outline last, over everything: the band around the mark.
+    const float pixels = outline.width * float(std::max(1, ssaaFactor(settings.ssaa)));
+    const int radius = std::isfinite(pixels) ? int(std::clamp(std::lround(pixels), 0L, 256L)) : 0;
+    if (radius > 0) drawOutlineBand(ctx, target, packBgra8(outline.colour), radius);
 }
 
 bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,

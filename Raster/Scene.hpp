@@ -56,6 +56,12 @@ struct Scene {
 void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                  const Texture* textureOverride = nullptr);
 
+// The opaque draw whose triangle the ray origin + t dir (t > 0) meets first, or -1 (the
+// selection outline's pick: the draw at the screen centre is pickDraw(scene, view.eye,
+// view.rays.forward)). Transparent draws are looked through. Exact (double) ray-triangle tests,
+// every triangle of every opaque draw.
+int pickDraw(const Scene& scene, Vec3 origin, Vec3 dir);
+
 // One whole frame into ctx's target: clear (clearColour, far depth), then renderScene. With
 // settings.ssaa = 4 or 16 the frame is drawn into ctx.samples at 2x2 or 4x4 the target's size and
 // box-filtered into the target (Raster/Resolve.hpp): the target ends with the resolved colour and,
