@@ -107,6 +107,7 @@ Action DemoController::keyDown(Key key, bool repeat) {
     case Action::CyclePerspective: settings_.perspective = next(settings_.perspective, 2); break;
     case Action::CycleAntialiasing: cycleAntialiasing(); break;
     case Action::ToggleWireframe: settings_.wireframe = !settings_.wireframe; break;
+    case Action::ToggleOutline: settings_.outline.pickCentre = !settings_.outline.pickCentre; break;
     case Action::ToggleDepthView: depthView_ = !depthView_; break;
     case Action::ResetView: resetView(); break;
     case Action::CycleCamera: cycleCamera(); break;
@@ -181,6 +182,8 @@ std::string DemoController::modeSummary() const {
         s += " | camera " + std::to_string(cameraIndex_);
     if (settings_.wireframe)
         s += " | wireframe";
+    if (settings_.outline.pickCentre)
+        s += settings_.msaa > 1 ? " | outline (not with msaa)" : " | outline";
     if (depthView_)
         s += " | depth view";
     if (help_)

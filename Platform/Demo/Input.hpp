@@ -13,7 +13,7 @@ enum class Key {
     W, A, S, D, Q, E,          // fly: forward / strafe left / back / strafe right / down / up
     Up, Down, Left, Right,     // turn
     Shift,                     // held: move faster
-    C, M, T, P, N, L, Z, R, V, // toggles, reset and camera (see actionForKey)
+    C, M, T, P, N, L, O, Z, R, V, // toggles, reset and camera (see actionForKey)
     F1, F12,
     Count
 };
@@ -30,6 +30,7 @@ enum class Action {
     CyclePerspective, // exact <-> affine
     CycleAntialiasing, // off -> MSAA 2 -> 4 -> 8 -> SSAA 4 -> 16 -> off
     ToggleWireframe,
+    ToggleOutline,    // the selection outline of the object at the screen centre
     ToggleDepthView,  // show the depth buffer as grey
     ResetView,        // back to the starting camera
     CycleCamera,      // the flags' view -> the file's camera 0 -> 1 -> ... -> the flags' view
@@ -46,6 +47,7 @@ constexpr Action actionForKey(Key key) {
     case Key::P: return Action::CyclePerspective;
     case Key::N: return Action::CycleAntialiasing;
     case Key::L: return Action::ToggleWireframe;
+    case Key::O: return Action::ToggleOutline;
     case Key::Z: return Action::ToggleDepthView;
     case Key::R: return Action::ResetView;
     case Key::V: return Action::CycleCamera;
@@ -62,7 +64,7 @@ struct KeyHelp {
     const char* what;
 };
 
-inline constexpr std::array<KeyHelp, 17> kKeyHelp{{
+inline constexpr std::array<KeyHelp, 18> kKeyHelp{{
     {"W / S", "fly forward / back"},
     {"A / D", "strafe left / right"},
     {"Q / E", "fly down / up"},
@@ -76,6 +78,7 @@ inline constexpr std::array<KeyHelp, 17> kKeyHelp{{
     {"P", "perspective: exact <-> affine"},
     {"N", "anti-aliasing: off -> MSAA 2, 4, 8 -> SSAA 4, 16"},
     {"L", "wireframe overlay on / off"},
+    {"O", "outline of the object at the screen centre on / off"},
     {"Z", "depth view (near = white) on / off"},
     {"F1", "this help on / off"},
     {"F12", "save a screenshot (PNG, current folder)"},

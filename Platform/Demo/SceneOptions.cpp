@@ -93,17 +93,17 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
                                          "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera",
-                                         "--sky",   "--skybox"};
+                                         "--sky",   "--skybox",  "--outline"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
 
-    if (flag == "--wireframe") {
+    if (flag == "--wireframe" || flag == "--outline") {
         if (inlineValue) {
-            error = "--wireframe takes no value";
+            error = flag + " takes no value";
             return FlagResult::Error;
         }
-        o.wireframe = true;
+        (flag == "--wireframe" ? o.wireframe : o.outline) = true;
         return FlagResult::Consumed;
     }
     std::string value;
@@ -314,7 +314,9 @@ std::string sceneFlagsHelp() {
            "  --kd r,g,b            colour of untextured surfaces without a material (default 0.8,0.8,0.8)\n"
            "  --materials M         mtl | fixed: use the MTL's Kd, Ks and Ns (default mtl), or kd = --kd\n"
            "                        or the texel, white ks 0.5 and shininess 32 everywhere (fixed)\n"
-           "  --wireframe           overlay triangle edges\n";
+           "  --wireframe           overlay triangle edges\n"
+           "  --outline             selection outline (3 pixels, through the stencil buffer) around the\n"
+           "                        opaque draw at the image centre; not drawn with --msaa\n";
 }
 
 } // namespace sr::demo

@@ -74,6 +74,7 @@ struct SceneOptions {
     std::optional<int> camera;                  // --camera N: the file's camera N (glTF)
     bool explicitUp = false, explicitFov = false; // --up / --fov given (they override --camera's)
     bool wireframe = false;
+    bool outline = false; // --outline: the selection outline of the draw at the image centre
     std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
     bool explicitSsaa = false, explicitMsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;

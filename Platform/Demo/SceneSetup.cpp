@@ -335,13 +335,21 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.perspective = o.perspective;
     s.isa = o.isa;
     s.wireframe = o.wireframe;
+    s.outline.pickCentre = o.outline;
     s.ssaa = o.ssaa;
     s.msaa = o.msaa;
     return s;
 }
 
 void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& view, const RenderSettings& settings) {
-    renderSceneFrame(ctx, scene.scene, view, settings, scene.textureOverride ? &*scene.textureOverride : nullptr);
+    const Texture* texture = scene.textureOverride ? &*scene.textureOverride : nullptr;
+    if (settings.outline.pickCentre) { // the draw at the image centre, this frame
+        RenderSettings picked = settings;
+        picked.outline.draw = pickDraw(scene.scene, view.eye, view.rays.forward);
+        renderSceneFrame(ctx, scene.scene, view, picked, texture);
+        return;
+    }
+    renderSceneFrame(ctx, scene.scene, view, settings, texture);
 }
 
 } // namespace sr::demo

@@ -194,6 +194,7 @@ demo::Key MainWindow::translateKey(WPARAM vk) {
     case 'P': return Key::P;
     case 'N': return Key::N;
     case 'L': return Key::L;
+    case 'O': return Key::O;
     case 'Z': return Key::Z;
     case 'R': return Key::R;
     case 'V': return Key::V;

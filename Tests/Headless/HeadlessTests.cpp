@@ -166,6 +166,25 @@ std::vector<std::uint8_t> renderBuiltIn96x64(const std::string& dir, const std::
 
 } // namespace
 
+TEST_CASE("--outline draws a band in the outline colour around the object at the centre, nothing else", "[headless][stencil]") {
+    // The built-in scene at 96x64: with --outline only pixels that turn the outline colour
+    // (1, 0.78, 0.1 -> 255, 199, 26) change, and there are some (a band around the object under
+    // the image centre); --outline takes no value.
+    const std::string dir = tempDir("outline");
+    const auto plain = renderBuiltIn96x64(dir, {}, "plain.png");
+    const auto outlined = renderBuiltIn96x64(dir, {"--outline"}, "outlined.png");
+    REQUIRE(plain.size() == outlined.size());
+    int changed = 0, other = 0;
+    for (std::size_t i = 0; i < plain.size(); i += 4) {
+        if (std::equal(plain.begin() + long(i), plain.begin() + long(i) + 3, outlined.begin() + long(i))) continue;
+        ++changed;
+        other += !(outlined[i] == 255 && outlined[i + 1] == 199 && outlined[i + 2] == 26);
+    }
+    CHECK(changed > 40);
+    CHECK(other == 0);
+    CHECK(run({"render", "--outline=3", "--quiet"}).rc == kExitUsage);
+}
+
 TEST_CASE("--ssaa 1 is today's image; --ssaa 4 and 16 change only edge pixels, a little", "[headless][ssaa]") {
     const std::string dir = tempDir("ssaa");
     auto render = [&](const std::vector<std::string>& extra, const std::string& name) {

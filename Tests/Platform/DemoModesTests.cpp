@@ -98,6 +98,19 @@ TEST_CASE("wireframe, depth view and help toggle; Quit and Screenshot are left t
     CHECK(c.keyDown(Key::W) == Action::None);
 }
 
+TEST_CASE("O toggles the selection outline; the title says so, and that MSAA does not draw it", "[platform]") {
+    DemoController c = makeController();
+    CHECK_FALSE(c.settings().outline.pickCentre);
+    CHECK(c.keyDown(Key::O) == Action::ToggleOutline);
+    CHECK(c.settings().outline.pickCentre);
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 1 | outline");
+    c.keyDown(Key::N); // MSAA 2
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | msaa 2 | outline (not with msaa)");
+    c.keyDown(Key::O);
+    CHECK_FALSE(c.settings().outline.pickCentre);
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | msaa 2");
+}
+
 TEST_CASE("frame statistics average over the period", "[platform]") {
     FrameStats s(0.25);
     CHECK_FALSE(s.hasAverage());
