@@ -254,7 +254,9 @@ struct PhongProgram {
     Pixel fragment(const Fragment<kVaryings>& f) const {
         const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
         const Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
-        const RgbTerms t = litTerms(*d, n, p, normalize(d->view.eye - p));
+        const Vec3 v = normalize(d->view.eye - p);
+        const RgbTerms t = d->view.shadows ? shadowedTerms(d->view.lighting, d->specular, n, p, v, *d->view.shadows)
+                                           : litTerms(*d, n, p, v);
         if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
         else return packBgra8(applyTerms(d->kd, d->specular.ks, t));
     }

@@ -14,6 +14,8 @@
 
 namespace sr {
 
+struct SceneShadows;
+
 // Counters of one or more draws (reset by the owner, e.g. once per frame).
 struct RenderStats {
     std::uint64_t trianglesIn = 0;      // triangles submitted
@@ -131,6 +133,10 @@ public:
     // output's size while a supersampled frame is drawn, released by the next frame without SSAA
     // (memory only while supersampling).
     FrameBuffer samples;
+
+    // The shadow maps of the last frame drawn with shadows (renderSceneFrame; Raster/Shadow.hpp),
+    // kept for their memory; reset by a frame without them.
+    std::shared_ptr<SceneShadows> shadows;
 
     // Multisampling's sample target (renderSceneFrame with msaa > 1). While `multisampling` is
     // set and it has the target's size, every draw fills its samples instead of the target (the

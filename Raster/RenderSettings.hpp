@@ -9,6 +9,7 @@
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/PipelineModes.hpp" // PerspectiveMode, PipelineStop
 #include "Raster/Shading.hpp"
+#include "Raster/Shadow.hpp"
 #include "Raster/Sky.hpp" // ViewRays
 #include "Raster/Stencil.hpp"
 #include "Raster/Texture.hpp"
@@ -50,6 +51,8 @@ struct RenderSettings {
     bool wrapFromFile = true, filterFromFile = true;
     // A selection outline around one opaque draw of the scene (Outline above; renderScene).
     Outline outline;
+    // Shadow maps for the directional and spot lights (Raster/Shadow.hpp); off: none made.
+    ShadowSettings shadows;
     // Per-draw fixed-function state that renderScene sets for its own passes (the outline's):
     // the stencil test and operations (DrawState::stencil), the depth test turned off, the colour
 // write turned off and the GEQUAL depth test (DrawState::colourWrite, depthEqualPasses).
@@ -65,6 +68,9 @@ struct FrameView {
     bool finiteFar = true;  // the projection has a far plane to clip against
     Lighting lighting;
     ViewRays rays;          // the eye ray through each image point (the sky; Sky.hpp)
+    // This frame's shadow maps (renderSceneFrame sets it when RenderSettings::shadows is on;
+    // Phong-shaded draws then test each fragment against them, Shadow.hpp). Null: no shadows.
+    const SceneShadows* shadows = nullptr;
 };
 
 // The surface of one draw: a texture (used when the mesh has uvs) times `tint`, or the flat

@@ -7,11 +7,13 @@
 #include <cstdint>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "Raster/LineDraw.hpp"
 #include "Raster/Msaa.hpp"
 #include "Raster/Resolve.hpp"
+#include "Raster/Shadow.hpp"
 
 namespace sr {
 
@@ -240,8 +242,20 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
     if (radius > 0) drawOutlineBand(ctx, target, packBgra8(outline.colour), radius);
 }
 
-bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
+bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& cameraView, const RenderSettings& settings,
                       const Texture* textureOverride, Pixel clearColour) {
+    // The shadow pass first, into the lights' maps (their memory kept while shadows stay on).
+    FrameView view = cameraView;
+    if (settings.shadows.on && settings.stopAfter == PipelineStop::Fill && !ctx.target().empty()) {
+        if (!ctx.shadows) ctx.shadows = std::make_shared<SceneShadows>();
+        const bool wasMultisampling = ctx.multisampling;
+        ctx.multisampling = false;
+        renderShadowMaps(ctx, scene, cameraView, settings.shadows, *ctx.shadows);
+        ctx.multisampling = wasMultisampling;
+        view.shadows = ctx.shadows.get();
+    } else if (ctx.shadows) {
+        ctx.shadows.reset();
+    }
     const int factor = ssaaFactor(settings.ssaa);
     assert(factor > 0 && "RenderSettings::ssaa must be 1, 4 or 16");
     assert(validMsaa(settings.msaa) && "RenderSettings::msaa must be 1, 2, 4 or 8");

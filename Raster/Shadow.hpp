@@ -1,0 +1,96 @@
+// Shadow maps (issue 17, item 1): a depth-only pass from each directional and spot light through
+// our own rasterizer, and the receiver test with percentage-closer filtering and slope-scaled bias.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "Math/Mat4.hpp"
+#include "Math/Vec.hpp"
+#include "Raster/FrameBuffer.hpp"
+#include "Raster/Shading.hpp"
+
+namespace sr {
+
+struct FrameView;
+struct Scene;
+class RenderContext;
+
+// --shadows, --shadow-size, --shadow-pcf. Off: no shadow pass, no memory, the lighting as before.
+struct ShadowSettings {
+    bool on = false;
+    int size = 2048; // texels per side of each light's map, kMinShadowSize..kMaxShadowSize
+    // PCF kernel side k (1, 3 or 5): the receiver test compares k x k texels, the one under the
+    // point and its neighbours at whole-texel offsets, each lit or not, and takes the mean.
+    int pcf = 3;
+    // Slope-scaled bias, in texels of the map at the receiver (its world size there):
+    // bias = texel x (constantBias + slopeBias x tan(angle between normal and light)), the tangent
+    // capped at kMaxBiasTangent. Documented with pictures in docs/SHADOWS.md.
+    float constantBias = 1.0f;
+    float slopeBias = 1.0f;
+    // A directional light's maps: the camera's depth range (out to the farthest point of the
+    // scene's bounds) cut into this many slices, each with its own map fitted to it (cascades;
+    // split at the mean of the logarithmic and the uniform split). 1..kMaxCascades.
+    int cascades = 3;
+};
+inline constexpr int kMaxCascades = 4;
+inline constexpr int kMinShadowSize = 16, kMaxShadowSize = 8192;
+inline constexpr float kMaxBiasTangent = 10.0f;
+constexpr bool validShadowPcf(int k) { return k == 1 || k == 3 || k == 5; }
+
+// One light's map: the depth (reversed-Z, FrameBuffer::kFarDepth where nothing is) of what is
+// nearest to the light, seen through `viewProj`.
+struct ShadowMap {
+    int light = -1;           // index into Lighting::lights
+    Mat4 viewProj;            // world -> the light's clip space
+    Vec3 origin, axis;        // distance from the light's near side: dot(p - origin, axis)
+    bool perspective = false; // spot: perspective(fov, 1, nearZ, farZ); directional: orthographic
+    float nearZ = 0.0f, farZ = 1.0f;
+    float texelWorld = 0.0f;  // directional: a texel's world size; spot: per unit of distance
+    float splitFar = 0.0f;    // directional: the cascade serves view depths up to this
+    FrameBuffer target;       // the depth (its colour is never written or read)
+
+    // z_ndc the projection gives a point at distance d (reversed-Z: nearer is larger).
+    float depthAt(float d) const;
+    // The fraction of the k x k PCF taps that see point p (unit normal n, unit direction l to
+    // the light) lit: 1 outside the map.
+    float visibility(Vec3 p, Vec3 n, Vec3 l, const ShadowSettings& s) const;
+};
+
+// Every shadow-casting light's map for one frame (RenderContext::shadows; FrameView::shadows).
+struct SceneShadows {
+    ShadowSettings settings;
+    std::vector<ShadowMap> maps;
+    // Per light: its maps are maps[firstMap .. firstMap + mapCount) (0 maps: no shadow, e.g. a
+    // point light), a directional light's ordered by splitFar.
+    std::vector<int> firstMap, mapCount;
+    Vec3 eye, forward; // the camera: view depth = dot(p - eye, forward), forward unit
+
+    float visibility(std::size_t light, Vec3 p, Vec3 n, Vec3 l) const {
+        if (light >= mapCount.size() || mapCount[light] == 0) return 1.0f;
+        const std::size_t first = std::size_t(firstMap[light]);
+        std::size_t k = 0;
+        if (mapCount[light] > 1) { // the cascade that covers p's view depth (the last beyond)
+            const float depth = dot(p - eye, forward);
+            while (k + 1 < std::size_t(mapCount[light]) && depth > maps[first + k].splitFar) ++k;
+        }
+        return maps[first + k].visibility(p, n, l, settings);
+    }
+};
+
+// Blinn-Phong for any lights (lightTerms, Shading.hpp) with each light's contribution scaled by
+// the shadow maps' visibility: where every visibility is 1 the same floats as lightTerms (and
+// hence, for white directional lights, as blinnPhong).
+RgbTerms shadowedTerms(const Lighting& lighting, const Specular& specular, Vec3 n, Vec3 p, Vec3 v,
+                       const SceneShadows& shadows);
+
+// The shadow pass: a map per directional and spot light of view.lighting (point lights cast
+// none), each drawn depth-only with every opaque draw of the scene (transparent draws cast no
+// shadow) into out.maps, reusing their memory. A directional light's orthographic frustum is
+// fitted to the part of the scene's bounds the camera sees (the camera's view pyramid out to
+// the farthest bound, intersected with the bounds, across the light); a spot light's is its
+// cone. The counters of ctx.stats are left as they were.
+void renderShadowMaps(RenderContext& ctx, const Scene& scene, const FrameView& view, const ShadowSettings& settings,
+                      SceneShadows& out);
+
+} // namespace sr
