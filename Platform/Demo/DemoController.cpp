@@ -108,6 +108,7 @@ Action DemoController::keyDown(Key key, bool repeat) {
     case Action::CycleAntialiasing: cycleAntialiasing(); break;
     case Action::ToggleWireframe: settings_.wireframe = !settings_.wireframe; break;
     case Action::ToggleOutline: settings_.outline.pickCentre = !settings_.outline.pickCentre; break;
+    case Action::ToggleShadows: settings_.shadows.on = !settings_.shadows.on; break;
     case Action::ToggleDepthView: depthView_ = !depthView_; break;
     case Action::ResetView: resetView(); break;
     case Action::CycleCamera: cycleCamera(); break;
@@ -182,6 +183,8 @@ std::string DemoController::modeSummary() const {
         s += " | camera " + std::to_string(cameraIndex_);
     if (settings_.wireframe)
         s += " | wireframe";
+    if (settings_.shadows.on)
+        s += " | shadows";
     if (settings_.outline.pickCentre)
         s += settings_.msaa > 1 ? " | outline (not with msaa)" : " | outline";
     if (depthView_)

@@ -13,7 +13,7 @@ enum class Key {
     W, A, S, D, Q, E,          // fly: forward / strafe left / back / strafe right / down / up
     Up, Down, Left, Right,     // turn
     Shift,                     // held: move faster
-    C, M, T, P, N, L, O, Z, R, V, // toggles, reset and camera (see actionForKey)
+    C, M, T, P, N, L, O, H, Z, R, V, // toggles, reset and camera (see actionForKey)
     F1, F12,
     Count
 };
@@ -31,6 +31,7 @@ enum class Action {
     CycleAntialiasing, // off -> MSAA 2 -> 4 -> 8 -> SSAA 4 -> 16 -> off
     ToggleWireframe,
     ToggleOutline,    // the selection outline of the object at the screen centre
+    ToggleShadows,    // shadow maps on / off
     ToggleDepthView,  // show the depth buffer as grey
     ResetView,        // back to the starting camera
     CycleCamera,      // the flags' view -> the file's camera 0 -> 1 -> ... -> the flags' view
@@ -48,6 +49,7 @@ constexpr Action actionForKey(Key key) {
     case Key::N: return Action::CycleAntialiasing;
     case Key::L: return Action::ToggleWireframe;
     case Key::O: return Action::ToggleOutline;
+    case Key::H: return Action::ToggleShadows;
     case Key::Z: return Action::ToggleDepthView;
     case Key::R: return Action::ResetView;
     case Key::V: return Action::CycleCamera;
@@ -64,7 +66,7 @@ struct KeyHelp {
     const char* what;
 };
 
-inline constexpr std::array<KeyHelp, 18> kKeyHelp{{
+inline constexpr std::array<KeyHelp, 19> kKeyHelp{{
     {"W / S", "fly forward / back"},
     {"A / D", "strafe left / right"},
     {"Q / E", "fly down / up"},
@@ -79,6 +81,7 @@ inline constexpr std::array<KeyHelp, 18> kKeyHelp{{
     {"N", "anti-aliasing: off -> MSAA 2, 4, 8 -> SSAA 4, 16"},
     {"L", "wireframe overlay on / off"},
     {"O", "outline of the object at the screen centre on / off"},
+    {"H", "shadows on / off"},
     {"Z", "depth view (near = white) on / off"},
     {"F1", "this help on / off"},
     {"F12", "save a screenshot (PNG, current folder)"},

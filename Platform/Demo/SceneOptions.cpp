@@ -93,17 +93,19 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
                                          "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera",
-                                         "--sky",   "--skybox",  "--outline"};
+                                         "--sky",   "--skybox",  "--outline", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
 
-    if (flag == "--wireframe" || flag == "--outline") {
+    if (flag == "--wireframe" || flag == "--outline" || flag == "--shadows" || flag == "--no-shadows") {
         if (inlineValue) {
             error = flag + " takes no value";
             return FlagResult::Error;
         }
-        (flag == "--wireframe" ? o.wireframe : o.outline) = true;
+        if (flag == "--wireframe") o.wireframe = true;
+        else if (flag == "--outline") o.outline = true;
+        else o.shadows.on = flag == "--shadows";
         return FlagResult::Consumed;
     }
     std::string value;
@@ -136,6 +138,23 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         else if (value == "gradient") o.sky = Sky::Kind::Gradient;
         else return bad("none or gradient; --skybox DIR for a cube map");
         o.skybox.clear();
+    } else if (flag == "--shadow-size") {
+        const auto v = parseInt(value);
+        if (!v || *v < kMinShadowSize || *v > kMaxShadowSize)
+            return bad("an integer from " + std::to_string(kMinShadowSize) + " to " + std::to_string(kMaxShadowSize));
+        o.shadows.size = *v;
+    } else if (flag == "--shadow-bias") {
+        const std::size_t comma = value.find(',');
+        const auto c = comma == std::string::npos ? std::nullopt : parseNumber(value.substr(0, comma));
+        const auto sl = comma == std::string::npos ? std::nullopt : parseNumber(value.substr(comma + 1));
+        if (!c || !sl || !(*c >= 0.0 && *c <= 100.0 && *sl >= 0.0 && *sl <= 100.0))
+            return bad("constant,slope: two numbers from 0 to 100 (texels)");
+        o.shadows.constantBias = float(*c);
+        o.shadows.slopeBias = float(*sl);
+    } else if (flag == "--shadow-pcf") {
+        const auto v = parseInt(value);
+        if (!v || !validShadowPcf(*v)) return bad("1, 3 or 5");
+        o.shadows.pcf = *v;
     } else if (flag == "--width" || flag == "--height") {
         const auto v = parseInt(value);
         if (!v || *v < 1 || *v > FrameBuffer::kMaxDimension)
@@ -315,6 +334,10 @@ std::string sceneFlagsHelp() {
            "  --materials M         mtl | fixed: use the MTL's Kd, Ks and Ns (default mtl), or kd = --kd\n"
            "                        or the texel, white ks 0.5 and shininess 32 everywhere (fixed)\n"
            "  --wireframe           overlay triangle edges\n"
+           "  --shadows             shadow maps for the directional and spot lights (--no-shadows: none)\n"
+           "  --shadow-size N       texels per side of each light's map, 16 to 8192 (default 2048)\n"
+           "  --shadow-pcf K        percentage-closer filter: K x K texel taps, 1, 3 or 5 (default 3)\n"
+           "  --shadow-bias C,S     depth bias in texels: C + S x tan(light angle) (default 1,1)\n"
            "  --outline             selection outline (3 pixels, through the stencil buffer) around the\n"
            "                        opaque draw at the image centre; not drawn with --msaa\n";
 }

@@ -13,6 +13,7 @@
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Shading.hpp"
+#include "Raster/Shadow.hpp"
 #include "Raster/Sky.hpp"
 #include "Raster/Texture.hpp"
 #include "Raster/PipelineModes.hpp" // PerspectiveMode
@@ -75,6 +76,8 @@ struct SceneOptions {
     bool explicitUp = false, explicitFov = false; // --up / --fov given (they override --camera's)
     bool wireframe = false;
     bool outline = false; // --outline: the selection outline of the draw at the image centre
+    // --shadows / --no-shadows, --shadow-size N, --shadow-pcf K (Raster/Shadow.hpp)
+    ShadowSettings shadows;
     std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
     bool explicitSsaa = false, explicitMsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;

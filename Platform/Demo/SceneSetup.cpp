@@ -336,6 +336,7 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.isa = o.isa;
     s.wireframe = o.wireframe;
     s.outline.pickCentre = o.outline;
+    s.shadows = o.shadows;
     s.ssaa = o.ssaa;
     s.msaa = o.msaa;
     return s;

@@ -10,6 +10,7 @@
 #include "Platform/Headless/CommandArgs.hpp"
 #include "Platform/Headless/Flight.hpp"
 #include "Platform/Headless/Timing.hpp"
+#include "Raster/Shadow.hpp"
 #include "Resources/Image.hpp"
 
 namespace sr::headless {
@@ -118,6 +119,15 @@ int runBench(const std::vector<std::string>& args, Streams io) {
         noSky = summarise(timeFrames(1, stageFrames, frame));
         p.scene.scene.sky = sky;
     }
+    // The shadow pass (the lights' depth-only maps; only with --shadows), timed on its own: the
+    // full frame runs it first, the partial pipelines do not.
+    TimingSummary shadowPass{};
+    if (settings.shadows.on) {
+        SceneShadows maps;
+        shadowPass = summarise(timeFrames(1, stageFrames, [&] {
+            renderShadowMaps(p.context, p.scene.scene, p.view, settings.shadows, maps);
+        }));
+    }
     frame(); // leave the full image in the framebuffer for --out
 
     auto positive = [](double v) { return std::max(v, 0.0); };
@@ -134,7 +144,8 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"stages_ms\":{\"clear\":" + jsonNumber(clearOnly.median);
     j += ",\"transform_clip_cull\":" + jsonNumber(positive(geometry.median - clearOnly.median));
     j += ",\"setup\":" + jsonNumber(positive(setup.median - geometry.median));
-    j += ",\"fill_shade\":" + jsonNumber(positive(noSky.median - setup.median));
+    j += ",\"fill_shade\":" + jsonNumber(positive(noSky.median - setup.median - shadowPass.median));
+    if (settings.shadows.on) j += ",\"shadow_pass\":" + jsonNumber(shadowPass.median);
     if (p.scene.scene.sky.on()) j += ",\"sky\":" + jsonNumber(positive(full.median - noSky.median));
     j += "}";
     j += ",\"counters\":{\"vertices_transformed\":" + std::to_string(counters.verticesTransformed);

@@ -195,6 +195,7 @@ demo::Key MainWindow::translateKey(WPARAM vk) {
     case 'N': return Key::N;
     case 'L': return Key::L;
     case 'O': return Key::O;
+    case 'H': return Key::H;
     case 'Z': return Key::Z;
     case 'R': return Key::R;
     case 'V': return Key::V;

@@ -185,6 +185,40 @@ TEST_CASE("--outline draws a band in the outline colour around the object at the
     CHECK(run({"render", "--outline=3", "--quiet"}).rc == kExitUsage);
 }
 
+TEST_CASE("--shadows darkens the built-in scene's floor; bench times the shadow pass; bad values exit 2", "[headless][shadow]") {
+    // Shadows only take light away: with --shadows no pixel is brighter in any channel, and many
+    // are darker. bench's stage breakdown gains shadow_pass (and not without --shadows).
+    const std::string dir = tempDir("shadows");
+    const auto plain = renderBuiltIn96x64(dir, {}, "plain.png");
+    const auto shadowed = renderBuiltIn96x64(dir, {"--shadows", "--shadow-size", "512", "--shadow-pcf", "1"}, "shadowed.png");
+    REQUIRE(plain.size() == shadowed.size());
+    int darker = 0, brighter = 0;
+    for (std::size_t i = 0; i < plain.size(); i += 4) {
+        bool less = false, more = false;
+        for (std::size_t k = 0; k < 3; ++k) {
+            less |= shadowed[i + k] < plain[i + k];
+            more |= shadowed[i + k] > plain[i + k];
+        }
+        darker += less;
+        brighter += more;
+    }
+    CHECK(darker > 100);
+    CHECK(brighter == 0);
+    CHECK(renderBuiltIn96x64(dir, {"--shadows", "--no-shadows"}, "off.png") == plain);
+    const Run b = run({"bench", "--width", "64", "--height", "48", "--frames", "2", "--warmup", "0", "--quiet", "--shadows",
+                       "--shadow-size", "256"});
+    REQUIRE(b.rc == kExitOk);
+    CHECK(numberOf(b.out, "shadow_pass") > 0.0);
+    const Run nb = run({"bench", "--width", "64", "--height", "48", "--frames", "2", "--warmup", "0", "--quiet"});
+    CHECK(!hasKey(nb.out, "shadow_pass"));
+    CHECK(run({"render", "--shadow-size", "8", "--quiet"}).rc == kExitUsage);
+    CHECK(run({"render", "--shadow-size", "9000", "--quiet"}).rc == kExitUsage);
+    CHECK(run({"render", "--shadow-pcf", "2", "--quiet"}).rc == kExitUsage);
+    CHECK(run({"render", "--shadows=1", "--quiet"}).rc == kExitUsage);
+    CHECK(run({"render", "--shadow-bias", "1", "--quiet"}).rc == kExitUsage);
+    CHECK(run({"render", "--shadow-bias", "1,-1", "--quiet"}).rc == kExitUsage);
+}
+
 TEST_CASE("--ssaa 1 is today's image; --ssaa 4 and 16 change only edge pixels, a little", "[headless][ssaa]") {
     const std::string dir = tempDir("ssaa");
     auto render = [&](const std::vector<std::string>& extra, const std::string& name) {

@@ -98,6 +98,17 @@ TEST_CASE("wireframe, depth view and help toggle; Quit and Screenshot are left t
     CHECK(c.keyDown(Key::W) == Action::None);
 }
 
+TEST_CASE("H toggles the shadows; the title says so", "[platform]") {
+    DemoController c = makeController();
+    CHECK_FALSE(c.settings().shadows.on);
+    CHECK(c.keyDown(Key::H) == Action::ToggleShadows);
+    CHECK(c.settings().shadows.on);
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 1 | shadows");
+    c.keyDown(Key::H);
+    CHECK_FALSE(c.settings().shadows.on);
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 1");
+}
+
 TEST_CASE("O toggles the selection outline; the title says so, and that MSAA does not draw it", "[platform]") {
     DemoController c = makeController();
     CHECK_FALSE(c.settings().outline.pickCentre);
