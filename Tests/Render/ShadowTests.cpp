@@ -264,3 +264,50 @@ TEST_CASE("shadow maps: the bias against acne and peter-panning at steep and gra
         }
     }
 }
+
+TEST_CASE("shadow maps: a spot light's shadow against a ray-cast reference", "[render][shadow]") {
+    // A spot light above and beside the floating box, shining down: the ray from each floor pixel
+    // to the light's position decides, as for the directional light (surely shadowed: through
+    // the box shrunk by 0.15; surely lit: missing it grown by 0.15 and inside the cone, where the
+    // spot lights the floor at all).
+    const Scene scene = boxOverFloor();
+    FrameView view = viewWith({1, 1, 0.5f});
+    const Vec3 position{1.5f, 6.0f, 1.0f};
+    view.lighting.lights = {Light::spot(position, normalize(Vec3{-0.2f, -1.0f, -0.1f}), {30, 30, 30, 1}, 0.6f, 0.8f)};
+    Frames f;
+    RenderSettings s;
+    {
+        RenderContext ctx(f.lit);
+        renderSceneFrame(ctx, scene, view, s);
+    }
+    {
+        FrameView unlit = view;
+        unlit.lighting.lights.clear();
+        RenderContext ctx(f.dark);
+        renderSceneFrame(ctx, scene, unlit, s);
+    }
+    s.shadows.on = true;
+    RenderContext ctx(f.shadowed);
+    renderSceneFrame(ctx, scene, view, s);
+    REQUIRE(ctx.shadows);
+    CHECK(ctx.shadows->maps.size() == 1); // one map for a spot light, no cascades
+    int shadowed = 0, lit = 0, wrongShadow = 0, wrongLit = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            Vec3 p;
+            if (!floorPoint(view, x, y, p)) continue;
+            const Vec3 toLight = position - p;
+            if (hitsBox(p, toLight, -0.15f)) {
+                ++shadowed;
+                wrongShadow += f.shadowed.pixel(x, y) != f.dark.pixel(x, y);
+            } else if (!hitsBox(p, toLight, 0.15f) && f.lit.pixel(x, y) != f.dark.pixel(x, y)) {
+                ++lit;
+                wrongLit += f.shadowed.pixel(x, y) != f.lit.pixel(x, y);
+            }
+        }
+    INFO("shadowed " << shadowed << " lit " << lit);
+    CHECK(shadowed > 100);
+    CHECK(lit > 1000);
+    CHECK(wrongShadow == 0);
+    CHECK(wrongLit == 0);
+}
