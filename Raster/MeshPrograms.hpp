@@ -102,7 +102,6 @@ inline DrawState drawStateFor(const DrawContext& d) {
     s.stencil = d.settings.stencil;
     s.colourWrite = d.settings.colourWrite;
     s.depthEqualPasses = d.settings.depthEqualPasses;
-    if (!d.settings.depthTest) s.depth = DepthMode::Off;
     return s;
 }
 

@@ -171,12 +171,12 @@ struct HasFillKernel<Program, std::void_t<decltype(std::declval<Program&>().fill
                                   std::declval<const Scissor&>(), std::declval<std::uint64_t&>()))>>
     : std::true_type {};
 
-
 // One fragment of a draw with the stencil test on (DrawState::stencil; the fill ran without a
 // depth test, which is made here after the stencil test). OpenGL's order: a texel-alpha Mask
 // discard first (a discarded fragment touches nothing), then the stencil test (fail: the `fail`
 // operation), the depth test per `depth` (fail: `depthFail`), then `pass`, the depth write and
-// the colour (blended when the draw is transparent; none without colourWrite). Returns the colour the pixel ends with.
+// the colour (blended when the draw is transparent; none without colourWrite). Returns the
+// colour the pixel ends with.
 template <class Program, int kVaryings>
 SR_SIMD_NOINLINE Pixel stencilFragment(Program& program, FrameBuffer& fb, const DrawState& state,
                                        const Fragment<kVaryings>& f, std::uint64_t& shaded) {
@@ -210,7 +210,6 @@ SR_SIMD_NOINLINE Pixel stencilFragment(Program& program, FrameBuffer& fb, const 
     if (a < 1.0f) return blendOver(program.fragment(f), behind, a);
     return program.fragment(f);
 }
-
 
 // Snapped pixel-row range [begin, end) whose centres a screen triangle can cover (the rows
 // setupTriangle computes), from the y coordinates only: a cheap band test before the setup.

@@ -21,9 +21,8 @@ namespace sr {
 // in the stencil buffer (the Replace operation) the pixels where it is what is visible; after
 // everything else, every pixel not marked within `width` output pixels (horizontally and
 // vertically: a square neighbourhood) of a marked one takes `colour`: a band around what shows
-// of the object, over everything. Not drawn multisampled (the
-// stencil buffer is per pixel) nor in partial pipelines. draw < 0: off, and no stencil buffer
-// is allocated.
+// of the object, over everything. Not drawn multisampled (the stencil buffer is per pixel) nor
+// in partial pipelines. draw < 0: off, and no stencil buffer is allocated.
 struct Outline {
     int draw = -1;
     Color colour{1.0f, 0.78f, 0.1f, 1.0f};
@@ -53,12 +52,11 @@ struct RenderSettings {
     Outline outline;
     // Shadow maps for the directional and spot lights (Raster/Shadow.hpp); off: none made.
     ShadowSettings shadows;
-    // Per-draw fixed-function state that renderScene sets for its own passes (the outline's):
-    // the stencil test and operations (DrawState::stencil), the depth test turned off, the colour
-// write turned off and the GEQUAL depth test (DrawState::colourWrite, depthEqualPasses).
+    // Per-draw fixed-function state that renderScene sets for its own passes (the outline's
+    // mark): the stencil test and operations (DrawState::stencil), the colour write turned off
+    // and the GEQUAL depth test (DrawState::colourWrite, depthEqualPasses: the stencil path only).
     StencilState stencil;
-    bool depthTest = true;
-    bool colourWrite = true, depthEqualPasses = false; // DrawState's (the stencil path only)
+    bool colourWrite = true, depthEqualPasses = false;
 };
 
 // What every draw of one frame shares.

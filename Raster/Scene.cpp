@@ -96,7 +96,7 @@ void drawOutlineBand(RenderContext& ctx, FrameBuffer& target, Pixel colour, int 
     });
 }
 
-// Whether the segment-free ray o + t d (t > 0) meets triangle (a, b, c), and where (Moeller-Trumbore, double).
+// Whether the ray o + t d (t > 0) meets triangle (a, b, c), and at which t (Moeller-Trumbore, in double).
 bool rayHits(const Vec3& o, const Vec3& d, const Vec3& a, const Vec3& b, const Vec3& c, double& tHit) {
     const double e1[3] = {double(b.x) - a.x, double(b.y) - a.y, double(b.z) - a.z};
     const double e2[3] = {double(c.x) - a.x, double(c.y) - a.y, double(c.z) - a.z};
