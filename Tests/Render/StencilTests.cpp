@@ -162,7 +162,8 @@ TEST_CASE("a draw with the stencil test: each outcome's operation, per pixel, be
                             colour = int(packBgra(255, 0, 0));
                         }
                     }
-                    INFO("pixel " << x << ", " << y);
+                    INFO("pixel " << x << ", " << y << ": stencil " << int(fb.stencil(x, y)) << " depth " << fb.depth(x, y)
+                                   << " colour " << std::hex << fb.pixel(x, y) << std::dec);
                     REQUIRE(int(fb.stencil(x, y)) == stencil);
                     REQUIRE(int(fb.pixel(x, y)) == colour);
                     if (in && left && !top) {
