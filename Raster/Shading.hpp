@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <optional>
 #include <string_view>
+#include <type_traits>
 #include <vector>
 
 #include "Math/Color.hpp"
@@ -166,19 +168,33 @@ inline float lightAt(const Light& light, Vec3 p, Vec3& l) {
     return a;
 }
 
+// Every light fully visible: lightTerms without shadows.
+struct AllVisible {
+    float operator()(std::size_t, Vec3, Vec3, Vec3) const { return 1.0f; }
+};
+
 // Blinn-Phong for any lights at world point p (N, V unit): per light L and a from lightAt, then
 // the one-sided terms scaled by colour * a. For white directional lights (a = 1, colour 1) every
-// channel equals blinnPhong's terms bit for bit (x * 1 is x).
-inline RgbTerms lightTerms(const Lighting& lighting, const Specular& specular, Vec3 n, Vec3 p, Vec3 v) {
+// channel equals blinnPhong's terms bit for bit (x * 1 is x). `visible(i, p, n, l)` is the lit
+// fraction of light i at p (shadow maps: Shadow.hpp's shadowedTerms), asked only where the light
+// would add something; below 1 it scales a. With AllVisible, nothing is asked.
+template <class Visibility = AllVisible>
+inline RgbTerms lightTerms(const Lighting& lighting, const Specular& specular, Vec3 n, Vec3 p, Vec3 v,
+                           const Visibility& visible = {}) {
     RgbTerms t;
     t.diffuse = {lighting.ambient, lighting.ambient, lighting.ambient, 1.0f};
     const bool specularOn = specular.on();
-    for (const Light& light : lighting.lights) {
+    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
+        const Light& light = lighting.lights[i];
         Vec3 l;
-        const float a = lightAt(light, p, l);
+        float a = lightAt(light, p, l);
         if (!(a > 0.0f)) continue;
         const float ndl = dot(n, l);
         if (!(ndl > 0.0f)) continue;
+        if constexpr (!std::is_same_v<Visibility, AllVisible>) {
+            const float seen = visible(i, p, n, l);
+            if (seen < 1.0f) a = a * seen;
+        }
         const float diffuse = ndl * a;
         t.diffuse.r += light.colour.r * diffuse;
         t.diffuse.g += light.colour.g * diffuse;

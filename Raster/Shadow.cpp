@@ -57,31 +57,8 @@ float ShadowMap::visibility(Vec3 p, Vec3 n, Vec3 l, const ShadowSettings& s) con
 
 RgbTerms shadowedTerms(const Lighting& lighting, const Specular& specular, Vec3 n, Vec3 p, Vec3 v,
                        const SceneShadows& shadows) {
-    // lightTerms (Shading.hpp) operation for operation, with a scaled by the light's visibility.
-    RgbTerms t;
-    t.diffuse = {lighting.ambient, lighting.ambient, lighting.ambient, 1.0f};
-    const bool specularOn = specular.on();
-    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
-        const Light& light = lighting.lights[i];
-        Vec3 l;
-        float a = lightAt(light, p, l);
-        if (!(a > 0.0f)) continue;
-        const float ndl = dot(n, l);
-        if (!(ndl > 0.0f)) continue;
-        const float seen = shadows.visibility(i, p, n, l);
-        if (seen < 1.0f) a = a * seen;
-        const float diffuse = ndl * a;
-        t.diffuse.r += light.colour.r * diffuse;
-        t.diffuse.g += light.colour.g * diffuse;
-        t.diffuse.b += light.colour.b * diffuse;
-        if (!specularOn) continue;
-        const Vec3 h = normalize(l + v);
-        const float s = shininessPow(std::max(dot(n, h), 0.0f), specular.shininess) * a;
-        t.specular.r += light.colour.r * s;
-        t.specular.g += light.colour.g * s;
-        t.specular.b += light.colour.b * s;
-    }
-    return t;
+    return lightTerms(lighting, specular, n, p, v,
+                      [&shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) { return shadows.visibility(light, q, normal, l); });
 }
 
 namespace {
