@@ -76,7 +76,7 @@ struct SceneOptions {
     bool explicitUp = false, explicitFov = false; // --up / --fov given (they override --camera's)
     bool wireframe = false;
     bool outline = false; // --outline: the selection outline of the draw at the image centre
-    // --shadows / --no-shadows, --shadow-size N, --shadow-pcf K (Raster/Shadow.hpp)
+    // --shadows / --no-shadows, --shadow-size N, --shadow-pcf K, --shadow-bias C,S (Raster/Shadow.hpp)
     ShadowSettings shadows;
     std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
