@@ -181,7 +181,7 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
     // The meshes and the view are constant during the loop: draws of one mesh with the same
     // shading program transform its vertices once (issue 14: cost linear in material switches).
     const VertexReuseScope reuse(ctx);
-    // The selection outline: a stencil buffer for this frame's target, its mark drawn with the draw.
+    // The selection outline: a stencil buffer for this frame's target (its mark and band below).
     const Outline& outline = settings.outline;
     const bool outlined = outline.on() && std::size_t(outline.draw) < scene.draws.size() &&
                           settings.stopAfter == PipelineStop::Fill && !ctx.multisampleTarget();
@@ -193,8 +193,7 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         target.releaseStencil(); // memory only while outlining
     }
     bool anyTransparent = false;
-    for (std::size_t i = 0; i < scene.draws.size(); ++i) {
-        const SceneDraw& d = scene.draws[i];
+    for (const SceneDraw& d : scene.draws) {
         assert(d.mesh >= 0 && std::size_t(d.mesh) < scene.meshes.size());
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
         assert(std::size_t(d.firstIndex) + d.indexCount <= mesh.indices.size());

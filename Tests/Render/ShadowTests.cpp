@@ -128,6 +128,32 @@ Frames render(const Scene& scene, const FrameView& view, ShadowSettings shadows 
     return f;
 }
 
+// The floor pixels against the ray-cast reference: the shadow ray from each floor point toward
+// the light (`toLight(p)`) through the box shrunk by 0.15 is surely shadowed, and must equal the
+// ambient-only frame; missing the box grown by 0.15 (and lit at all) surely lit, and must equal the
+// unshadowed frame. Between: the penumbra and the bias's reach, not counted.
+struct Tally {
+    int shadowed = 0, lit = 0, wrongShadow = 0, wrongLit = 0; // wrongShadow: leak; wrongLit: acne
+};
+template <class ToLight>
+Tally tally(const Frames& f, const FrameView& view, ToLight toLight, float lift = 1.0f) {
+    Tally t;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            Vec3 p;
+            if (!floorPoint(view, x, y, p, lift)) continue;
+            const Vec3 l = toLight(p);
+            if (hitsBox(p, l, -0.15f, lift)) {
+                ++t.shadowed;
+                t.wrongShadow += f.shadowed.pixel(x, y) != f.dark.pixel(x, y);
+            } else if (!hitsBox(p, l, 0.15f, lift) && f.lit.pixel(x, y) != f.dark.pixel(x, y)) {
+                ++t.lit;
+                t.wrongLit += f.shadowed.pixel(x, y) != f.lit.pixel(x, y);
+            }
+        }
+    return t;
+}
+
 ShadowSettings withPcf(int pcf, int size = 2048) {
     ShadowSettings s;
     s.pcf = pcf;
@@ -152,24 +178,12 @@ TEST_CASE("shadow maps: the floor in the box's shadow against a ray-cast referen
         const Frames f = render(scene, view, withPcf(3));
         CHECK(f.maps == std::size_t(ShadowSettings{}.cascades));
         const Vec3 l = normalize(toLight);
-        int shadowedPixels = 0, litPixels = 0, wrongShadow = 0, wrongLit = 0;
-        for (int y = 0; y < kH; ++y)
-            for (int x = 0; x < kW; ++x) {
-                Vec3 p;
-                if (!floorPoint(view, x, y, p)) continue;
-                if (hitsBox(p, l, -0.15f)) {
-                    ++shadowedPixels;
-                    wrongShadow += f.shadowed.pixel(x, y) != f.dark.pixel(x, y);
-                } else if (!hitsBox(p, l, 0.15f)) {
-                    ++litPixels;
-                    wrongLit += f.shadowed.pixel(x, y) != f.lit.pixel(x, y);
-                }
-            }
-        INFO("shadowed " << shadowedPixels << " lit " << litPixels);
-        CHECK(shadowedPixels > 40);
-        CHECK(litPixels > 2000);
-        CHECK(wrongShadow == 0);
-        CHECK(wrongLit == 0);
+        const Tally t = tally(f, view, [l](Vec3) { return l; });
+        INFO("shadowed " << t.shadowed << " lit " << t.lit);
+        CHECK(t.shadowed > 40);
+        CHECK(t.lit > 2000);
+        CHECK(t.wrongShadow == 0);
+        CHECK(t.wrongLit == 0);
     }
 }
 
@@ -240,13 +254,9 @@ TEST_CASE("shadow maps: the bias against acne and peter-panning at steep and gra
             bias.constantBias = biases[b].constant;
             bias.slopeBias = biases[b].slope;
             const Frames f = render(scene, view, bias);
-            for (int y = 0; y < kH; ++y)
-                for (int x = 0; x < kW; ++x) {
-                    Vec3 p;
-                    if (!floorPoint(view, x, y, p, lift)) continue;
-                    if (hitsBox(p, l, -0.15f, lift)) leak[b] += f.shadowed.pixel(x, y) != f.dark.pixel(x, y);
-                    else if (!hitsBox(p, l, 0.15f, lift)) acne[b] += f.shadowed.pixel(x, y) != f.lit.pixel(x, y);
-                }
+            const Tally t = tally(f, view, [l](Vec3) { return l; }, lift);
+            acne[b] = t.wrongLit;
+            leak[b] = t.wrongShadow;
             INFO("light " << toLight.x << "," << toLight.y << "," << toLight.z << " bias " << biases[b].constant << ","
                           << biases[b].slope << ": acne " << acne[b] << " leak " << leak[b]);
             if (b == 0) {
@@ -273,23 +283,10 @@ TEST_CASE("shadow maps: a spot light's shadow against a ray-cast reference", "[r
     view.lighting.lights = {Light::spot(position, normalize(Vec3{-0.2f, -1.0f, -0.1f}), {30, 30, 30, 1}, 0.6f, 0.8f)};
     const Frames f = render(scene, view);
     CHECK(f.maps == 1); // one map for a spot light, no cascades
-    int shadowed = 0, lit = 0, wrongShadow = 0, wrongLit = 0;
-    for (int y = 0; y < kH; ++y)
-        for (int x = 0; x < kW; ++x) {
-            Vec3 p;
-            if (!floorPoint(view, x, y, p)) continue;
-            const Vec3 toLight = position - p;
-            if (hitsBox(p, toLight, -0.15f)) {
-                ++shadowed;
-                wrongShadow += f.shadowed.pixel(x, y) != f.dark.pixel(x, y);
-            } else if (!hitsBox(p, toLight, 0.15f) && f.lit.pixel(x, y) != f.dark.pixel(x, y)) {
-                ++lit;
-                wrongLit += f.shadowed.pixel(x, y) != f.lit.pixel(x, y);
-            }
-        }
-    INFO("shadowed " << shadowed << " lit " << lit);
-    CHECK(shadowed > 100);
-    CHECK(lit > 1000);
-    CHECK(wrongShadow == 0);
-    CHECK(wrongLit == 0);
+    const Tally t = tally(f, view, [position](Vec3 p) { return position - p; });
+    INFO("shadowed " << t.shadowed << " lit " << t.lit);
+    CHECK(t.shadowed > 100);
+    CHECK(t.lit > 1000);
+    CHECK(t.wrongShadow == 0);
+    CHECK(t.wrongLit == 0);
 }
