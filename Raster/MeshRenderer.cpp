@@ -45,10 +45,9 @@ template <class Program>
 void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, Program program) {
     const DrawState state = programs::drawStateFor(d);
     KernelProgram<Program> withKernel{program};
-    // The kernels light without shadows: a Phong draw in a frame with shadow maps takes the
-    // scalar loop (flat and Gouraud light per triangle / vertex, unshadowed: Shadow.hpp).
-    const bool shadowed = Program::kMode == ShadingMode::Phong && d.view.shadows != nullptr;
-    if (!shadowed && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
+    // Phong kernels test the shadow maps per pixel as the scalar program does (Kernels.inl's
+    // shadowVisibility); flat and Gouraud light per triangle / vertex, unshadowed (Shadow.hpp).
+    if (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular)) {
         const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
         withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);

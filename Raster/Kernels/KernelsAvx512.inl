@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cstdint>
+#include <limits>
 
 #include "Raster/Kernels/KernelTable.hpp"
 #include "Raster/Kernels/SimdAvx512.hpp"

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cstdint>
+#include <limits>
 
 #include "Raster/Kernels/KernelTable.hpp"
 #include "Raster/Kernels/SimdSse2.hpp"

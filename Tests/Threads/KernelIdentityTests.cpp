@@ -11,6 +11,8 @@
 #include "Raster/Kernels/KernelTable.hpp"
 #include "Raster/MeshPrograms.hpp"
 #include "Raster/ScanlineFill.hpp" // fillTriangle, the reference
+#include "Math/Transform.hpp"
+#include "Raster/Shadow.hpp"
 
 using namespace sr;
 
@@ -226,6 +228,127 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                                << " shaded pixels");
     REQUIRE(!ran.empty());
     CHECK(totals.pixels > 100000 * long(ran.size()));
+}
+
+namespace {
+
+// A shadow map whose depths are random (a quarter of them empty: kFarDepth), seen through
+// `viewProj`, from `origin` along `axis`.
+ShadowMap randomMap(std::mt19937& rng, int size, const Mat4& viewProj, Vec3 origin, Vec3 axis, bool perspective, float nearZ,
+                    float farZ, float texelWorld, float splitFar) {
+    ShadowMap m;
+    m.viewProj = viewProj;
+    m.origin = origin;
+    m.axis = axis;
+    m.perspective = perspective;
+    m.nearZ = nearZ;
+    m.farZ = farZ;
+    m.texelWorld = texelWorld;
+    m.splitFar = splitFar;
+    m.target = FrameBuffer(size, size);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+    for (int y = 0; y < size; ++y)
+        for (int x = 0; x < size; ++x) m.target.depthRow(y)[x] = rng() % 4u == 0 ? FrameBuffer::kFarDepth : unit(rng);
+    return m;
+}
+
+} // namespace
+
+TEST_CASE("the Phong kernels' shadow-map test is bit-identical to the scalar program's", "[threads][simd][kernels][shadow]") {
+    std::mt19937 rng(17u);
+    Mesh mesh;
+    mesh.positions = {{-1.0f, -0.5f, 0.2f}, {1.2f, -0.4f, -0.3f}, {0.1f, 1.1f, 0.4f}};
+    mesh.normals = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};
+    mesh.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    mesh.indices = {0, 1, 2};
+    // Lights: a white directional light with three cascades of different sizes, a spot with a
+    // perspective map, a point light (no map) and a coloured directional light with one map. The
+    // varyings' positions in [-3, 3] fall on and off the maps, in front of and behind their
+    // random casters.
+    const Vec3 sun = normalize(Vec3(1, 1, 1)), sky = normalize(Vec3(-0.3f, 0.2f, 1.0f));
+    const Vec3 spotAt{0.0f, 0.0f, 4.0f}, spotDir = normalize(Vec3(0.1f, -0.2f, -1.0f));
+    FrameView view;
+    view.eye = {0.3f, 0.4f, 3.0f};
+    view.lighting.lights = {Light::directional(sun), Light::spot(spotAt, spotDir, {6.0f, 6.0f, 3.0f, 1.0f}, 0.2f, 0.6f, 9.0f),
+                            Light::point({0.5f, 1.0f, 2.0f}, {4.0f, 3.0f, 1.0f, 1.0f}, 3.5f),
+                            Light::directional(sky, {1.0f, 0.5f, 0.25f, 1.0f})};
+    FrameView whiteView = view; // one white directional light: the kernels' white path must not be taken
+    whiteView.lighting.lights = {Light::directional(sun)};
+    REQUIRE(whiteView.lighting.whiteDirectional());
+
+    SceneShadows shadows;
+    shadows.eye = view.eye;
+    shadows.forward = normalize(Vec3(-0.1f, -0.1f, -1.0f));
+    auto directional = [&](Vec3 toLight, float extent, int size, float splitFar) {
+        const Vec3 origin = toLight * 6.0f;
+        const Mat4 vp = orthographic(-extent, extent, -extent, extent, 0.0f, 12.0f) * lookAt(origin, Vec3{}, Vec3(0, 1, 0));
+        return randomMap(rng, size, vp, origin, toLight * -1.0f, false, 0.0f, 12.0f, 2.0f * extent / float(size), splitFar);
+    };
+    shadows.maps.push_back(directional(sun, 2.0f, 16, 1.5f));
+    shadows.maps.push_back(directional(sun, 3.0f, 24, 3.5f));
+    shadows.maps.push_back(directional(sun, 4.5f, 32, 1e30f));
+    shadows.maps.push_back(randomMap(rng, 20, perspective(1.2f, 1.0f, 0.5f, 20.0f) * lookAt(spotAt, spotAt + spotDir, Vec3(0, 1, 0)),
+                                     spotAt, spotDir, true, 0.5f, 20.0f, 2.0f * std::tan(0.6f) / 20.0f, 0.0f));
+    shadows.maps.push_back(directional(sky, 3.5f, 20, 0.0f));
+    shadows.firstMap = {0, 3, 0, 4};
+    shadows.mapCount = {3, 1, 0, 1};
+    view.shadows = &shadows;
+    whiteView.shadows = &shadows;
+
+    // The maps shadow some points fully, some partly (PCF) and leave some lit: the test sees all three.
+    {
+        std::uniform_real_distribution<float> coord(-3.0f, 3.0f);
+        int none = 0, partial = 0, full = 0;
+        for (int i = 0; i < 4000; ++i) {
+            const Vec3 p{coord(rng), coord(rng), coord(rng)}, n = normalize(Vec3{coord(rng), coord(rng), coord(rng)});
+            for (std::size_t light : {std::size_t(0), std::size_t(1), std::size_t(3)}) {
+                const Vec3 l = light == 1 ? normalize(spotAt - p) : view.lighting.lights[light].toLight;
+                const float seen = shadows.visibility(light, p, n, l);
+                (seen == 0.0f ? none : seen == 1.0f ? full : partial) += 1;
+            }
+        }
+        INFO("unlit " << none << ", partly lit " << partial << ", lit " << full);
+        CHECK(none > 20);
+        CHECK(partial > 500);
+        CHECK(full > 500);
+    }
+
+    Specular coloured;
+    coloured.ks = {0.3f, 0.6f, 0.1f};
+    coloured.shininess = 7.0f;
+    const Texture texture = randomTexture(rng, 13, 7);
+    struct Variant {
+        int pcf;
+        float constantBias, slopeBias;
+    };
+    Totals totals;
+    int ran = 0;
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+        if (!isaAvailable(isa)) continue;
+        ++ran;
+        for (const Variant& variant : {Variant{1, 1.0f, 1.0f}, Variant{3, 0.5f, 2.0f}, Variant{5, 0.0f, 0.0f}}) {
+            shadows.settings.pcf = variant.pcf;
+            shadows.settings.constantBias = variant.constantBias;
+            shadows.settings.slopeBias = variant.slopeBias;
+            for (DepthMode depth : {DepthMode::Test, DepthMode::TestWrite})
+                for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine}) {
+                    RenderSettings settings;
+                    settings.perspective = persp;
+                    const KernelKey key{depth, persp, TextureFilter::Bilinear, WrapMode::Repeat};
+                    for (const Specular& specular : {Specular{}, coloured}) {
+                        const DrawContext lit{view, settings, mesh, mesh.indices.data(), &texture, Color{0.7f, 0.4f, 0.2f, 1.0f},
+                                              specular, 1.0f, false, true, {}};
+                        compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&lit); }, rng, totals);
+                        compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&lit); }, rng, totals);
+                        const DrawContext white{whiteView, settings, mesh, mesh.indices.data(), nullptr,
+                                                Color{0.7f, 0.4f, 0.2f, 1.0f}, specular, 1.0f, true, true, {}};
+                        compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&white); }, rng, totals);
+                    }
+                }
+        }
+    }
+    REQUIRE(ran > 0);
+    CHECK(totals.pixels > 20000 * long(ran));
 }
 
 TEST_CASE("the scalar ISA has no kernel: the reference loop fills", "[threads][simd][kernels]") {
