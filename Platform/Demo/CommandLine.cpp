@@ -56,7 +56,7 @@ std::optional<std::string> valueOf(const std::vector<std::string>& args, std::si
 ParseResult parseCommandLine(const std::vector<std::string>& args) {
     ParseResult result;
     DemoOptions& o = result.options;
-    bool modelGiven = false, threadsGiven = false;
+    bool modelGiven = false, threadsGiven = false, shadowsGiven = false;
     // The demo shows the gradient sky unless --sky none or --skybox DIR say otherwise (the
     // headless command keeps the black background, as the reference renderer draws it).
     o.scene.sky = Sky::Kind::Gradient;
@@ -101,10 +101,12 @@ ParseResult parseCommandLine(const std::vector<std::string>& args) {
         std::string error;
         const bool sizeFlag = startsWith(arg, "--width") || startsWith(arg, "--height");
         const bool threadsFlag = startsWith(arg, "--threads");
+        const bool shadowsFlag = arg == "--shadows" || arg == "--no-shadows";
         switch (parseSceneFlag(args, i, o.scene, error)) {
         case FlagResult::Consumed:
             o.sizeGiven |= sizeFlag;
             threadsGiven |= threadsFlag;
+            shadowsGiven |= shadowsFlag;
             continue;
         case FlagResult::Error: return failure(error);
         case FlagResult::NotMine: break;
@@ -120,6 +122,9 @@ ParseResult parseCommandLine(const std::vector<std::string>& args) {
     // command keeps the plain defaults: 1 sample, bilinear, phong, exact). A window too large
     // for its sample target is drawn without supersampling (renderSceneFrame).
     if (!o.scene.quality) applyQuality(o.scene, kDefaultDemoQuality);
+    // The built-in scene starts with shadows on; a model without them (its shadow pass grows
+    // with its triangles: H, or --shadows, turns them on), unless --shadows / --no-shadows say.
+    if (!shadowsGiven) o.scene.shadows.on = o.scene.obj.empty();
     result.ok = true;
     return result;
 }
@@ -142,7 +147,7 @@ std::string usageText(const std::string& programName) {
                        "  --help               show this text\n"
                        "  (the demo renders on every hardware thread by default: --threads N overrides;\n"
                        "  it starts at --quality balanced: 4 samples per pixel, trilinear, phong, exact,\n"
-                       "  and with --sky gradient)\n";
+                       "  and with --sky gradient; the built-in scene with --shadows, a model without)\n";
     text += sceneFlagsHelp();
     text += "keys:\n";
     for (const KeyHelp& k : kKeyHelp) {

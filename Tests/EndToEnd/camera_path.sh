@@ -20,12 +20,13 @@ log "Xvfb on $DISPLAY"
 winpath() { command winepath -w "$1" 2>/dev/null || echo "$1"; }
 # Cases: an arbitrary look direction (not a whole yaw/pitch), the built-in scene's own camera,
 # and the plain (1-sample) and supersampled paths. The demo renders on 2 threads, the command on 1;
-# the demo starts at --quality balanced and the gradient sky, and the command at the plain defaults
-# (no sky), so every case names its quality and sky flags.
+# the demo starts at --quality balanced, the gradient sky and (built-in scene) shadows, and the
+# command at the plain defaults (no sky, no shadows), so every case names its quality, sky and
+# shadow flags.
 cases=(
-  "odd-view|--eye 0.4,2.3,6.2 --target 0,0.75,0.1 --near 0.5 --far 50 --quality balanced --sky gradient"
-  "default-view|--ssaa 1 --filter bilinear --sky none"
-  "accurate|--eye -3,1.5,4 --target 0.5,0.5,0 --fov 50 --quality accurate --sky gradient"
+  "odd-view|--eye 0.4,2.3,6.2 --target 0,0.75,0.1 --near 0.5 --far 50 --quality balanced --sky gradient --shadows"
+  "default-view|--ssaa 1 --filter bilinear --sky none --shadows --shadow-size 1024"
+  "accurate|--eye -3,1.5,4 --target 0.5,0.5,0 --fov 50 --quality accurate --sky gradient --no-shadows"
 )
 for c in "${cases[@]}"; do
   name=${c%%|*}; read -r -a flags <<<"${c#*|}"

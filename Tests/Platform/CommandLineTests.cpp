@@ -187,6 +187,18 @@ TEST_CASE("the demo starts at the balanced quality preset; --quality and explici
     CHECK(sr::demo::actionForKey(sr::demo::Key::N) == sr::demo::Action::CycleAntialiasing);
 }
 
+TEST_CASE("the demo starts with shadows in the built-in scene, without in a model; --shadows and --no-shadows win", "[platform]") {
+    CHECK(parseCommandLine({}).options.scene.shadows.on);
+    CHECK_FALSE(parseCommandLine({"--no-shadows"}).options.scene.shadows.on);
+    CHECK_FALSE(parseCommandLine({"model.obj"}).options.scene.shadows.on);
+    CHECK_FALSE(parseCommandLine({"--model", "model.obj"}).options.scene.shadows.on);
+    CHECK(parseCommandLine({"model.obj", "--shadows"}).options.scene.shadows.on);
+    CHECK_FALSE(parseCommandLine({"--shadows", "--no-shadows"}).options.scene.shadows.on); // the last one wins
+    // The other shadow flags are no on / off choice: the default stays.
+    CHECK(parseCommandLine({"--shadow-size", "1024"}).options.scene.shadows.on);
+    CHECK_FALSE(parseCommandLine({"model.obj", "--shadow-pcf", "5"}).options.scene.shadows.on);
+}
+
 TEST_CASE("--isa picks the span kernels; an unknown or unavailable one is refused", "[platform]") {
     CHECK(parseCommandLine({}).options.scene.isa == sr::bestIsa());
     const auto scalar = parseCommandLine({"--isa", "scalar"});
