@@ -37,8 +37,8 @@ float ShadowMap::visibility(Vec3 p, Vec3 n, Vec3 l, const ShadowSettings& s) con
     // tan(theta)), theta between the normal and the light.
     const float cosT = std::clamp(std::fabs(dot(n, l)), 1e-4f, 1.0f);
     const float tanT = std::min(std::sqrt(std::max(1.0f - cosT * cosT, 0.0f)) / cosT, kMaxBiasTangent);
-    const float texel = perspective ? texelWorld * d : texelWorld;
-    const float receiver = depthAt(d - texel * (s.constantBias + s.slopeBias * tanT));
+    const float texelSize = perspective ? texelWorld * d : texelWorld;
+    const float receiver = depthAt(d - texelSize * (s.constantBias + s.slopeBias * tanT));
     const int half = std::max(s.pcf, 1) / 2;
     const int tx = int(u), ty = int(v);
     int lit = 0, taps = 0;
@@ -50,7 +50,7 @@ float ShadowMap::visibility(Vec3 p, Vec3 n, Vec3 l, const ShadowSettings& s) con
                 ++lit;
                 continue;
             }
-            lit += receiver >= target.depthRow(y)[x]; // reversed-Z: not behind the nearest caster
+            lit += receiver >= texel(x, y); // reversed-Z: not behind the nearest caster
         }
     return float(lit) / float(taps);
 }
@@ -83,7 +83,8 @@ void maxDepthRamp(float* depth, int count, float z0, float dz) {
 }
 
 // The depth-only program: clip position only, no varyings; its "kernel" walks each span keeping
-// the nearer depth (maxDepthRamp), no colour.
+// the nearer depth (maxDepthRamp), no colour, into the map's tiles (ShadowMap::texelIndex): a
+// span is cut at the tiles' edges, each piece's first depth computed as the span's.
 struct DepthOnlyProgram {
     static constexpr int kVaryings = 0;
     const Mat4* viewProj;
@@ -93,10 +94,17 @@ struct DepthOnlyProgram {
     Pixel fragment(const Fragment<0>&) const { return 0; }
     bool fillKernel(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) const {
         const float dz = float(t.ddx[kPlaneZ]);
+        const std::size_t tilesX = std::size_t(fb.width() / kShadowTile), tileSize = kShadowTile * kShadowTile;
+        float* depth = fb.depthData();
         forEachSpan(t, s, [&](int y, int x0, int x1) {
-            const double z0 = t.value[kPlaneZ] + t.ddx[kPlaneZ] * ((x0 + 0.5) - t.originX) +
-                              t.ddy[kPlaneZ] * ((y + 0.5) - t.originY);
-            maxDepthRamp(fb.depthRow(y) + x0, x1 - x0, float(z0), dz);
+            const double zy = t.value[kPlaneZ] + t.ddy[kPlaneZ] * ((y + 0.5) - t.originY);
+            float* row = depth + std::size_t(y / kShadowTile) * tilesX * tileSize + std::size_t(y % kShadowTile * kShadowTile);
+            for (int x = x0; x < x1;) {
+                const int end = std::min(x1, (x / kShadowTile + 1) * kShadowTile);
+                const double z0 = zy + t.ddx[kPlaneZ] * ((x + 0.5) - t.originX);
+                maxDepthRamp(row + std::size_t(x / kShadowTile) * tileSize + std::size_t(x % kShadowTile), end - x, float(z0), dz);
+                x = end;
+            }
             shaded += std::uint64_t(x1 - x0);
         });
         return true;
@@ -207,7 +215,7 @@ void renderShadowMaps(RenderContext& ctx, const Scene& scene, const FrameView& v
     out.firstMap.assign(lights.size(), 0);
     out.mapCount.assign(lights.size(), 0);
     const Bounds bounds = casterBounds(scene);
-    const int size = std::clamp(settings.size, kMinShadowSize, kMaxShadowSize);
+    const int size = shadowMapSide(settings.size);
     // The camera's depth range over the scene: the cascades' splits.
     const float forwardLength = length(view.rays.forward);
     out.eye = view.eye;
@@ -226,6 +234,10 @@ void renderShadowMaps(RenderContext& ctx, const Scene& scene, const FrameView& v
     }
     std::size_t used = 0;
     const RenderStats before = ctx.stats;
+    // The maps are never multisampled (a screen-sized sample target the size of a map would
+    // otherwise take the pass's fill).
+    const bool multisampling = ctx.multisampling;
+    ctx.multisampling = false;
     FrameBuffer& screen = ctx.target();
     DrawState state;
     state.cull = CullMode::None;
@@ -261,6 +273,7 @@ void renderShadowMaps(RenderContext& ctx, const Scene& scene, const FrameView& v
     }
     out.maps.resize(used); // fewer maps than last frame: the rest's memory goes
     ctx.stats = before;
+    ctx.multisampling = multisampling;
 }
 
 } // namespace sr

@@ -19,7 +19,7 @@ class RenderContext;
 // --shadows, --shadow-size, --shadow-pcf. Off: no shadow pass, no memory, the lighting as before.
 struct ShadowSettings {
     bool on = false;
-    int size = 2048; // texels per side of each light's map, kMinShadowSize..kMaxShadowSize
+    int size = 2048; // texels per side of each light's map, kMinShadowSize..kMaxShadowSize (shadowMapSide)
     // PCF kernel side k (1, 3 or 5): the receiver test compares k x k texels, the one under the
     // point and its neighbours at whole-texel offsets, each lit or not, and takes the mean.
     int pcf = 3;
@@ -35,6 +35,15 @@ struct ShadowSettings {
 };
 inline constexpr int kMaxCascades = 4;
 inline constexpr int kMinShadowSize = 16, kMaxShadowSize = 8192;
+// A map's depth is stored in tiles of kShadowTile x kShadowTile texels (4 KiB: one page), so
+// the PCF taps of a point and the texels of neighbouring screen pixels lie on a few pages and
+// cache lines rather than on as many rows 8 KiB apart; a map's side is --shadow-size rounded up
+// to a whole number of tiles.
+inline constexpr int kShadowTile = 32;
+constexpr int shadowMapSide(int size) {
+    const int s = size < kMinShadowSize ? kMinShadowSize : size > kMaxShadowSize ? kMaxShadowSize : size;
+    return (s + kShadowTile - 1) / kShadowTile * kShadowTile;
+}
 inline constexpr float kMaxBiasTangent = 10.0f;
 constexpr bool validShadowPcf(int k) { return k == 1 || k == 3 || k == 5; }
 
@@ -48,7 +57,16 @@ struct ShadowMap {
     float nearZ = 0.0f, farZ = 1.0f;
     float texelWorld = 0.0f;  // directional: a texel's world size; spot: per unit of distance
     float splitFar = 0.0f;    // directional: the cascade serves view depths up to this
-    FrameBuffer target;       // the depth (its colour is never written or read)
+    FrameBuffer target;       // the depth, in tiles (texelIndex; its colour is never written or read)
+
+    // Where texel (x, y), 0 <= x, y < side, is in target's depth array: tile by tile, a row of
+    // tiles after another, each tile row-major.
+    std::size_t texelIndex(int x, int y) const {
+        const std::size_t tilesX = std::size_t(target.width() / kShadowTile);
+        const std::size_t tile = std::size_t(y / kShadowTile) * tilesX + std::size_t(x / kShadowTile);
+        return tile * std::size_t(kShadowTile * kShadowTile) + std::size_t(y % kShadowTile * kShadowTile + x % kShadowTile);
+    }
+    float texel(int x, int y) const { return target.depthData()[texelIndex(x, y)]; }
 
     // z_ndc the projection gives a point at distance d (reversed-Z: nearer is larger).
     float depthAt(float d) const;

@@ -127,11 +127,24 @@ SR_SIMD_INLINE F mapVisibility(const ShadowMap& map, const ShadowSettings& s, co
     // Mat4 * Vec4(p, 1): ((m0 x + m4 y) + m8 z) + m12 w, with m12 w = m12 exactly.
     const F cx = ((fset(e[0]) * p.x + fset(e[4]) * p.y) + fset(e[8]) * p.z) + fset(e[12]);
     const F cy = ((fset(e[1]) * p.x + fset(e[5]) * p.y) + fset(e[9]) * p.z) + fset(e[13]);
-    const F cw = ((fset(e[3]) * p.x + fset(e[7]) * p.y) + fset(e[11]) * p.z) + fset(e[15]);
     const int size = map.target.width();
     const F fsize = fset(float(size)), one = fset(1.0f), half = fset(0.5f);
-    const F u = ((cx / cw + one) * half) * fsize, v = ((one - cy / cw) * half) * fsize;
-    const M inside = (cw > fzero()) & (u >= fzero()) & (v >= fzero()) & (u < fsize) & (v < fsize);
+    F u, v;
+    M inside;
+    if (e[3] == 0.0f && e[7] == 0.0f && e[11] == 0.0f && e[15] == 1.0f) {
+        // An orthographic map: w is exactly 1 for a finite p, and c / 1 is c. (A non-finite
+        // component of p makes cx or cy non-finite, 0 x inf included: off the map and lit, as
+        // the scalar code's NaN w.)
+        u = ((cx + one) * half) * fsize;
+        v = ((one - cy) * half) * fsize;
+        inside = mAll();
+    } else {
+        const F cw = ((fset(e[3]) * p.x + fset(e[7]) * p.y) + fset(e[11]) * p.z) + fset(e[15]);
+        u = ((cx / cw + one) * half) * fsize;
+        v = ((one - cy / cw) * half) * fsize;
+        inside = cw > fzero();
+    }
+    inside = inside & (u >= fzero()) & (v >= fzero()) & (u < fsize) & (v < fsize);
     if (bits(inside) == 0) return one;
     const F d = dot3({p.x - fset(map.origin.x), p.y - fset(map.origin.y), p.z - fset(map.origin.z)},
                      {fset(map.axis.x), fset(map.axis.y), fset(map.axis.z)});
@@ -149,17 +162,21 @@ SR_SIMD_INLINE F mapVisibility(const ShadowMap& map, const ShadowSettings& s, co
     }
     const int k = std::max(s.pcf, 1) / 2;
     const I tx = truncToInt(select(inside, u, fzero())), ty = truncToInt(select(inside, v, fzero()));
-    const I isize = iset(size), below = iset(-1);
+    // ShadowMap::texelIndex with shifts: 32 x 32 tiles, a row of tiles after another.
+    static_assert(kShadowTile == 32, "the shifts below are for 32 x 32 tiles");
+    const I isize = iset(size), below = iset(-1), low5 = iset(31), tileRow = iset(size / kShadowTile * kShadowTile * kShadowTile);
     const auto* depth = reinterpret_cast<const std::uint32_t*>(map.target.depthData());
     I lit = iset(0);
     for (int dy = -k; dy <= k; ++dy) {
         const I y = ty + iset(dy);
         const M rowIn = (y > below) & (y < isize);
-        const I row = mulLow(select(rowIn, y, iset(0)), isize);
+        const I yIn = select(rowIn, y, iset(0));
+        const I row = mulLow(shiftRightArith<5>(yIn), tileRow) + shiftLeft<5>(yIn & low5);
         for (int dx = -k; dx <= k; ++dx) {
             const I x = tx + iset(dx);
             const M in = rowIn & (x > below) & (x < isize);
-            const F stored = asFloat(gather(depth, row + select(in, x, iset(0))));
+            const I xIn = select(in, x, iset(0));
+            const F stored = asFloat(gather(depth, row + shiftLeft<10>(shiftRightArith<5>(xIn)) + (xIn & low5)));
             // Off the map: lit; on it: lit unless behind the nearest caster (reversed-Z).
             lit = lit + select(andNot(mAll(), in) | (receiver >= stored), iset(1), iset(0));
         }

@@ -290,3 +290,26 @@ TEST_CASE("shadow maps: a spot light's shadow against a ray-cast reference", "[r
     CHECK(t.wrongShadow == 0);
     CHECK(t.wrongLit == 0);
 }
+
+TEST_CASE("shadow maps: sides are whole tiles; texelIndex puts every texel at its own place, tile by tile", "[render][shadow]") {
+    CHECK(shadowMapSide(1) == 32);
+    CHECK(shadowMapSide(kMinShadowSize) == 32);
+    CHECK(shadowMapSide(100) == 128);
+    CHECK(shadowMapSide(2048) == 2048);
+    CHECK(shadowMapSide(2049) == 2080);
+    CHECK(shadowMapSide(kMaxShadowSize) == kMaxShadowSize);
+    CHECK(shadowMapSide(1 << 20) == kMaxShadowSize);
+    ShadowMap map;
+    map.target = FrameBuffer(96, 96); // 3 x 3 tiles
+    std::vector<int> seen(96 * 96, 0);
+    for (int y = 0; y < 96; ++y)
+        for (int x = 0; x < 96; ++x) {
+            const std::size_t i = map.texelIndex(x, y);
+            REQUIRE(i < seen.size());
+            ++seen[i];
+            // Tile (x / 32, y / 32) holds 1024 consecutive texels, row-major inside.
+            CHECK(i / 1024 == std::size_t(y / 32 * 3 + x / 32));
+            CHECK(i % 1024 == std::size_t(y % 32 * 32 + x % 32));
+        }
+    CHECK(std::count(seen.begin(), seen.end(), 1) == 96 * 96);
+}

@@ -232,8 +232,9 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
 
 namespace {
 
-// A shadow map whose depths are random (a quarter of them empty: kFarDepth), seen through
-// `viewProj`, from `origin` along `axis`.
+// A shadow map whose depths are random, texel by texel (a quarter of them empty: kFarDepth),
+// seen through `viewProj`, from `origin` along `axis`; `size` a whole number of tiles, as
+// renderShadowMaps makes them (shadowMapSide).
 ShadowMap randomMap(std::mt19937& rng, int size, const Mat4& viewProj, Vec3 origin, Vec3 axis, bool perspective, float nearZ,
                     float farZ, float texelWorld, float splitFar) {
     ShadowMap m;
@@ -245,6 +246,7 @@ ShadowMap randomMap(std::mt19937& rng, int size, const Mat4& viewProj, Vec3 orig
     m.farZ = farZ;
     m.texelWorld = texelWorld;
     m.splitFar = splitFar;
+    REQUIRE(size == shadowMapSide(size));
     m.target = FrameBuffer(size, size);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int y = 0; y < size; ++y)
@@ -284,12 +286,12 @@ TEST_CASE("the Phong kernels' shadow-map test is bit-identical to the scalar pro
         const Mat4 vp = orthographic(-extent, extent, -extent, extent, 0.0f, 12.0f) * lookAt(origin, Vec3{}, Vec3(0, 1, 0));
         return randomMap(rng, size, vp, origin, toLight * -1.0f, false, 0.0f, 12.0f, 2.0f * extent / float(size), splitFar);
     };
-    shadows.maps.push_back(directional(sun, 2.0f, 16, 1.5f));
-    shadows.maps.push_back(directional(sun, 3.0f, 24, 3.5f));
-    shadows.maps.push_back(directional(sun, 4.5f, 32, 1e30f));
-    shadows.maps.push_back(randomMap(rng, 20, perspective(1.2f, 1.0f, 0.5f, 20.0f) * lookAt(spotAt, spotAt + spotDir, Vec3(0, 1, 0)),
-                                     spotAt, spotDir, true, 0.5f, 20.0f, 2.0f * std::tan(0.6f) / 20.0f, 0.0f));
-    shadows.maps.push_back(directional(sky, 3.5f, 20, 0.0f));
+    shadows.maps.push_back(directional(sun, 2.0f, 32, 1.5f));
+    shadows.maps.push_back(directional(sun, 3.0f, 64, 3.5f));
+    shadows.maps.push_back(directional(sun, 4.5f, 96, 1e30f));
+    shadows.maps.push_back(randomMap(rng, 32, perspective(1.2f, 1.0f, 0.5f, 20.0f) * lookAt(spotAt, spotAt + spotDir, Vec3(0, 1, 0)),
+                                     spotAt, spotDir, true, 0.5f, 20.0f, 2.0f * std::tan(0.6f) / 32.0f, 0.0f));
+    shadows.maps.push_back(directional(sky, 3.5f, 64, 0.0f));
     shadows.firstMap = {0, 3, 0, 4};
     shadows.mapCount = {3, 1, 0, 1};
     view.shadows = &shadows;
