@@ -69,6 +69,16 @@ void referenceFill(const Prog& p, const KernelKey& key, const TriangleSetup& t, 
     }
 }
 
+// The mesh the programs read: one triangle (flat's face normal), its normals and uvs.
+Mesh oneTriangle() {
+    Mesh mesh;
+    mesh.positions = {{-1.0f, -0.5f, 0.2f}, {1.2f, -0.4f, -0.3f}, {0.1f, 1.1f, 0.4f}};
+    mesh.normals = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};
+    mesh.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    mesh.indices = {0, 1, 2};
+    return mesh;
+}
+
 struct Totals {
     long combinations = 0, pixels = 0;
 };
@@ -128,11 +138,7 @@ void compareKernel(Isa isa, const KernelKey& key, Make&& make, std::mt19937& rng
 TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the scalar reference", "[threads][simd][kernels]") {
     std::mt19937 rng(18u);
     // A scene the programs read: two lights, an eye, a material, a triangle for flat's face normal.
-    Mesh mesh;
-    mesh.positions = {{-1.0f, -0.5f, 0.2f}, {1.2f, -0.4f, -0.3f}, {0.1f, 1.1f, 0.4f}};
-    mesh.normals = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};
-    mesh.uvs = {{0, 0}, {1, 0}, {0, 1}};
-    mesh.indices = {0, 1, 2};
+    const Mesh mesh = oneTriangle();
     FrameView view;
     view.eye = {0.3f, 0.4f, 3.0f};
     view.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1))), Light::directional(normalize(Vec3(-0.3f, 0.2f, 1.0f)))};
@@ -258,11 +264,7 @@ ShadowMap randomMap(std::mt19937& rng, int size, const Mat4& viewProj, Vec3 orig
 
 TEST_CASE("the Phong kernels' shadow-map test is bit-identical to the scalar program's", "[threads][simd][kernels][shadow]") {
     std::mt19937 rng(17u);
-    Mesh mesh;
-    mesh.positions = {{-1.0f, -0.5f, 0.2f}, {1.2f, -0.4f, -0.3f}, {0.1f, 1.1f, 0.4f}};
-    mesh.normals = {{0, 0, 1}, {0, 1, 0}, {1, 0, 0}};
-    mesh.uvs = {{0, 0}, {1, 0}, {0, 1}};
-    mesh.indices = {0, 1, 2};
+    const Mesh mesh = oneTriangle();
     // Lights: a white directional light with three cascades of different sizes, a spot with a
     // perspective map, a point light (no map) and a coloured directional light with one map. The
     // varyings' positions in [-3, 3] fall on and off the maps, in front of and behind their
