@@ -247,10 +247,6 @@ void renderShadowMaps(RenderContext& ctx, const Scene& scene, const FrameView& v
     }
     std::size_t used = 0;
     const RenderStats before = ctx.stats;
-    // The maps are never multisampled (a screen-sized sample target the size of a map would
-    // otherwise take the pass's fill).
-    const bool multisampling = ctx.multisampling;
-    ctx.multisampling = false;
     FrameBuffer& screen = ctx.target();
     DrawState state;
     state.cull = CullMode::None;
@@ -286,7 +282,6 @@ void renderShadowMaps(RenderContext& ctx, const Scene& scene, const FrameView& v
     }
     out.maps.resize(used); // fewer maps than last frame: the rest's memory goes
     ctx.stats = before;
-    ctx.multisampling = multisampling;
 }
 
 } // namespace sr
