@@ -107,7 +107,7 @@ rendering() {
 }
 # The modes (the title after "tris — "): back to the start ones, one key at a time (keys sent
 # while the window is minimised or unfocused are lost, so the storm's count is no guide); then R.
-default_modes="cull none | phong | trilinear | exact | ssaa 4" # --quality balanced, the demo default
+default_modes="cull none | phong | trilinear | exact | ssaa 4 | shadows" # --quality balanced and the built-in scene's shadows, the demo default
 modes_now() { local t; t=$(xdotool getwindowname "$win" 2>/dev/null || true); echo "${t#* tris — }"; }
 reset_modes() {
   local m k i
