@@ -255,8 +255,8 @@ ShadowMap randomMap(std::mt19937& rng, int size, const Mat4& viewProj, Vec3 orig
     REQUIRE(size == shadowMapSide(size));
     m.target = FrameBuffer(size, size);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
-    for (int y = 0; y < size; ++y)
-        for (int x = 0; x < size; ++x) m.target.depthRow(y)[x] = rng() % 4u == 0 ? FrameBuffer::kFarDepth : unit(rng);
+    float* depth = m.target.depthData(); // in tiles (ShadowMap::texelIndex): random either way
+    for (std::size_t i = 0; i < std::size_t(size) * std::size_t(size); ++i) depth[i] = rng() % 4u == 0 ? FrameBuffer::kFarDepth : unit(rng);
     return m;
 }
 
