@@ -154,6 +154,16 @@ Tally tally(const Frames& f, const FrameView& view, ToLight toLight, float lift 
     return t;
 }
 
+// The tally's verdict: enough surely shadowed and surely lit floor pixels, and every one of them
+// right.
+void checkTally(const Tally& t, int minShadowed, int minLit) {
+    INFO("shadowed " << t.shadowed << " lit " << t.lit);
+    CHECK(t.shadowed > minShadowed);
+    CHECK(t.lit > minLit);
+    CHECK(t.wrongShadow == 0);
+    CHECK(t.wrongLit == 0);
+}
+
 ShadowSettings withPcf(int pcf, int size = 2048) {
     ShadowSettings s;
     s.pcf = pcf;
@@ -178,12 +188,7 @@ TEST_CASE("shadow maps: the floor in the box's shadow against a ray-cast referen
         const Frames f = render(scene, view, withPcf(3));
         CHECK(f.maps == std::size_t(ShadowSettings{}.cascades));
         const Vec3 l = normalize(toLight);
-        const Tally t = tally(f, view, [l](Vec3) { return l; });
-        INFO("shadowed " << t.shadowed << " lit " << t.lit);
-        CHECK(t.shadowed > 40);
-        CHECK(t.lit > 2000);
-        CHECK(t.wrongShadow == 0);
-        CHECK(t.wrongLit == 0);
+        checkTally(tally(f, view, [l](Vec3) { return l; }), 40, 2000);
     }
 }
 
@@ -283,12 +288,7 @@ TEST_CASE("shadow maps: a spot light's shadow against a ray-cast reference", "[r
     view.lighting.lights = {Light::spot(position, normalize(Vec3{-0.2f, -1.0f, -0.1f}), {30, 30, 30, 1}, 0.6f, 0.8f)};
     const Frames f = render(scene, view);
     CHECK(f.maps == 1); // one map for a spot light, no cascades
-    const Tally t = tally(f, view, [position](Vec3 p) { return position - p; });
-    INFO("shadowed " << t.shadowed << " lit " << t.lit);
-    CHECK(t.shadowed > 100);
-    CHECK(t.lit > 1000);
-    CHECK(t.wrongShadow == 0);
-    CHECK(t.wrongLit == 0);
+    checkTally(tally(f, view, [position](Vec3 p) { return position - p; }), 100, 1000);
 }
 
 TEST_CASE("shadow maps: sides are whole tiles; texelIndex puts every texel at its own place, tile by tile", "[render][shadow]") {
