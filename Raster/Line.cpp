@@ -195,6 +195,7 @@ void drawLine(MsaaBuffer& target, const LineVertex& a, const LineVertex& b, cons
         t = std::clamp(t, 0.0f, 1.0f);
         const float z = l->zA + t * (l->zB - l->zA);
         const Pixel c = lineColour(*l, o, t);
+        target.prepareSpan(y, x, x + 1);
         Pixel* colour = target.colourRow(y) + std::size_t(x) * std::size_t(n);
         float* depth = target.depthRow(y) + std::size_t(x) * std::size_t(n);
         for (int k = 0; k < n; ++k) {

@@ -36,6 +36,15 @@ const SampleOffset* msaaPattern(int samples);
 // one pixel are adjacent: sample s of pixel x on row y is element (y * width + x) * samples + s).
 // Empty until resized; resize keeps the allocation when it fits, and the contents when the size
 // and count are unchanged.
+//
+// Fast clear: clearRowsLazily marks blocks of kMsaaClearBlock pixels of a row as holding the
+// clear values without writing them; a block is written (made real) only when something is
+// drawn into it (prepareSpan), and the resolve turns a still-pending block into the clear colour
+// without reading it. A frame that covers a fifth of the screen so moves a fifth of the sample
+// memory instead of all of it twice (clear and resolve). colourRow / depthRow are the raw
+// memory: whoever reads or writes samples calls prepareSpan for them first.
+inline constexpr int kMsaaClearBlock = 16;
+
 class MsaaBuffer {
 public:
     // Returns false (and leaves the buffer as it was) for a size FrameBuffer would refuse, a
@@ -53,8 +62,24 @@ public:
     float* depthRow(int y) { return depth_.data() + offset(y); }
     const float* depthRow(int y) const { return depth_.data() + offset(y); }
 
-    // Sets rows [rowBegin, rowEnd) of every sample to colour and depth.
+    // Sets rows [rowBegin, rowEnd) of every sample to colour and depth (written now).
     void clearRows(int rowBegin, int rowEnd, Pixel colour, float depth);
+    // The same, as pending blocks (fast clear): nothing is written until prepareSpan.
+    void clearRowsLazily(int rowBegin, int rowEnd, Pixel colour, float depth);
+    // Makes the samples of pixels [x0, x1) of row y real (writes the pending clear of the blocks
+    // they lie in), so that colourRow / depthRow can be read and written there. Rows are
+    // independent: lanes that own different rows may call it at once.
+    void prepareSpan(int y, int x0, int x1) {
+        std::uint8_t* pending = pending_.data() + std::size_t(y) * std::size_t(blocksPerRow_);
+        for (int b = x0 / kMsaaClearBlock, last = (x1 - 1) / kMsaaClearBlock; b <= last; ++b)
+            if (pending[b]) materialise(y, b);
+    }
+    // Whether block b (pixels [b * kMsaaClearBlock, ...)) of row y is a pending clear.
+    bool pendingBlock(int y, int b) const {
+        return pending_[std::size_t(y) * std::size_t(blocksPerRow_) + std::size_t(b)] != 0;
+    }
+    Pixel rowClearColour(int y) const { return rowClear_[std::size_t(y)].colour; }
+    float rowClearDepth(int y) const { return rowClear_[std::size_t(y)].depth; }
 
     // Whether every sample is known to hold (colour, depth): set by markCleared once all rows are
     // cleared (by clearRows or a resolve that clears), reset by resize and markDrawn (any draw).
@@ -70,12 +95,19 @@ public:
 
 private:
     std::size_t offset(int y) const { return std::size_t(y) * std::size_t(width_) * std::size_t(samples_); }
-    int width_ = 0, height_ = 0, samples_ = 1;
+    void materialise(int y, int block);
+    struct RowClear {
+        Pixel colour = 0;
+        float depth = 0.0f;
+    };
+    int width_ = 0, height_ = 0, samples_ = 1, blocksPerRow_ = 0;
     bool cleared_ = false;
     Pixel clearColour_ = 0;
     float clearDepth_ = 0.0f;
     std::vector<Pixel> colour_;
     std::vector<float> depth_;
+    std::vector<std::uint8_t> pending_; // per row, per block: 1 = holds its row's clear (not yet written)
+    std::vector<RowClear> rowClear_;    // per row: the values of its pending blocks
 };
 
 // Box-filters rows [rowBegin, rowEnd) of `out` (the same size as `samples`, asserted) from the
@@ -83,9 +115,9 @@ private:
 // (sum + n/2) / n of the stored 8-bit values, depth = the nearest (largest) sample.
 void resolveMsaaRows(const MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd);
 
-// The same, clearing each row of samples to (colour, depth) right after it is resolved, while its
-// lines are still in the cache: the next frame's clear costs no second pass over the memory (the
-// caller marks the buffer cleared once every row is done).
+// The same, then clearing each row of samples to (colour, depth) lazily (clearRowsLazily): the
+// next frame's clear costs no pass over the memory (the caller marks the buffer cleared once
+// every row is done). A pending block resolves to its clear without being read.
 void resolveAndClearMsaaRows(MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd, Pixel colour,
                              float depth);
 

@@ -50,45 +50,32 @@ inline void msaaRowRange(const TriangleSetup& t, int& rowBegin, int& rowEnd) {
     rowEnd = int(floorDiv(std::int64_t(t.longEdge.y0) + t.longEdge.dy, kSubPixelScale)) + 1;
 }
 
-namespace detail {
-
-// A hint that the cache line holding `p` is about to be read and written (no effect where the
-// compiler has no such hint).
-inline void prefetchForWrite(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p, 1, 3);
-#else
-    (void)p;
-#endif
-}
-
-// The centroid of the samples in a coverage mask, as an offset from the pixel centre in pixels
-// (the mean of their pattern offsets; (0, 0) for an empty mask).
-struct Centroid {
-    double dx = 0.0, dy = 0.0;
+// How coverTriangleSamples finds the covered samples and tests their depth (both give the same
+// result: tested).
+enum class MsaaCoverageMethod {
+    Auto,      // edge functions for a small triangle, else the walks; the depth test 4 samples at a time
+    Reference, // n + 1 exact edge walks (forEachSpan), one per sample and one for the centre, and
+               // the depth test sample by sample: the readable twin
 };
-template <int kN>
-const Centroid* centroidTable() {
-    static const auto table = [] {
-        std::vector<Centroid> t(std::size_t(1) << kN);
-        const SampleOffset* pattern = msaaPattern(kN);
-        for (unsigned mask = 1; mask < t.size(); ++mask) {
-            double sx = 0.0, sy = 0.0;
-            int count = 0;
-            for (int k = 0; k < kN; ++k) {
-                if (!(mask & (1u << k))) continue;
-                sx += pattern[k].x;
-                sy += pattern[k].y;
-                ++count;
-            }
-            t[mask] = {sx / (count * double(kSubPixelScale)), sy / (count * double(kSubPixelScale))};
-        }
-        return t;
-    }();
-    return table.data();
+
+// Whether coverTriangleSamples tests triangle `t` with edge functions (Auto): its snapped extent
+// plus the one-pixel margin the sample offsets need fits in kMsaaSmallSide pixels each way, so
+// every edge value over that box is below 2 * (32 * 256) * (34 * 256) < 2^28: exact in int32.
+inline constexpr int kMsaaSmallSide = 32;
+inline bool msaaSmallTriangle(const TriangleSetup& t) {
+    int rowBegin = 0, rowEnd = 0;
+    msaaRowRange(t, rowBegin, rowEnd);
+    return t.maxX - t.minX + 3 <= kMsaaSmallSide && rowEnd - rowBegin <= kMsaaSmallSide;
 }
 
-} // namespace detail
+// The multisampled fill's first stage (MsaaCoverage.cpp): for triangle `t` inside the scissor,
+// fills scratch.rows / covered / passed (the covered samples of each row's pixels, and those
+// that passed the depth test, which TestWrite also writes) and scratch.runs (the pixels to
+// shade: runs at the centre, single pixels at their centroid). Sample coverage is the top-left
+// rule at each sample point; a small triangle is tested with edge functions over its bounding
+// box (all samples of a pixel at once, int32), a large one with exact edge walks.
+void coverTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
+                          MsaaScratch& scratch, MsaaCoverageMethod method = MsaaCoverageMethod::Auto);
 
 // A multisampled draw with texel alpha (Blend.hpp) shades once per pixel like any other, and its
 // alpha travels with the colour in the shading row's X byte (the top byte, 0xFF otherwise) to
@@ -110,125 +97,31 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
                          AlphaMode texelAlpha) {
     constexpr int n = kN;
     const SampleOffset* pattern = msaaPattern(n);
-    const Centroid* centroids = centroidTable<kN>();
-    int rowBegin = 0, rowEnd = 0;
-    msaaRowRange(t, rowBegin, rowEnd);
-    rowBegin = std::max(rowBegin, s.y0);
-    rowEnd = std::min(rowEnd, s.y1);
-    if (rowBegin >= rowEnd || t.maxX + 1 < s.x0 || t.minX - 1 >= s.x1) return;
-
-    // 0. A small triangle's samples are a few short pieces of rows far apart in memory (a row of
-    //    samples is width * n * 4 bytes): ask for all of its depth and colour lines now, so that
-    //    their cache misses overlap with each other and with the walks below instead of stalling
-    //    the depth test one line at a time (a large triangle's rows stream well on their own).
-    const int boxX0 = std::max(t.minX - 1, s.x0), boxX1 = std::min(t.maxX + 2, s.x1);
-    if (boxX1 - boxX0 <= 64 && rowEnd - rowBegin <= 64) {
-        constexpr std::size_t kLine = 64 / sizeof(float); // samples per 64-byte cache line
-        for (int y = rowBegin; y < rowEnd; ++y) {
-            const std::size_t from = std::size_t(boxX0) * n, to = std::size_t(boxX1) * n;
-            for (std::size_t i = from; i < to; i += kLine) {
-                prefetchForWrite(target.depthRow(y) + i);
-                prefetchForWrite(target.colourRow(y) + i);
-            }
-            prefetchForWrite(target.depthRow(y) + to - 1);
-            prefetchForWrite(target.colourRow(y) + to - 1);
-        }
-    }
-
-    // 1. The span of every sample (and of the centre, entry n) on every row: n + 1 exact walks.
-    const int stride = 2 * (n + 1);
-    scratch.spans.assign(std::size_t(rowEnd - rowBegin) * std::size_t(stride), 0); // [0, 0): empty
-    for (int k = 0; k <= n; ++k) {
-        const SpanCoverage c = k < n ? sampleCoverage(t, pattern[k].x, pattern[k].y) : sampleCoverage(t, 0, 0);
-        const Scissor rows{s.x0, rowBegin, s.x1, rowEnd};
-        forEachSpan(c, rows, [&](int y, int x0, int x1) {
-            int* span = scratch.spans.data() + std::size_t(y - rowBegin) * std::size_t(stride) + 2 * k;
-            span[0] = x0;
-            span[1] = x1;
-        });
-    }
-
-    // 2. Per row: coverage and the depth test, pixel by pixel, its N samples together (adjacent
-    //    in memory); the masks are kept (per row from its first pixel `lo`) for step 4, and the
-    //    pixels to shade are listed: runs of pixels whose centre is covered, shaded at the
-    //    centre, and every other pixel with a sample that passed on its own, at the centroid of
-    //    its covered samples. Depth of sample k: the plane at the sample point of pixel `lo` in
-    //    double, then + (x - lo) ddx in double, rounded once.
-    scratch.rows.clear();
-    scratch.runs.clear();
-    std::size_t used = 0;
     const double ddx = t.ddx[kPlaneZ];
-    for (int y = rowBegin; y < rowEnd; ++y) {
-        const int* spans = scratch.spans.data() + std::size_t(y - rowBegin) * std::size_t(stride);
-        int lo = s.x1, hi = s.x0;
-        for (int k = 0; k < n; ++k) {
-            if (spans[2 * k] >= spans[2 * k + 1]) continue;
-            lo = std::min(lo, spans[2 * k]);
-            hi = std::max(hi, spans[2 * k + 1]);
-        }
-        if (lo >= hi) continue;
-        const std::size_t width = std::size_t(hi - lo);
-        if (scratch.covered.size() < used + width) {
-            scratch.covered.resize(2 * (used + width));
-            scratch.passed.resize(2 * (used + width));
-        }
-        std::uint8_t* covered = scratch.covered.data() + used;
-        std::uint8_t* passed = scratch.passed.data() + used;
-        scratch.rows.push_back({y, lo, hi, used});
-        used += width;
-
-        float* depth = target.depthRow(y);
-        double zStart[kN];
-        int x0s[kN], x1s[kN];
-        for (int k = 0; k < kN; ++k) {
-            x0s[k] = spans[2 * k];
-            x1s[k] = spans[2 * k + 1];
-            zStart[k] = t.planeAt(kPlaneZ, lo + 0.5 + double(pattern[k].x) / kSubPixelScale,
-                                  y + 0.5 + double(pattern[k].y) / kSubPixelScale);
-        }
-        for (int x = lo; x < hi; ++x) {
-            float* stored = depth + std::size_t(x) * kN;
-            const double step = double(x - lo);
-            unsigned cover = 0, pass = 0;
-            for (int k = 0; k < kN; ++k) {
-                const bool in = x >= x0s[k] && x < x1s[k];
-                const float z = float(zStart[k] + ddx * step);
-                bool ok = in;
-                if constexpr (kDepth != DepthMode::Off) ok = ok && z > stored[k];
-                if constexpr (kDepth == DepthMode::TestWrite) stored[k] = ok ? z : stored[k];
-                cover |= unsigned(in) << k;
-                pass |= unsigned(ok) << k;
-            }
-            covered[x - lo] = std::uint8_t(cover);
-            passed[x - lo] = std::uint8_t(pass);
-        }
-
-        const int c0 = std::max(spans[2 * n], lo), c1 = std::min(spans[2 * n + 1], hi);
-        for (int x = lo; x < hi;) {
-            if (passed[x - lo] == 0) {
-                ++x;
-            } else if (x >= c0 && x < c1) {
-                const int from = x;
-                while (x < c1 && passed[x - lo] != 0) ++x;
-                scratch.runs.push_back({y, from, x, 0.0, 0.0});
-            } else {
-                const Centroid& m = centroids[covered[x - lo]];
-                scratch.runs.push_back({y, x, x + 1, m.dx, m.dy});
-                ++x;
-            }
-        }
-    }
+    // 1. Coverage and the depth test per sample, and the pixels to shade (coverTriangleSamples).
+    coverTriangleSamples(t, target, s, kDepth, scratch);
     if (scratch.runs.empty()) return;
 
-    // 3. Shade once per listed pixel, all rows in one call; the colours land in the pixel-sized
+    // 2. Shade once per listed pixel, all rows in one call; the colours land in the pixel-sized
     //    shading rows.
     shadeRuns(static_cast<const SpanRun*>(scratch.runs.data()), int(scratch.runs.size()));
 
-    // 4. Write each shaded colour to the samples that passed.
+    // 3. Write each shaded colour to the samples that passed.
+    const bool opaque = alpha >= 1.0f && texelAlpha == AlphaMode::Off;
     for (const MsaaScratch::Row& row : scratch.rows) {
         const Pixel* shadedRow = shadeRow(row.y);
         const std::uint8_t* passed = scratch.passed.data() + row.offset;
         Pixel* colour = target.colourRow(row.y);
+        if (opaque) { // the common case: each passing sample takes the colour
+            for (int x = row.lo; x < row.hi; ++x) {
+                const unsigned pass = passed[x - row.lo];
+                shaded += pass != 0;
+                const Pixel c = shadedRow[x];
+                Pixel* samples = colour + std::size_t(x) * std::size_t(n);
+                for (int k = 0; k < n; ++k) samples[k] = (pass >> k & 1u) ? c : samples[k];
+            }
+            continue;
+        }
         double zStart[kN] = {};
         if (texelAlpha == AlphaMode::Mask)
             for (int k = 0; k < kN; ++k)
@@ -252,7 +145,7 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
                     continue;
                 }
                 c |= 0xFF000000u;
-                // The depth write the test left to this step (kDepth is Test): step 2's floats.
+                // The depth write the test left to this step (kDepth is Test): step 1's floats.
                 float* depth = target.depthRow(row.y) + std::size_t(x) * std::size_t(n);
                 for (int k = 0; k < n; ++k)
                     if (pass & (1u << k)) depth[k] = float(zStart[k] + ddx * double(x - row.lo));

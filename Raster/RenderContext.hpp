@@ -107,8 +107,8 @@ public:
 
     // Clears the target's colour and depth, split by rows over the render threads. While
     // multisampling, the samples instead (the target's rows are then only the shading scratch
-    // and the resolve's output), and nothing when they are known to be clear already (a resolve
-    // that cleared them: MsaaBuffer::isCleared).
+    // and the resolve's output) as a fast clear (MsaaBuffer::clearRowsLazily), and nothing when
+    // they are known to be clear already (a resolve that cleared them: MsaaBuffer::isCleared).
     void clearTarget(Pixel colour, float depth) {
         FrameBuffer& fb = *target_;
         MsaaBuffer* samples = multisampleTarget();
@@ -118,7 +118,7 @@ public:
             const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
             if (y0 >= y1) return;
             if (samples) {
-                samples->clearRows(y0, y1, colour, depth);
+                samples->clearRowsLazily(y0, y1, colour, depth);
                 return;
             }
             fillWords(fb.colorRow(y0), std::size_t(y1 - y0) * std::size_t(width), colour);

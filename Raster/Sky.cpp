@@ -270,6 +270,7 @@ std::uint64_t drawSkyMsaaRows(MsaaBuffer& target, const ViewRays& rays, const Sk
     const int n = target.samples();
     SkyPainter painter(sky, rays, target.width(), target.height());
     for (int y = y0; y < y1; ++y) {
+        target.prepareSpan(y, 0, target.width());
         Pixel* colour = target.colourRow(y);
         const float* depth = target.depthRow(y);
         painter.setRow(y);

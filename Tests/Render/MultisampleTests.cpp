@@ -14,6 +14,7 @@
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/Line.hpp"
 #include "Raster/Msaa.hpp"
+#include "Raster/MsaaFill.hpp"
 #include "Raster/Pipeline.hpp"
 #include "Raster/RenderContext.hpp"
 #include "Raster/Scene.hpp"
@@ -292,4 +293,74 @@ TEST_CASE("MSAA: every kernel ISA gives the scalar reference's image, for every 
                     CHECK(std::equal(fb.colorData(), fb.colorData() + 80 * 56, reference.colorData()));
                 }
             }
+}
+
+TEST_CASE("MSAA fast clear: pending blocks resolve to the clear and are written only where drawn", "[msaa]") {
+    // The same triangles and lines drawn into a buffer cleared the slow way (every sample written)
+    // and into one cleared lazily over stale contents: the resolved images (colour and depth) must
+    // be equal, and the lazily cleared one must have written only the blocks that were drawn in.
+    constexpr int kW = 45, kH = 30; // 45: the last block of a row is partial
+    const Pixel clear = packBgra(10, 20, 30), stale = packBgra(200, 0, 200);
+    std::mt19937 rng(26);
+    auto uniform = [&](float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(rng); };
+    auto vtx = [](float x, float y, float z) {
+        ScreenVertex v;
+        v.x = x;
+        v.y = y;
+        v.z = z;
+        v.invW = 1.0f;
+        return v;
+    };
+    for (int n : {2, 4, 8}) {
+        CAPTURE(n);
+        MsaaBuffer written, lazy;
+        REQUIRE(written.resize(kW, kH, n));
+        REQUIRE(lazy.resize(kW, kH, n));
+        written.clearRows(0, kH, clear, FrameBuffer::kFarDepth);
+        lazy.clearRows(0, kH, stale, 0.75f); // what the last frame left
+        lazy.clearRowsLazily(0, kH, clear, FrameBuffer::kFarDepth);
+        FrameBuffer shading(kW, kH);
+        MsaaScratch scratch;
+        std::vector<std::pair<int, int>> drawnBlocks; // (row, block) of every pixel a triangle shaded
+        for (int i = 0; i < 12; ++i) {
+            const float x = uniform(0, kW), y = uniform(0, kH), z = uniform(0.1f, 0.9f);
+            const ScreenVertex a = vtx(x, y, z), b = vtx(x + uniform(-6, 6), y + uniform(-6, 6), z),
+                               c = vtx(x + uniform(-6, 6), y + uniform(-6, 6), z);
+            TriangleSetup t;
+            if (setupTriangleCulled(t, a, b, c, CullMode::None, 0, true, {}, true) != SetupOutcome::Ready) continue;
+            const Pixel ink = packBgra(std::uint8_t(20 * i), 255, std::uint8_t(255 - 20 * i));
+            auto shadeRow = [&](int row) -> const Pixel* { return shading.colorRow(row); };
+            auto shadeRuns = [&](const SpanRun* runs, int count) {
+                for (int r = 0; r < count; ++r)
+                    for (int px = runs[r].x0; px < runs[r].x1; ++px) {
+                        shading.colorRow(runs[r].y)[px] = ink;
+                        drawnBlocks.push_back({runs[r].y, px / kMsaaClearBlock});
+                    }
+            };
+            for (MsaaBuffer* target : {&written, &lazy}) {
+                std::uint64_t shaded = 0;
+                fillTriangleMsaa<DepthMode::TestWrite>(t, *target, Scissor{0, 0, kW, kH}, scratch, shadeRow, shadeRuns,
+                                                       shaded);
+            }
+        }
+        const LineVertex from{1.5f, 28.2f, 0.95f, packBgra(255, 255, 255)}, to{44.0f, 27.0f, 0.95f, packBgra(255, 255, 255)};
+        drawLine(written, from, to);
+        drawLine(lazy, from, to);
+        FrameBuffer a(kW, kH), b(kW, kH);
+        resolveMsaaRows(written, a, 0, kH);
+        resolveMsaaRows(lazy, b, 0, kH);
+        CHECK(std::equal(a.colorData(), a.colorData() + kW * kH, b.colorData()));
+        CHECK(std::equal(a.depthData(), a.depthData() + kW * kH, b.depthData()));
+        // Drawn blocks are real; most of the rest are still pending (never written).
+        REQUIRE(drawnBlocks.size() > 50);
+        for (const auto& [row, block] : drawnBlocks) REQUIRE_FALSE(lazy.pendingBlock(row, block));
+        int pending = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int block = 0; block * kMsaaClearBlock < kW; ++block) pending += lazy.pendingBlock(y, block) ? 1 : 0;
+        CHECK(pending > 10);
+        CHECK(pending < kH * 3 - 10);
+        // A pending block's memory still holds the stale frame: the resolve did not read it.
+        for (int y = 0; y < kH; ++y)
+            if (lazy.pendingBlock(y, 0)) CHECK(lazy.colourRow(y)[0] == stale);
+    }
 }
