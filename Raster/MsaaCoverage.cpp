@@ -225,6 +225,28 @@ void coverByWalks(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
 // --- Small triangles: edge functions over the bounding box, a pixel's samples at once ----------
 // (msaaSmallTriangle: every edge value, step and sample offset over the box is exact in int32.)
 
+// Index of the lowest / highest set bit of a non-zero word.
+inline int lowestBit(std::uint32_t v) {
+    assert(v != 0);
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctz(v);
+#else
+    int i = 0;
+    for (; !(v & 1u); v >>= 1) ++i;
+    return i;
+#endif
+}
+inline int highestBit(std::uint32_t v) {
+    assert(v != 0);
+#if defined(__GNUC__) || defined(__clang__)
+    return 31 - __builtin_clz(v);
+#else
+    int i = 31;
+    for (; !(v & 0x80000000u); v <<= 1) --i;
+    return i;
+#endif
+}
+
 struct FixedPoint64 {
     std::int64_t x, y;
 };
@@ -321,21 +343,19 @@ bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scis
     std::int32_t r0 = edges[0].atOrigin, r1 = edges[1].atOrigin, r2 = edges[2].atOrigin;
     for (int y = rowBegin; y < rowEnd;
          ++y, r0 += edges[0].stepY, r1 += edges[1].stepY, r2 += edges[2].stepY) {
-        int lo = x1, hi = x0, c0 = x1, c1 = x0;
+        // Bit i of `any` / `centre`: pixel x0 + i has a covered sample / its centre covered
+        // (the box is at most kMsaaSmallSide = 32 pixels wide).
+        std::uint32_t any = 0, centre = 0;
         std::int32_t e0 = r0, e1 = r1, e2 = r2;
-        for (int x = x0; x < x1; ++x, e0 += edges[0].stepX, e1 += edges[1].stepX, e2 += edges[2].stepX) {
+        for (int i = 0; i < x1 - x0; ++i, e0 += edges[0].stepX, e1 += edges[1].stepX, e2 += edges[2].stepX) {
             const unsigned mask = masksOf(e0, e1, e2);
-            rowMasks[x - x0] = std::uint8_t(mask);
-            if (mask != 0) {
-                lo = std::min(lo, x);
-                hi = x + 1;
-            }
-            if ((e0 | e1 | e2) >= 0) { // the centre
-                c0 = std::min(c0, x);
-                c1 = x + 1;
-            }
+            rowMasks[i] = std::uint8_t(mask);
+            any |= std::uint32_t(mask != 0) << i;
+            centre |= std::uint32_t((e0 | e1 | e2) >= 0) << i;
         }
-        if (lo >= hi) continue;
+        if (any == 0) continue;
+        const int lo = x0 + lowestBit(any), hi = x0 + highestBit(any) + 1;
+        const int c0 = centre ? x0 + lowestBit(centre) : x1, c1 = centre ? x0 + highestBit(centre) + 1 : x0;
         const std::size_t width = std::size_t(hi - lo);
         reserveMasks(scratch, used, width);
         std::uint8_t* covered = scratch.covered.data() + used;
@@ -396,7 +416,43 @@ void coverSamplesFor(const TriangleSetup& t, MsaaBuffer& target, const Scissor& 
     }
 }
 
+template <int kN>
+std::uint64_t writeRow(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi) {
+    std::uint64_t count = 0;
+    for (int x = lo; x < hi; ++x) {
+        const unsigned pass = passed[x - lo];
+        if (pass == 0) continue;
+        ++count;
+        const Pixel c = shaded[x];
+        Pixel* samples = colourRow + std::size_t(x) * kN;
+#if SR_MSAA_SSE2
+        if constexpr (kN >= 4) {
+            const __m128i colour = _mm_set1_epi32(int(c));
+            for (int g = 0; g < kN / 4; ++g) {
+                __m128i* at = reinterpret_cast<__m128i*>(samples + 4 * g);
+                const __m128i keep = laneMask(pass >> (4 * g) & 0xFu);
+                _mm_storeu_si128(at, _mm_or_si128(_mm_and_si128(keep, colour), _mm_andnot_si128(keep, _mm_loadu_si128(at))));
+            }
+            continue;
+        }
+#endif
+        for (int k = 0; k < kN; ++k)
+            if (pass >> k & 1u) samples[k] = c;
+    }
+    return count;
+}
+
 } // namespace
+
+std::uint64_t writeSampleRow(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi,
+                             int samples) {
+    switch (samples) {
+    case 2: return writeRow<2>(colourRow, shaded, passed, lo, hi);
+    case 4: return writeRow<4>(colourRow, shaded, passed, lo, hi);
+    case 8: return writeRow<8>(colourRow, shaded, passed, lo, hi);
+    default: return writeRow<1>(colourRow, shaded, passed, lo, hi);
+    }
+}
 
 void coverTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
                           MsaaScratch& scratch, MsaaCoverageMethod method) {

@@ -77,6 +77,11 @@ inline bool msaaSmallTriangle(const TriangleSetup& t) {
 void coverTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
                           MsaaScratch& scratch, MsaaCoverageMethod method = MsaaCoverageMethod::Auto);
 
+// Writes shaded[x] to the samples of pixels [lo, hi) of a sample row whose bits are set in
+// passed[x - lo] (the others keep theirs); returns how many pixels had one (MsaaCoverage.cpp).
+std::uint64_t writeSampleRow(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi,
+                             int samples);
+
 // A multisampled draw with texel alpha (Blend.hpp) shades once per pixel like any other, and its
 // alpha travels with the colour in the shading row's X byte (the top byte, 0xFF otherwise) to
 // the per-sample write: Mask: 0xFF kept, 0 discarded (the float test a >= cutoff is made here,
@@ -113,13 +118,7 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
         const std::uint8_t* passed = scratch.passed.data() + row.offset;
         Pixel* colour = target.colourRow(row.y);
         if (opaque) { // the common case: each passing sample takes the colour
-            for (int x = row.lo; x < row.hi; ++x) {
-                const unsigned pass = passed[x - row.lo];
-                shaded += pass != 0;
-                const Pixel c = shadedRow[x];
-                Pixel* samples = colour + std::size_t(x) * std::size_t(n);
-                for (int k = 0; k < n; ++k) samples[k] = (pass >> k & 1u) ? c : samples[k];
-            }
+            shaded += writeSampleRow(colour, shadedRow, passed, row.lo, row.hi, n);
             continue;
         }
         double zStart[kN] = {};
