@@ -651,6 +651,34 @@ struct SpanKernel {
         shadeQueued(used);
     }
 
+    // A one-pixel span [x, x + 1) of row y on the setup with its origin at (originX, originY)
+    // (moveOrigin: a pixel shaded at its centroid), without a depth test: lane 0 of operator()'s
+    // one group, computed alone (the same double plane values, the same float operations with
+    // step 0) and queued, instead of a whole group of lanes for one.
+    void queueOne(int y, int x, double originX, double originY) const {
+        static_assert(kDepth == DepthMode::Off && kV > 0, "the multisampled fill's centroid pixels");
+        const double dx = (x + 0.5) - originX, dy = (y + 0.5) - originY;
+        const int at = queue.count;
+        const double invWValue = t.value[kPlaneInvW] + t.ddx[kPlaneInvW] * dx + t.ddy[kPlaneInvW] * dy;
+        const float invW = float(invWValue + t.ddx[kPlaneInvW] * 0.0);
+        const float w = 1.0f / invW;
+        for (int k = 0; k < kV; ++k) {
+            const int plane = kPlaneVarying0 + k;
+            const float start = float(t.value[plane] + t.ddx[plane] * dx + t.ddy[plane] * dy);
+            const float value = start + t.ddxStep[plane] * 0.0f;
+            queue.v[k][at] = kPersp == PerspectiveMode::Exact ? value * w : value;
+        }
+        queue.x[at] = x;
+        queue.y[at] = y;
+        queue.invW[at] = invW;
+        ++shaded;
+        queue.count = at + 1;
+        if (queue.count == kLanes) {
+            shadeQueued(kLanes);
+            queue.count = 0;
+        }
+    }
+
     void operator()(int y, int x0, int x1) const {
         // Plane values at the centre of the span's first pixel (double, rounded once), as fillTriangle.
         const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
@@ -790,6 +818,14 @@ void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const
     for (int r = 0; r < count; ++r) {
         if (runs[r].dx == 0.0 && runs[r].dy == 0.0) span(runs[r].y, runs[r].x0, runs[r].x1);
         else ++movedRuns;
+    }
+    if constexpr (Prog::kVaryings > 0) { // the centroid pixels one lane each (queueOne)
+        for (int r = 0; r < count && movedRuns > 0; ++r) {
+            if (runs[r].dx == 0.0 && runs[r].dy == 0.0) continue;
+            const double originX = t.originX - runs[r].dx, originY = t.originY - runs[r].dy; // as moveOrigin
+            for (int x = runs[r].x0; x < runs[r].x1; ++x) span.queueOne(runs[r].y, x, originX, originY);
+        }
+        movedRuns = 0;
     }
     if (movedRuns > 0) {
         TriangleSetup moved = t;
