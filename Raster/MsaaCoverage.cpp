@@ -1,6 +1,7 @@
 // The multisampled fill's coverage and depth stage (MsaaFill.hpp): which samples of which pixels
 // a triangle covers, which of them pass the depth test, and the pixels to shade.
 #include "Raster/MsaaFill.hpp"
+#include "Raster/Prefetch.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -14,16 +15,6 @@
 
 namespace sr {
 namespace {
-
-// A hint that the cache line holding `p` is about to be read and written (no effect where the
-// compiler has no such hint).
-inline void prefetchForWrite(const void* p) {
-#if defined(__GNUC__) || defined(__clang__)
-    __builtin_prefetch(p, 1, 3);
-#else
-    (void)p;
-#endif
-}
 
 // The centroid of the samples in a coverage mask, as an offset from the pixel centre in pixels
 // (the mean of their pattern offsets; (0, 0) for an empty mask).
@@ -338,13 +329,17 @@ bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scis
                                   boxEdge<kN>(a, b, origin, pattern)};
     const SampleMasks<kN> masksOf(edges);
 
-    std::uint8_t rowMasks[kMsaaSmallSide];
+    // The masks are written straight into the scratch rows, a whole box row each (the row's
+    // record then starts at its first covered pixel).
+    const std::size_t boxWidth = std::size_t(x1 - x0);
+    reserveMasks(scratch, 0, boxWidth * std::size_t(rowEnd - rowBegin));
     std::size_t used = 0;
     std::int32_t r0 = edges[0].atOrigin, r1 = edges[1].atOrigin, r2 = edges[2].atOrigin;
     for (int y = rowBegin; y < rowEnd;
          ++y, r0 += edges[0].stepY, r1 += edges[1].stepY, r2 += edges[2].stepY) {
         // Bit i of `any` / `centre`: pixel x0 + i has a covered sample / its centre covered
         // (the box is at most kMsaaSmallSide = 32 pixels wide).
+        std::uint8_t* rowMasks = scratch.covered.data() + used;
         std::uint32_t any = 0, centre = 0;
         std::int32_t e0 = r0, e1 = r1, e2 = r2;
         for (int i = 0; i < x1 - x0; ++i, e0 += edges[0].stepX, e1 += edges[1].stepX, e2 += edges[2].stepX) {
@@ -356,13 +351,11 @@ bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scis
         if (any == 0) continue;
         const int lo = x0 + lowestBit(any), hi = x0 + highestBit(any) + 1;
         const int c0 = centre ? x0 + lowestBit(centre) : x1, c1 = centre ? x0 + highestBit(centre) + 1 : x0;
-        const std::size_t width = std::size_t(hi - lo);
-        reserveMasks(scratch, used, width);
-        std::uint8_t* covered = scratch.covered.data() + used;
-        std::uint8_t* passed = scratch.passed.data() + used;
-        scratch.rows.push_back({y, lo, hi, used});
-        used += width;
-        std::copy(rowMasks + (lo - x0), rowMasks + (hi - x0), covered);
+        const std::size_t offset = used + std::size_t(lo - x0);
+        std::uint8_t* covered = scratch.covered.data() + offset;
+        std::uint8_t* passed = scratch.passed.data() + offset;
+        scratch.rows.push_back({y, lo, hi, offset});
+        used += boxWidth;
         target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
         depthTestRow<kN, kDepth, true>(t, pattern, target.depthRow(y), y, lo, hi, covered, passed);
         listRuns<kN>(scratch, y, lo, hi, c0, c1, covered, passed);

@@ -16,6 +16,7 @@
 #include "Raster/Line.hpp"
 #include "Raster/MsaaFill.hpp"
 #include "Raster/PipelineModes.hpp" // PipelineStop, DepthMode, PerspectiveMode
+#include "Raster/Prefetch.hpp"
 #include "Raster/RenderContext.hpp"
 #include "Raster/ScanlineFill.hpp"
 #include "Raster/Stencil.hpp"
@@ -395,10 +396,21 @@ void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipp
     const bool wireDepthTest = state.depth != DepthMode::Off;
     const bool countsShared = bands.lane == 0; // per-triangle counters not tied to a band
     const unsigned* codes = ctx.clipCodes.data();
+    // Vertices are read in index order, which jumps around a mesh's vertex array: ask for those of
+    // the triangle kAhead triangles on now, so that their misses overlap with this one's fill.
+    constexpr std::size_t kAhead = 3 * 8;
     for (std::size_t t = 0; t + 2 < indexCount; t += 3) {
         const std::uint32_t i0 = indices[t], i1 = indices[t + 1], i2 = indices[t + 2];
         const unsigned c0 = codes[i0], c1 = codes[i1], c2 = codes[i2];
         if (countsShared) ++lane.stats.trianglesIn;
+        if (t + kAhead + 2 < indexCount) {
+            for (std::size_t k = t + kAhead; k < t + kAhead + 3; ++k) {
+                const ScreenVertex* v = ctx.screenVertices.data() + indices[k];
+                prefetchForRead(v);
+                prefetchForRead(reinterpret_cast<const char*>(v + 1) - 1);
+                prefetchForRead(codes + indices[k]);
+            }
+        }
 
         switch (clipper.classifyCodes(c0, c1, c2)) {
         case ClipClass::Reject:
