@@ -42,13 +42,12 @@ const Centroid* centroidTable() {
     return table.data();
 }
 
-// Room for `width` more masks in the scratch rows; returns where they go.
-std::size_t reserveMasks(MsaaScratch& scratch, std::size_t used, std::size_t width) {
-    if (scratch.covered.size() < used + width) {
-        scratch.covered.resize(2 * (used + width));
-        scratch.passed.resize(2 * (used + width));
+// Room for `count` masks in the scratch rows.
+void reserveMasks(MsaaScratch& scratch, std::size_t count) {
+    if (scratch.covered.size() < count) {
+        scratch.covered.resize(2 * count);
+        scratch.passed.resize(2 * count);
     }
-    return used;
 }
 
 #if SR_MSAA_SSE2
@@ -184,7 +183,7 @@ void coverByWalks(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
         }
         if (lo >= hi) continue;
         const std::size_t width = std::size_t(hi - lo);
-        reserveMasks(scratch, used, width);
+        reserveMasks(scratch, used + width);
         std::uint8_t* covered = scratch.covered.data() + used;
         std::uint8_t* passed = scratch.passed.data() + used;
         scratch.rows.push_back({y, lo, hi, used});
@@ -332,7 +331,7 @@ bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scis
     // The masks are written straight into the scratch rows, a whole box row each (the row's
     // record then starts at its first covered pixel).
     const std::size_t boxWidth = std::size_t(x1 - x0);
-    reserveMasks(scratch, 0, boxWidth * std::size_t(rowEnd - rowBegin));
+    reserveMasks(scratch, boxWidth * std::size_t(rowEnd - rowBegin));
     std::size_t used = 0;
     std::int32_t r0 = edges[0].atOrigin, r1 = edges[1].atOrigin, r2 = edges[2].atOrigin;
     for (int y = rowBegin; y < rowEnd;
