@@ -73,27 +73,24 @@ void depthTestRow(const TriangleSetup& t, const SampleOffset* pattern, float* de
         for (int k = 0; k < kN; ++k)
             zStart[k] = t.planeAt(kPlaneZ, lo + 0.5 + double(pattern[k].x) / kSubPixelScale,
                                   y + 0.5 + double(pattern[k].y) / kSubPixelScale);
+        for (int x = lo; x < hi; ++x) {
+            const unsigned cover = covered[x - lo];
+            if (cover == 0) {
+                passed[x - lo] = 0;
+                continue;
+            }
+            float* stored = depth + std::size_t(x) * kN;
+            const double step = double(x - lo);
+            unsigned pass = 0;
 #if SR_MSAA_SSE2
-        if constexpr (kVector && kN >= 4) {
-            // Four samples at a time: the same double multiply and add, rounded once to float
-            // (cvtpd2ps rounds as the scalar conversion does), compared and kept by lane.
-            constexpr int kGroups = kN / 4;
-            __m128d start[2 * kGroups];
-            for (int h = 0; h < 2 * kGroups; ++h) start[h] = _mm_loadu_pd(zStart + 2 * h);
-            const __m128d slope = _mm_set1_pd(ddx);
-            for (int x = lo; x < hi; ++x) {
-                const unsigned cover = covered[x - lo];
-                if (cover == 0) {
-                    passed[x - lo] = 0;
-                    continue;
-                }
-                float* stored = depth + std::size_t(x) * kN;
-                const __m128d step = _mm_set1_pd(double(x - lo));
-                unsigned pass = 0;
-                for (int g = 0; g < kGroups; ++g) {
-                    const __m128 lowPair = _mm_cvtpd_ps(_mm_add_pd(start[2 * g], _mm_mul_pd(slope, step)));
-                    const __m128 highPair = _mm_cvtpd_ps(_mm_add_pd(start[2 * g + 1], _mm_mul_pd(slope, step)));
-                    const __m128 z = _mm_movelh_ps(lowPair, highPair);
+            if constexpr (kVector && kN >= 4) {
+                // Four samples at a time: the same double multiply and add, rounded once to
+                // float (cvtpd2ps rounds as the scalar conversion does), compared, kept by lane.
+                const __m128d slope = _mm_set1_pd(ddx), steps = _mm_set1_pd(step);
+                for (int g = 0; g < kN / 4; ++g) {
+                    const __m128 low = _mm_cvtpd_ps(_mm_add_pd(_mm_loadu_pd(zStart + 4 * g), _mm_mul_pd(slope, steps)));
+                    const __m128 high = _mm_cvtpd_ps(_mm_add_pd(_mm_loadu_pd(zStart + 4 * g + 2), _mm_mul_pd(slope, steps)));
+                    const __m128 z = _mm_movelh_ps(low, high);
                     const __m128 old = _mm_loadu_ps(stored + 4 * g);
                     const unsigned nearer = unsigned(_mm_movemask_ps(_mm_cmpgt_ps(z, old)));
                     const unsigned ok = nearer & (cover >> (4 * g)) & 0xFu;
@@ -106,19 +103,9 @@ void depthTestRow(const TriangleSetup& t, const SampleOffset* pattern, float* de
                     pass |= ok << (4 * g);
                 }
                 passed[x - lo] = std::uint8_t(pass);
-            }
-            return;
-        }
-#endif
-        for (int x = lo; x < hi; ++x) {
-            const unsigned cover = covered[x - lo];
-            if (cover == 0) {
-                passed[x - lo] = 0;
                 continue;
             }
-            float* stored = depth + std::size_t(x) * kN;
-            const double step = double(x - lo);
-            unsigned pass = 0;
+#endif
             for (int k = 0; k < kN; ++k) {
                 const float z = float(zStart[k] + ddx * step);
                 const bool ok = (cover >> k & 1u) && z > stored[k];
