@@ -183,16 +183,14 @@ void coverByWalks(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
             inner1 = std::min(inner1, spans[2 * k + 1]);
         }
         if (inner0 >= inner1) inner0 = inner1 = hi;
-        for (int x = lo; x < hi; ++x) {
-            if (x == inner0) {
-                std::fill(covered + (inner0 - lo), covered + (inner1 - lo), std::uint8_t((1u << n) - 1u));
-                x = inner1 - 1;
-                continue;
-            }
+        auto maskAt = [&](int x) {
             unsigned mask = 0;
             for (int k = 0; k < n; ++k) mask |= unsigned(x >= spans[2 * k] && x < spans[2 * k + 1]) << k;
-            covered[x - lo] = std::uint8_t(mask);
-        }
+            return std::uint8_t(mask);
+        };
+        for (int x = lo; x < inner0; ++x) covered[x - lo] = maskAt(x);
+        std::fill(covered + (inner0 - lo), covered + (inner1 - lo), std::uint8_t((1u << n) - 1u));
+        for (int x = inner1; x < hi; ++x) covered[x - lo] = maskAt(x);
         target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
         depthTestRow<kN, kDepth, kVector>(t, pattern, target.depthRow(y), y, lo, hi, covered, passed);
         listRuns<kN>(scratch, y, lo, hi, spans[2 * n], spans[2 * n + 1], covered, passed);

@@ -22,11 +22,20 @@ struct SpanRun {
     double dx = 0.0, dy = 0.0;
 };
 
-// Makes `moved` (a copy of `t`) evaluate its planes at (x + run.dx, y + run.dy) when asked for
-// (x, y): the plane origin moves the other way (rounded once, the same in every path).
+// The plane origin that makes `t`'s planes evaluate at (x + run.dx, y + run.dy) when asked for
+// (x, y): moved the other way, rounded once (the same in every path).
+struct PlaneOrigin {
+    double x = 0.0, y = 0.0;
+};
+inline PlaneOrigin movedOrigin(const TriangleSetup& t, const SpanRun& run) {
+    return {t.originX - run.dx, t.originY - run.dy};
+}
+
+// Makes `moved` (a copy of `t`) evaluate its planes there (movedOrigin).
 inline void moveOrigin(const TriangleSetup& t, const SpanRun& run, TriangleSetup& moved) {
-    moved.originX = t.originX - run.dx;
-    moved.originY = t.originY - run.dy;
+    const PlaneOrigin origin = movedOrigin(t, run);
+    moved.originX = origin.x;
+    moved.originY = origin.y;
 }
 
 // Per-lane memory of the multisampled fill, kept from triangle to triangle.

@@ -651,13 +651,13 @@ struct SpanKernel {
         shadeQueued(used);
     }
 
-    // A one-pixel span [x, x + 1) of row y on the setup with its origin at (originX, originY)
-    // (moveOrigin: a pixel shaded at its centroid), without a depth test: lane 0 of operator()'s
+    // A one-pixel span [x, x + 1) of row y on the setup with its plane origin at `origin`
+    // (movedOrigin: a pixel shaded at its centroid), without a depth test: lane 0 of operator()'s
     // one group, computed alone (the same double plane values, the same float operations with
     // step 0) and queued, instead of a whole group of lanes for one.
-    void queueOne(int y, int x, double originX, double originY) const {
+    void queueOne(int y, int x, PlaneOrigin origin) const {
         static_assert(kDepth == DepthMode::Off && kV > 0, "the multisampled fill's centroid pixels");
-        const double dx = (x + 0.5) - originX, dy = (y + 0.5) - originY;
+        const double dx = (x + 0.5) - origin.x, dy = (y + 0.5) - origin.y;
         const int at = queue.count;
         const double invWValue = t.value[kPlaneInvW] + t.ddx[kPlaneInvW] * dx + t.ddy[kPlaneInvW] * dy;
         const float invW = float(invWValue + t.ddx[kPlaneInvW] * 0.0);
@@ -808,34 +808,22 @@ void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const
     queue.count = 0;
     std::uint64_t shaded = 0; // the multisampled fill counts its pixels itself
     using Span = SpanKernel<Prog, DepthMode::Off, kPersp, kFilter>;
-    // Runs shaded off the centre (centroids) go through a second span loop on a copy of the setup
-    // with its origin moved (moveOrigin), made after the centre runs; both fill the one queue.
+    // Runs at the centre go through the span loop; a pixel shaded off its centre (at its
+    // centroid) is queued on its own with the plane origin moved (queueOne, movedOrigin).
     Span span{p, t, fb, shaded, queue, {}, fzero()};
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));
     for (int k = 0; k < Span::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
-    int movedRuns = 0;
     for (int r = 0; r < count; ++r) {
-        if (runs[r].dx == 0.0 && runs[r].dy == 0.0) span(runs[r].y, runs[r].x0, runs[r].x1);
-        else ++movedRuns;
-    }
-    if constexpr (Prog::kVaryings > 0) { // the centroid pixels one lane each (queueOne)
-        for (int r = 0; r < count && movedRuns > 0; ++r) {
-            if (runs[r].dx == 0.0 && runs[r].dy == 0.0) continue;
-            const double originX = t.originX - runs[r].dx, originY = t.originY - runs[r].dy; // as moveOrigin
-            for (int x = runs[r].x0; x < runs[r].x1; ++x) span.queueOne(runs[r].y, x, originX, originY);
+        const SpanRun& run = runs[r];
+        if constexpr (Prog::kVaryings > 0) {
+            if (run.dx != 0.0 || run.dy != 0.0) { // at the centroid: one lane each
+                const PlaneOrigin origin = movedOrigin(t, run);
+                for (int x = run.x0; x < run.x1; ++x) span.queueOne(run.y, x, origin);
+                continue;
+            }
         }
-        movedRuns = 0;
-    }
-    if (movedRuns > 0) {
-        TriangleSetup moved = t;
-        Span movedSpan{p, moved, fb, shaded, queue, {}, span.triangleLod};
-        for (int k = 0; k < Span::kPlanes; ++k) movedSpan.gradient[k] = span.gradient[k];
-        for (int r = 0; r < count; ++r) {
-            if (runs[r].dx == 0.0 && runs[r].dy == 0.0) continue;
-            moveOrigin(t, runs[r], moved);
-            movedSpan(runs[r].y, runs[r].x0, runs[r].x1);
-        }
+        span(run.y, run.x0, run.x1); // (without varyings the colour is the triangle's wherever it is shaded)
     }
     if constexpr (Prog::kVaryings > 0) span.flush();
 }
