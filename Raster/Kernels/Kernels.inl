@@ -427,13 +427,7 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
     const I level = select(top, iset(last), truncToInt(select(top, fzero(), lod)));
     const I wl = select(top, iset(0), truncToInt((lod - toFloat(level)) * fset(256.0f)));
     const I keep = iset(256) - wl;
-    alignas(64) std::int32_t levels[kLanes];
-    istore(levels, level);
-    int lo = levels[0], hi = levels[0];
-    for (int i = 1; i < kLanes; ++i) {
-        lo = std::min(lo, levels[i]);
-        hi = std::max(hi, levels[i]);
-    }
+    const int lo = reduceMin(level), hi = reduceMax(level);
     I r = iset(0), g = iset(0), b = iset(0);
     for (int k = lo; k <= hi; ++k) {
         const M mine = level == iset(k);

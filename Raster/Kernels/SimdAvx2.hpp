@@ -78,6 +78,19 @@ SR_SIMD_INLINE I asInt(F a) { return {_mm256_castps_si256(a.v)}; }
 SR_SIMD_INLINE I gather(const std::uint32_t* base, I index) {
     return {_mm256_i32gather_epi32(reinterpret_cast<const int*>(base), index.v, 4)};
 }
+// The smallest / largest lane (three halving steps).
+SR_SIMD_INLINE int reduceMin(I a) {
+    __m128i m = _mm_min_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));
+    m = _mm_min_epi32(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(1, 0, 3, 2)));
+    m = _mm_min_epi32(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(2, 3, 0, 1)));
+    return _mm_cvtsi128_si32(m);
+}
+SR_SIMD_INLINE int reduceMax(I a) {
+    __m128i m = _mm_max_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));
+    m = _mm_max_epi32(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(1, 0, 3, 2)));
+    m = _mm_max_epi32(m, _mm_shuffle_epi32(m, _MM_SHUFFLE(2, 3, 0, 1)));
+    return _mm_cvtsi128_si32(m);
+}
 
 // --- double -------------------------------------------------------------------------------------
 SR_SIMD_INLINE D dset(double a) { return {_mm256_set1_pd(a)}; }

@@ -74,6 +74,8 @@ SR_SIMD_INLINE I truncToInt(F a) { return {_mm512_cvttps_epi32(a.v)}; }
 SR_SIMD_INLINE F asFloat(I a) { return {_mm512_castsi512_ps(a.v)}; }
 SR_SIMD_INLINE I asInt(F a) { return {_mm512_castps_si512(a.v)}; }
 SR_SIMD_INLINE I gather(const std::uint32_t* base, I index) { return {_mm512_i32gather_epi32(index.v, base, 4)}; }
+SR_SIMD_INLINE int reduceMin(I a) { return _mm512_reduce_min_epi32(a.v); }
+SR_SIMD_INLINE int reduceMax(I a) { return _mm512_reduce_max_epi32(a.v); }
 
 // --- double -------------------------------------------------------------------------------------
 SR_SIMD_INLINE D dset(double a) { return {_mm512_set1_pd(a)}; }

@@ -92,6 +92,17 @@ SR_SIMD_INLINE I gather(const std::uint32_t* base, I index) {
     _mm_store_si128(reinterpret_cast<__m128i*>(i), index.v);
     return {_mm_set_epi32(int(base[i[3]]), int(base[i[2]]), int(base[i[1]]), int(base[i[0]]))};
 }
+// The smallest / largest lane (two halving steps; imin / imax are compare-and-select here).
+SR_SIMD_INLINE int reduceMin(I a) {
+    a = imin(a, I{_mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2))});
+    a = imin(a, I{_mm_shuffle_epi32(a.v, _MM_SHUFFLE(2, 3, 0, 1))});
+    return _mm_cvtsi128_si32(a.v);
+}
+SR_SIMD_INLINE int reduceMax(I a) {
+    a = imax(a, I{_mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2))});
+    a = imax(a, I{_mm_shuffle_epi32(a.v, _MM_SHUFFLE(2, 3, 0, 1))});
+    return _mm_cvtsi128_si32(a.v);
+}
 
 // --- double (kLanes / 2 lanes: the low and high halves of an F) ------------------------------
 SR_SIMD_INLINE D dset(double a) { return {_mm_set1_pd(a)}; }
