@@ -235,12 +235,16 @@ inline void snappedSampleRowRange(const ScreenVertex& v0, const ScreenVertex& v1
 // triangle's first row counts it (so the counters equal a single-lane draw's), and every lane
 // whose bands it meets sets it up and fills it clipped to those bands, in submission order:
 // the image is bit-identical to one lane's.
+// A lane's part in a triangle when the caller already knows it (binned draws: binTriangles).
+enum class LaneRole { Unknown, Owner, Helper };
+
 template <int kVaryings, class Program>
 bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state, const LaneBands& bands, LaneState& lane,
                        RenderStats& sink, std::size_t t, const ScreenVertex& v0, const ScreenVertex& v1,
-                       const ScreenVertex& v2, Program& program) {
+                       const ScreenVertex& v2, Program& program, LaneRole role = LaneRole::Unknown) {
     RenderStats* stats = &lane.stats;
-    if (bands.lanes > 1) {
+    if (role == LaneRole::Helper) stats = &sink; // binned: this lane's bands meet it, another lane counts it
+    if (bands.lanes > 1 && role == LaneRole::Unknown) {
         int rowBegin = 0, rowEnd = 0;
         if (std::fabs(v0.y) <= kGuardBand && std::fabs(v1.y) <= kGuardBand && std::fabs(v2.y) <= kGuardBand) {
             if (msaa) snappedSampleRowRange(v0, v1, v2, rowBegin, rowEnd);
@@ -381,75 +385,182 @@ struct LambdaProgram {
     Pixel fragment(const F& f) { return fragmentShader(f); }
 };
 
-// The primitive stage of one lane: every triangle in submission order, classified from the
-// cached per-vertex clip codes, then clipped if needed, culled, set up and filled.
+// One lane's primitive work on triangles it has been given: accepted ones set up and filled
+// (rasterizeTriangle), the others clipped first. Shared by the plain walk (rasterLane) and the
+// binned one (rasterBinned).
 template <int kVaryings, class Program>
-void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, const LaneBands& bands,
-                LaneState& lane, const std::uint32_t* indices, std::size_t indexCount, Program& program) {
+struct LaneWalk {
+    RenderContext& ctx;
+    const DrawState& state;
+    const LaneBands& bands;
+    LaneState& lane;
+    const std::uint32_t* indices;
+    Program& program;
     FrameBuffer& fb = ctx.target();
     MsaaBuffer* msaa = ctx.multisampleTarget();
-    const int width = fb.width(), height = fb.height();
-    Clipper clipper = clipperProto;
+    Clipper clipper;
     ClippedPolygon polygon;
     ScreenVertex screen[kMaxClipVertices];
     RenderStats sink;
     const bool wireDepthTest = state.depth != DepthMode::Off;
     const bool countsShared = bands.lane == 0; // per-triangle counters not tied to a band
-    const unsigned* codes = ctx.clipCodes.data();
-    // Vertices are read in index order, which jumps around a mesh's vertex array: ask for those of
-    // the triangle kAhead triangles on now, so that their misses overlap with this one's fill.
-    constexpr std::size_t kAhead = 3 * 8;
-    for (std::size_t t = 0; t + 2 < indexCount; t += 3) {
-        const std::uint32_t i0 = indices[t], i1 = indices[t + 1], i2 = indices[t + 2];
-        const unsigned c0 = codes[i0], c1 = codes[i1], c2 = codes[i2];
-        if (countsShared) ++lane.stats.trianglesIn;
-        if (t + kAhead + 2 < indexCount) {
-            for (std::size_t k = t + kAhead; k < t + kAhead + 3; ++k) {
-                const ScreenVertex* v = ctx.screenVertices.data() + indices[k];
-                prefetchForRead(v);
-                prefetchForRead(reinterpret_cast<const char*>(v + 1) - 1);
-                prefetchForRead(codes + indices[k]);
-            }
-        }
 
-        switch (clipper.classifyCodes(c0, c1, c2)) {
+    LaneWalk(RenderContext& c, const DrawState& s, const Clipper& clipperProto, const LaneBands& b, LaneState& l,
+             const std::uint32_t* i, Program& p)
+        : ctx(c), state(s), bands(b), lane(l), indices(i), program(p), clipper(clipperProto) {}
+
+    // The screen vertices and clip codes of the triangle `ahead` triangles on: asked for now, so
+    // that their misses overlap with this one's fill (index order jumps around a vertex array).
+    void prefetchTriangle(std::size_t first) const {
+        for (std::size_t k = first; k < first + 3; ++k) {
+            const ScreenVertex* v = ctx.screenVertices.data() + indices[k];
+            prefetchForRead(v);
+            prefetchForRead(reinterpret_cast<const char*>(v + 1) - 1);
+            prefetchForRead(ctx.clipCodes.data() + indices[k]);
+        }
+    }
+
+    // Triangle `tri` (indices[3 tri ..]), every vertex usable and inside the clip volume.
+    void accept(std::size_t tri, LaneRole role = LaneRole::Unknown) {
+        const std::uint32_t i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
+        const ScreenVertex& s0 = ctx.screenVertices[i0];
+        const ScreenVertex& s1 = ctx.screenVertices[i1];
+        const ScreenVertex& s2 = ctx.screenVertices[i2];
+        assert(ctx.usable[i0] && ctx.usable[i1] && ctx.usable[i2]);
+        if (rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, tri, s0, s1, s2, program, role) &&
+            state.wireframe) {
+            drawWireEdge(fb, msaa, s0, s1, state.wireColour, wireDepthTest, state.wireWidth);
+            drawWireEdge(fb, msaa, s1, s2, state.wireColour, wireDepthTest, state.wireWidth);
+            drawWireEdge(fb, msaa, s2, s0, state.wireColour, wireDepthTest, state.wireWidth);
+        }
+    }
+
+    // Triangle `tri`, which crosses a clip plane.
+    void clip(std::size_t tri) {
+        if (countsShared) ++lane.stats.clipped;
+        const int width = fb.width(), height = fb.height();
+        ClipVertex a = ctx.clipVertices[indices[3 * tri]], b = ctx.clipVertices[indices[3 * tri + 1]],
+                   c = ctx.clipVertices[indices[3 * tri + 2]];
+        detail::rebaseVaryings(state.rebase, a, b, c); // before the clipper interpolates them
+        const int n = clipper.clip(a, b, c, polygon);
+        for (int k = 0; k < n; ++k) screen[k] = toScreen(polygon.vertices[std::size_t(k)], width, height, kVaryings);
+        // The fan keeps the input winding, so every piece gets the same cull decision.
+        bool drawn = false;
+        for (int k = 0; k < polygon.triangleCount(); ++k) {
+            drawn |= rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, tri, screen[0], screen[k + 1],
+                                                  screen[k + 2], program);
+        }
+        if (drawn && state.wireframe) {
+            for (int k = 0; k < n; ++k)
+                drawWireEdge(fb, msaa, screen[k], screen[(k + 1) % n], state.wireColour, wireDepthTest, state.wireWidth);
+        }
+    }
+};
+
+// Vertices are prefetched this many triangles ahead of the one being drawn.
+inline constexpr std::size_t kPrefetchTriangles = 8;
+
+// The primitive stage of one lane: every triangle in submission order, classified from the
+// cached per-vertex clip codes, then clipped if needed, culled, set up and filled.
+template <int kVaryings, class Program>
+void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, const LaneBands& bands,
+                LaneState& lane, const std::uint32_t* indices, std::size_t indexCount, Program& program) {
+    LaneWalk<kVaryings, Program> walk(ctx, state, clipperProto, bands, lane, indices, program);
+    const unsigned* codes = ctx.clipCodes.data();
+    const std::size_t triangles = indexCount / 3;
+    for (std::size_t tri = 0; tri < triangles; ++tri) {
+        const unsigned c0 = codes[indices[3 * tri]], c1 = codes[indices[3 * tri + 1]], c2 = codes[indices[3 * tri + 2]];
+        if (walk.countsShared) ++lane.stats.trianglesIn;
+        if (tri + kPrefetchTriangles < triangles) walk.prefetchTriangle(3 * (tri + kPrefetchTriangles));
+        switch (walk.clipper.classifyCodes(c0, c1, c2)) {
         case ClipClass::Reject:
-            if (countsShared) {
+            if (walk.countsShared) {
                 ++lane.stats.trivialRejected;
                 if ((c0 | c1 | c2) & kCodeNonFinite) ++lane.stats.nonFinite;
             }
             break;
+        case ClipClass::Accept: walk.accept(tri); break;
+        case ClipClass::Clip: walk.clip(tri); break;
+        }
+    }
+}
+
+// --- Binned draws (several lanes, many triangles) ----------------------------------------------
+// Every lane of the plain walk classifies every triangle, and sets up every one its bands meet,
+// the culled ones included; with several lanes that front end is repeated per lane. A binned draw
+// screens each triangle once instead: lane c classifies and culls chunk c of the triangles
+// (screenTriangle: the decisions setupTriangleCulled would make) and appends each survivor to the
+// bins of the lanes whose bands it meets, marked for the lane that counts it; then every lane
+// draws its bins chunk by chunk, so still in submission order. Same image, same counters.
+inline constexpr std::uint32_t kBinOwner = 1u << 31; // this lane counts the triangle
+inline constexpr std::uint32_t kBinClip = 1u << 30;  // crosses a clip plane: clipped by the lane
+inline constexpr std::uint32_t kBinIndex = kBinClip - 1u;
+
+template <int kVaryings>
+void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& clipper, int chunk, int lanes,
+                  const std::uint32_t* indices, std::size_t triangleBegin, std::size_t triangleEnd,
+                  RenderStats& stats) {
+    const unsigned* codes = ctx.clipCodes.data();
+    const int height = ctx.target().height();
+    const bool samples = ctx.multisampleTarget() != nullptr;
+    std::vector<std::uint32_t>* bins = ctx.bins.data() + std::size_t(chunk) * std::size_t(lanes);
+    for (std::size_t tri = triangleBegin; tri < triangleEnd; ++tri) {
+        const std::uint32_t i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
+        const unsigned c0 = codes[i0], c1 = codes[i1], c2 = codes[i2];
+        ++stats.trianglesIn;
+        if (tri + kPrefetchTriangles < triangleEnd) {
+            for (std::size_t k = 3 * (tri + kPrefetchTriangles); k < 3 * (tri + kPrefetchTriangles) + 3; ++k) {
+                prefetchForRead(ctx.screenVertices.data() + indices[k]);
+                prefetchForRead(codes + indices[k]);
+            }
+        }
+        switch (clipper.classifyCodes(c0, c1, c2)) {
+        case ClipClass::Reject:
+            ++stats.trivialRejected;
+            if ((c0 | c1 | c2) & kCodeNonFinite) ++stats.nonFinite;
+            break;
+        case ClipClass::Clip:
+            for (int l = 0; l < lanes; ++l) bins[l].push_back(std::uint32_t(tri) | kBinClip);
+            break;
         case ClipClass::Accept: {
-            const ScreenVertex& s0 = ctx.screenVertices[i0];
-            const ScreenVertex& s1 = ctx.screenVertices[i1];
-            const ScreenVertex& s2 = ctx.screenVertices[i2];
-            assert(ctx.usable[i0] && ctx.usable[i1] && ctx.usable[i2]);
-            if (rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t / 3, s0, s1, s2, program) &&
-                state.wireframe) {
-                drawWireEdge(fb, msaa, s0, s1, state.wireColour, wireDepthTest, state.wireWidth);
-                drawWireEdge(fb, msaa, s1, s2, state.wireColour, wireDepthTest, state.wireWidth);
-                drawWireEdge(fb, msaa, s2, s0, state.wireColour, wireDepthTest, state.wireWidth);
-            }
+            const TriangleScreening screened = screenTriangle(ctx.screenVertices[i0], ctx.screenVertices[i1],
+                                                              ctx.screenVertices[i2], state.cull, samples);
+            if (screened.outcome == SetupOutcome::Culled) ++stats.culled;
+            if (screened.outcome != SetupOutcome::Ready) break;
+            // The rows rasterizeTriangle's band test uses (snappedRowRange / snappedSampleRowRange).
+            const int rowBegin = samples ? int(floorDiv(screened.minY, kSubPixelScale))
+                                         : int(firstCentreAtOrAfter(screened.minY, 1));
+            const int rowEnd = samples ? int(floorDiv(screened.maxY, kSubPixelScale)) + 1
+                                       : int(firstCentreAtOrAfter(screened.maxY, 1));
+            const int owner = LaneBands{0, lanes, height}.ownerOfRow(rowBegin);
+            bins[owner].push_back(std::uint32_t(tri) | kBinOwner);
+            // The other lanes with a band among the rows on the target (LaneBands::meets; band b
+            // belongs to lane b % lanes).
+            const int visibleBegin = std::max(rowBegin, 0), visibleEnd = std::min(rowEnd, height);
+            if (visibleBegin >= visibleEnd) break;
+            const int first = visibleBegin / LaneBands::kBandRows, last = (visibleEnd - 1) / LaneBands::kBandRows;
+            for (int b = first; b <= last && b < first + lanes; ++b)
+                if (b % lanes != owner) bins[b % lanes].push_back(std::uint32_t(tri));
             break;
         }
-        case ClipClass::Clip: {
-            if (countsShared) ++lane.stats.clipped;
-            ClipVertex a = ctx.clipVertices[i0], b = ctx.clipVertices[i1], c = ctx.clipVertices[i2];
-            detail::rebaseVaryings(state.rebase, a, b, c); // before the clipper interpolates them
-            const int n = clipper.clip(a, b, c, polygon);
-            for (int k = 0; k < n; ++k) screen[k] = toScreen(polygon.vertices[std::size_t(k)], width, height, kVaryings);
-            // The fan keeps the input winding, so every piece gets the same cull decision.
-            bool drawn = false;
-            for (int k = 0; k < polygon.triangleCount(); ++k) {
-                drawn |= rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t / 3, screen[0], screen[k + 1],
-                                                      screen[k + 2], program);
-            }
-            if (drawn && state.wireframe) {
-                for (int k = 0; k < n; ++k)
-                    drawWireEdge(fb, msaa, screen[k], screen[(k + 1) % n], state.wireColour, wireDepthTest, state.wireWidth);
-            }
-            break;
         }
+    }
+}
+
+// Lane `bands.lane`'s share of a binned draw: its bins of every chunk, in chunk order.
+template <int kVaryings, class Program>
+void rasterBinned(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, const LaneBands& bands,
+                  LaneState& lane, const std::uint32_t* indices, Program& program) {
+    LaneWalk<kVaryings, Program> walk(ctx, state, clipperProto, bands, lane, indices, program);
+    for (int chunk = 0; chunk < bands.lanes; ++chunk) {
+        const std::vector<std::uint32_t>& bin = ctx.bins[std::size_t(chunk) * std::size_t(bands.lanes) + std::size_t(bands.lane)];
+        const std::size_t count = bin.size();
+        for (std::size_t k = 0; k < count; ++k) {
+            if (k + kPrefetchTriangles < count) walk.prefetchTriangle(3 * std::size_t(bin[k + kPrefetchTriangles] & kBinIndex));
+            const std::uint32_t entry = bin[k];
+            const std::size_t tri = entry & kBinIndex;
+            if (entry & kBinClip) walk.clip(tri);
+            else walk.accept(tri, (entry & kBinOwner) ? LaneRole::Owner : LaneRole::Helper);
         }
     }
 }
@@ -548,8 +659,33 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         };
         pool.run(vertexJob);
     }
-    // 2. Primitive stage: every lane walks the triangles in order and fills its own bands.
     LaneState laneStates[kMaxRenderThreads];
+    const std::size_t triangles = indexCount / 3;
+    if (triangles >= ctx.binningMinTriangles && state.stopAfter != PipelineStop::Geometry &&
+        triangles <= std::size_t(kBinIndex)) {
+        // 2. Binned primitive stage: each lane screens a chunk of the triangles into the lanes'
+        //    bins, then each lane draws its bins (binTriangles, rasterBinned).
+        const std::size_t binCount = std::size_t(lanes) * std::size_t(lanes);
+        if (ctx.bins.size() < binCount) ctx.bins.resize(binCount);
+        RenderStats chunkStats[kMaxRenderThreads];
+        auto binJob = [&](int c) {
+            for (int l = 0; l < lanes; ++l) ctx.bins[std::size_t(c) * std::size_t(lanes) + std::size_t(l)].clear();
+            binTriangles<kVaryings>(ctx, state, clipper, c, lanes, indices, triangles * std::size_t(c) / std::size_t(lanes),
+                                    triangles * std::size_t(c + 1) / std::size_t(lanes), chunkStats[c]);
+        };
+        pool.run(binJob);
+        auto binnedJob = [&](int l) {
+            Program copy = program;
+            rasterBinned<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height()}, laneStates[l], indices, copy);
+        };
+        pool.run(binnedJob);
+        for (int l = 0; l < lanes; ++l) {
+            ctx.stats += chunkStats[l];
+            ctx.stats += laneStates[l].stats;
+        }
+        return;
+    }
+    // 2. Primitive stage: every lane walks the triangles in order and fills its own bands.
     auto rasterJob = [&](int l) {
         Program copy = program;
         rasterLane<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height()}, laneStates[l], indices,

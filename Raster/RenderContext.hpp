@@ -44,6 +44,9 @@ struct RenderStats {
 
 // Most render threads a context runs (lanes of its pool).
 inline constexpr int kMaxRenderThreads = 64;
+// Draws of at least this many triangles are binned when drawn on several lanes (see `bins`): below
+// it the saved walk does not pay for the extra fork-join (tens of microseconds).
+inline constexpr std::size_t kBinningMinTriangles = 4096;
 
 // Passed explicitly to every draw (no global state). Owns scratch buffers whose capacity is
 // kept from draw to draw, so a steady frame loop allocates nothing.
@@ -93,6 +96,14 @@ public:
     };
     std::vector<TransparentTriangle> transparentOrder;
     std::vector<std::uint32_t> transparentIndices;
+
+    // The primitive stage's bins (drawLanes with several lanes): bins[c * lanes + l] lists, in
+    // submission order, the triangles of chunk c that lane l fills (detail::binTriangles). Kept
+    // between draws and frames: no allocation once they have grown. A draw of fewer than
+    // binningMinTriangles triangles is not binned (every lane walks all of them: one fork-join
+    // less); tests lower it to bin small draws too.
+    std::vector<std::vector<std::uint32_t>> bins;
+    std::size_t binningMinTriangles = kBinningMinTriangles;
 
     // Render threads (1..kMaxRenderThreads; 0 or less means 1). More than one starts a
     // persistent pool that drawProgram() splits its work over; the image is the same.

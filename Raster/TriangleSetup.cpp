@@ -26,31 +26,57 @@ FixedEdge makeEdge(FixedPoint2 from, FixedPoint2 to) {
 // First pixel row whose centre y is >= Y (fixed point): the smallest j with j*256 + 128 >= Y.
 int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 
-} // namespace
-
-SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const ScreenVertex& v1,
-                                 const ScreenVertex& v2, CullMode cull, int varyingCount, bool perspectiveCorrect,
-                                 const VaryingRebase& rebase, bool keepRowless) {
+// setupTriangleCulled's first steps: the vertices snapped (p) and the cull decided from twice
+// the exact signed area. Ready when the triangle is to be set up.
+SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
+                         FixedPoint2 (&p)[3], std::int64_t& doubleArea) {
     // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
     const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
     if (!valid) return isCulled(cull, v0, v1, v2) ? SetupOutcome::Culled : SetupOutcome::Empty;
-    assert(varyingCount >= 0 && varyingCount <= kMaxVaryings);
-    varyingCount = std::clamp(varyingCount, 0, kMaxVaryings);
 
     // --- Snap to 1/256 pixel and compute twice the signed area exactly --------------------
     // |coordinate| <= 2^22, so each difference is < 2^23 and each product < 2^46: exact in int64.
-    const FixedPoint2 p[3] = {{snapToFixed(v0.x), snapToFixed(v0.y)},
-                              {snapToFixed(v1.x), snapToFixed(v1.y)},
-                              {snapToFixed(v2.x), snapToFixed(v2.y)}};
+    p[0] = {snapToFixed(v0.x), snapToFixed(v0.y)};
+    p[1] = {snapToFixed(v1.x), snapToFixed(v1.y)};
+    p[2] = {snapToFixed(v2.x), snapToFixed(v2.y)};
     const std::int64_t e1x = p[1].x - p[0].x, e1y = p[1].y - p[0].y;
     const std::int64_t e2x = p[2].x - p[0].x, e2y = p[2].y - p[0].y;
-    const std::int64_t doubleArea = e1x * e2y - e2x * e1y;
+    doubleArea = e1x * e2y - e2x * e1y;
     // --- Cull on the snapped grid (Cull.hpp: y down, > 0 is clockwise) --------------------
     if (doubleArea == 0) return SetupOutcome::Culled; // collinear or coincident after snapping
     if ((cull == CullMode::CW && doubleArea > 0) || (cull == CullMode::CCW && doubleArea < 0))
         return SetupOutcome::Culled;
+    return SetupOutcome::Ready;
+}
+
+} // namespace
+
+TriangleScreening screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
+                                 bool keepRowless) {
+    FixedPoint2 p[3];
+    std::int64_t doubleArea = 0;
+    TriangleScreening r;
+    r.outcome = snapAndCull(v0, v1, v2, cull, p, doubleArea);
+    if (r.outcome != SetupOutcome::Ready) return r;
+    r.minY = std::min({p[0].y, p[1].y, p[2].y});
+    r.maxY = std::max({p[0].y, p[1].y, p[2].y});
+    if (!keepRowless && firstRowAtOrBelow(r.minY) >= firstRowAtOrBelow(r.maxY)) r.outcome = SetupOutcome::Empty;
+    return r;
+}
+
+SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const ScreenVertex& v1,
+                                 const ScreenVertex& v2, CullMode cull, int varyingCount, bool perspectiveCorrect,
+                                 const VaryingRebase& rebase, bool keepRowless) {
+    FixedPoint2 p[3];
+    std::int64_t doubleArea = 0;
+    const SetupOutcome culled = snapAndCull(v0, v1, v2, cull, p, doubleArea);
+    if (culled != SetupOutcome::Ready) return culled;
+    assert(varyingCount >= 0 && varyingCount <= kMaxVaryings);
+    varyingCount = std::clamp(varyingCount, 0, kMaxVaryings);
 
     t.doubleArea = doubleArea;
+    const std::int64_t e1x = p[1].x - p[0].x, e1y = p[1].y - p[0].y;
+    const std::int64_t e2x = p[2].x - p[0].x, e2y = p[2].y - p[0].y;
 
     // --- Sort by y (top = smallest y, the screen is y-down) and build the three edges ------
     int top = 0, mid = 1, bot = 2;

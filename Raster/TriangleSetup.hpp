@@ -119,4 +119,15 @@ SetupOutcome setupTriangleCulled(TriangleSetup& out, const ScreenVertex& v0, con
                                  bool perspectiveCorrect = true, const VaryingRebase& rebase = {},
                                  bool keepRowless = false);
 
+// The decision setupTriangleCulled makes before it builds anything (the same snapping, validity
+// and cull), with the snapped y extent [minY, maxY] (fixed point) of a Ready triangle: pixel-centre
+// rows [firstCentreAtOrAfter(minY, 1), firstCentreAtOrAfter(maxY, 1)). Empty, as there, when
+// no centre row is covered and !keepRowless. The pipeline bins triangles to its lanes with it.
+struct TriangleScreening {
+    SetupOutcome outcome = SetupOutcome::Empty;
+    Fixed minY = 0, maxY = 0;
+};
+TriangleScreening screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
+                                 bool keepRowless);
+
 } // namespace sr

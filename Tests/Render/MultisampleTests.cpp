@@ -227,9 +227,11 @@ TEST_CASE("MSAA: lines cover all samples of their pixels; the wireframe keeps it
 TEST_CASE("MSAA: the same image on every thread count; sample memory only while multisampling", "[msaa]") {
     const auto scene = builtInScene(96, 64);
     const FrameView view = builtInView(scene, 96, 64);
-    FrameBuffer one(96, 64), two(96, 64), plain(96, 64);
-    RenderContext c1(one), c2(two), c0(plain);
+    FrameBuffer one(96, 64), two(96, 64), three(96, 64), plain(96, 64);
+    RenderContext c1(one), c2(two), c3(three), c0(plain);
     c2.setThreads(2);
+    c3.setThreads(3);
+    c3.binningMinTriangles = 0; // every draw binned (the sample rows decide the lanes)
     RenderSettings settings;
     demo::renderFrame(c0, scene, view, settings); // the plain path
     for (int n : {1, 2, 4, 8, 1}) {
@@ -237,8 +239,11 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
         settings.msaa = n;
         demo::renderFrame(c1, scene, view, settings);
         demo::renderFrame(c2, scene, view, settings);
+        demo::renderFrame(c3, scene, view, settings);
         CHECK(std::equal(one.colorData(), one.colorData() + 96 * 64, two.colorData()));
         CHECK(std::equal(one.depthData(), one.depthData() + 96 * 64, two.depthData()));
+        CHECK(std::equal(one.colorData(), one.colorData() + 96 * 64, three.colorData()));
+        CHECK(std::equal(one.depthData(), one.depthData() + 96 * 64, three.depthData()));
         CHECK(c1.msaa.width() == (n > 1 ? 96 : 0));
         CHECK(c1.msaa.samples() == (n > 1 ? n : 1));
         CHECK_FALSE(c1.multisampling); // only during the frame

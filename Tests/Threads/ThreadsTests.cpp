@@ -36,7 +36,9 @@ std::size_t differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
     return n;
 }
 
-Frame renderDefault(const demo::SceneOptions& options, int threads, const RenderSettings& settings) {
+// binMin: RenderContext::binningMinTriangles (0: every draw on several lanes binned).
+Frame renderDefault(const demo::SceneOptions& options, int threads, const RenderSettings& settings,
+                    std::size_t binMin = kBinningMinTriangles) {
     static auto scene = demo::loadScene(demo::SceneOptions{});
     REQUIRE(scene.ok());
     const FrameView view =
@@ -45,6 +47,7 @@ Frame renderDefault(const demo::SceneOptions& options, int threads, const Render
     Frame f{FrameBuffer(options.width, options.height), {}};
     RenderContext ctx(f.fb);
     ctx.setThreads(threads);
+    ctx.binningMinTriangles = binMin;
     REQUIRE(ctx.threads() == std::max(threads, 1));
     demo::renderFrame(ctx, scene.value(), view, settings);
     demo::renderFrame(ctx, scene.value(), view, settings); // a second frame reuses every buffer
@@ -117,6 +120,10 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
             const Frame many = renderDefault(options, threads, settings);
             CHECK(differingPixels(one.fb, many.fb) == 0);
             CHECK(sameStats(one.stats, many.stats));
+            // Every draw binned (the built-in scene's draws are below kBinningMinTriangles).
+            const Frame binned = renderDefault(options, threads, settings, 0);
+            CHECK(differingPixels(one.fb, binned.fb) == 0);
+            CHECK(sameStats(one.stats, binned.stats));
         }
     }
 }
@@ -149,11 +156,14 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
             reference.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
             TieProgram program{&positions};
             drawProgram<1>(ref, state, positions.size(), indices.data(), indices.size(), program);
-            for (int threads : {2, 3, 5}) {
-                INFO("cull " << cullModeName(cull) << ", depth mode " << int(depth) << ", " << threads << " threads");
+            for (int threads : {2, 3, 5})
+            for (std::size_t binMin : {kBinningMinTriangles, std::size_t(0)}) {
+                INFO("cull " << cullModeName(cull) << ", depth mode " << int(depth) << ", " << threads << " threads"
+                             << (binMin == 0 ? ", binned" : ""));
                 FrameBuffer fb(203, 157);
                 RenderContext ctx(fb);
                 ctx.setThreads(threads);
+                ctx.binningMinTriangles = binMin;
                 ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
                 TieProgram copy{&positions};
                 drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), copy);
