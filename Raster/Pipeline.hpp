@@ -229,15 +229,16 @@ inline void snappedSampleRowRange(const ScreenVertex& v0, const ScreenVertex& v1
     end = int(floorDiv(std::max({y0, y1, y2}), kSubPixelScale)) + 1;
 }
 
+// A lane's part in a triangle when the caller already knows it (binned draws: binTriangles):
+// the Owner counts it, a Helper only fills its own bands of it.
+enum class LaneRole { Unknown, Owner, Helper };
+
 // Culls, sets up and fills one screen-space triangle (index t of the draw) on one lane.
 // Returns true when it was not culled. The program's triangle() runs once per set-up
 // triangle, right before its fill. With several lanes, the lane owning the band of the
 // triangle's first row counts it (so the counters equal a single-lane draw's), and every lane
 // whose bands it meets sets it up and fills it clipped to those bands, in submission order:
 // the image is bit-identical to one lane's.
-// A lane's part in a triangle when the caller already knows it (binned draws: binTriangles).
-enum class LaneRole { Unknown, Owner, Helper };
-
 template <int kVaryings, class Program>
 bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state, const LaneBands& bands, LaneState& lane,
                        RenderStats& sink, std::size_t t, const ScreenVertex& v0, const ScreenVertex& v1,
@@ -385,79 +386,34 @@ struct LambdaProgram {
     Pixel fragment(const F& f) { return fragmentShader(f); }
 };
 
-// One lane's primitive work on triangles it has been given: accepted ones set up and filled
-// (rasterizeTriangle), the others clipped first. Shared by the plain walk (rasterLane) and the
-// binned one (rasterBinned).
+// A triangle (index t, vertices i0, i1, i2) that crosses a clip plane: clipped, its fan of
+// pieces rasterized on this lane (each piece's owner counts it).
 template <int kVaryings, class Program>
-struct LaneWalk {
-    RenderContext& ctx;
-    const DrawState& state;
-    const LaneBands& bands;
-    LaneState& lane;
-    const std::uint32_t* indices;
-    Program& program;
+void clipAndRasterize(RenderContext& ctx, const DrawState& state, Clipper& clipper, const LaneBands& bands,
+                      LaneState& lane, RenderStats& sink, std::size_t t, std::uint32_t i0, std::uint32_t i1,
+                      std::uint32_t i2, Program& program) {
     FrameBuffer& fb = ctx.target();
     MsaaBuffer* msaa = ctx.multisampleTarget();
-    Clipper clipper;
     ClippedPolygon polygon;
     ScreenVertex screen[kMaxClipVertices];
-    RenderStats sink;
-    const bool wireDepthTest = state.depth != DepthMode::Off;
-    const bool countsShared = bands.lane == 0; // per-triangle counters not tied to a band
-
-    LaneWalk(RenderContext& c, const DrawState& s, const Clipper& clipperProto, const LaneBands& b, LaneState& l,
-             const std::uint32_t* i, Program& p)
-        : ctx(c), state(s), bands(b), lane(l), indices(i), program(p), clipper(clipperProto) {}
-
-    // The screen vertices and clip codes of the triangle `ahead` triangles on: asked for now, so
-    // that their misses overlap with this one's fill (index order jumps around a vertex array).
-    void prefetchTriangle(std::size_t first) const {
-        for (std::size_t k = first; k < first + 3; ++k) {
-            const ScreenVertex* v = ctx.screenVertices.data() + indices[k];
-            prefetchForRead(v);
-            prefetchForRead(reinterpret_cast<const char*>(v + 1) - 1);
-            prefetchForRead(ctx.clipCodes.data() + indices[k]);
-        }
+    ClipVertex a = ctx.clipVertices[i0], b = ctx.clipVertices[i1], c = ctx.clipVertices[i2];
+    detail::rebaseVaryings(state.rebase, a, b, c); // before the clipper interpolates them
+    const int n = clipper.clip(a, b, c, polygon);
+    for (int k = 0; k < n; ++k) screen[k] = toScreen(polygon.vertices[std::size_t(k)], fb.width(), fb.height(), kVaryings);
+    // The fan keeps the input winding, so every piece gets the same cull decision.
+    bool drawn = false;
+    for (int k = 0; k < polygon.triangleCount(); ++k)
+        drawn |= rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t, screen[0], screen[k + 1], screen[k + 2],
+                                              program);
+    if (drawn && state.wireframe) {
+        for (int k = 0; k < n; ++k)
+            drawWireEdge(fb, msaa, screen[k], screen[(k + 1) % n], state.wireColour, state.depth != DepthMode::Off,
+                         state.wireWidth);
     }
+}
 
-    // Triangle `tri` (indices[3 tri ..]), every vertex usable and inside the clip volume.
-    void accept(std::size_t tri, LaneRole role = LaneRole::Unknown) {
-        const std::uint32_t i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
-        const ScreenVertex& s0 = ctx.screenVertices[i0];
-        const ScreenVertex& s1 = ctx.screenVertices[i1];
-        const ScreenVertex& s2 = ctx.screenVertices[i2];
-        assert(ctx.usable[i0] && ctx.usable[i1] && ctx.usable[i2]);
-        if (rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, tri, s0, s1, s2, program, role) &&
-            state.wireframe) {
-            drawWireEdge(fb, msaa, s0, s1, state.wireColour, wireDepthTest, state.wireWidth);
-            drawWireEdge(fb, msaa, s1, s2, state.wireColour, wireDepthTest, state.wireWidth);
-            drawWireEdge(fb, msaa, s2, s0, state.wireColour, wireDepthTest, state.wireWidth);
-        }
-    }
-
-    // Triangle `tri`, which crosses a clip plane.
-    void clip(std::size_t tri) {
-        if (countsShared) ++lane.stats.clipped;
-        const int width = fb.width(), height = fb.height();
-        ClipVertex a = ctx.clipVertices[indices[3 * tri]], b = ctx.clipVertices[indices[3 * tri + 1]],
-                   c = ctx.clipVertices[indices[3 * tri + 2]];
-        detail::rebaseVaryings(state.rebase, a, b, c); // before the clipper interpolates them
-        const int n = clipper.clip(a, b, c, polygon);
-        for (int k = 0; k < n; ++k) screen[k] = toScreen(polygon.vertices[std::size_t(k)], width, height, kVaryings);
-        // The fan keeps the input winding, so every piece gets the same cull decision.
-        bool drawn = false;
-        for (int k = 0; k < polygon.triangleCount(); ++k) {
-            drawn |= rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, tri, screen[0], screen[k + 1],
-                                                  screen[k + 2], program);
-        }
-        if (drawn && state.wireframe) {
-            for (int k = 0; k < n; ++k)
-                drawWireEdge(fb, msaa, screen[k], screen[(k + 1) % n], state.wireColour, wireDepthTest, state.wireWidth);
-        }
-    }
-};
-
-// Vertices are prefetched this many triangles ahead of the one being drawn.
+// Vertices are prefetched this many triangles ahead of the one being drawn (index order jumps
+// around a vertex array; the misses then overlap with the fills in between).
 inline constexpr std::size_t kPrefetchTriangles = 8;
 
 // The primitive stage of one lane: every triangle in submission order, classified from the
@@ -465,22 +421,53 @@ inline constexpr std::size_t kPrefetchTriangles = 8;
 template <int kVaryings, class Program>
 void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, const LaneBands& bands,
                 LaneState& lane, const std::uint32_t* indices, std::size_t indexCount, Program& program) {
-    LaneWalk<kVaryings, Program> walk(ctx, state, clipperProto, bands, lane, indices, program);
+    FrameBuffer& fb = ctx.target();
+    MsaaBuffer* msaa = ctx.multisampleTarget();
+    Clipper clipper = clipperProto;
+    RenderStats sink;
+    const bool wireDepthTest = state.depth != DepthMode::Off;
+    const bool countsShared = bands.lane == 0; // per-triangle counters not tied to a band
     const unsigned* codes = ctx.clipCodes.data();
-    const std::size_t triangles = indexCount / 3;
-    for (std::size_t tri = 0; tri < triangles; ++tri) {
-        const unsigned c0 = codes[indices[3 * tri]], c1 = codes[indices[3 * tri + 1]], c2 = codes[indices[3 * tri + 2]];
-        if (walk.countsShared) ++lane.stats.trianglesIn;
-        if (tri + kPrefetchTriangles < triangles) walk.prefetchTriangle(3 * (tri + kPrefetchTriangles));
-        switch (walk.clipper.classifyCodes(c0, c1, c2)) {
+    // Vertices are read in index order, which jumps around a mesh's vertex array: ask for those of
+    // the triangle kAhead triangles on now, so that their misses overlap with this one's fill.
+    constexpr std::size_t kAhead = 3 * kPrefetchTriangles;
+    for (std::size_t t = 0; t + 2 < indexCount; t += 3) {
+        const std::uint32_t i0 = indices[t], i1 = indices[t + 1], i2 = indices[t + 2];
+        const unsigned c0 = codes[i0], c1 = codes[i1], c2 = codes[i2];
+        if (countsShared) ++lane.stats.trianglesIn;
+        if (t + kAhead + 2 < indexCount) {
+            for (std::size_t k = t + kAhead; k < t + kAhead + 3; ++k) {
+                const ScreenVertex* v = ctx.screenVertices.data() + indices[k];
+                prefetchForRead(v);
+                prefetchForRead(reinterpret_cast<const char*>(v + 1) - 1);
+                prefetchForRead(codes + indices[k]);
+            }
+        }
+
+        switch (clipper.classifyCodes(c0, c1, c2)) {
         case ClipClass::Reject:
-            if (walk.countsShared) {
+            if (countsShared) {
                 ++lane.stats.trivialRejected;
                 if ((c0 | c1 | c2) & kCodeNonFinite) ++lane.stats.nonFinite;
             }
             break;
-        case ClipClass::Accept: walk.accept(tri); break;
-        case ClipClass::Clip: walk.clip(tri); break;
+        case ClipClass::Accept: {
+            const ScreenVertex& s0 = ctx.screenVertices[i0];
+            const ScreenVertex& s1 = ctx.screenVertices[i1];
+            const ScreenVertex& s2 = ctx.screenVertices[i2];
+            assert(ctx.usable[i0] && ctx.usable[i1] && ctx.usable[i2]);
+            if (rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t / 3, s0, s1, s2, program) &&
+                state.wireframe) {
+                drawWireEdge(fb, msaa, s0, s1, state.wireColour, wireDepthTest, state.wireWidth);
+                drawWireEdge(fb, msaa, s1, s2, state.wireColour, wireDepthTest, state.wireWidth);
+                drawWireEdge(fb, msaa, s2, s0, state.wireColour, wireDepthTest, state.wireWidth);
+            }
+            break;
+        }
+        case ClipClass::Clip:
+            if (countsShared) ++lane.stats.clipped;
+            clipAndRasterize<kVaryings>(ctx, state, clipper, bands, lane, sink, t / 3, i0, i1, i2, program);
+            break;
         }
     }
 }
@@ -496,8 +483,7 @@ inline constexpr std::uint32_t kBinOwner = 1u << 31; // this lane counts the tri
 inline constexpr std::uint32_t kBinClip = 1u << 30;  // crosses a clip plane: clipped by the lane
 inline constexpr std::uint32_t kBinIndex = kBinClip - 1u;
 
-template <int kVaryings>
-void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& clipper, int chunk, int lanes,
+inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& clipper, int chunk, int lanes,
                   const std::uint32_t* indices, std::size_t triangleBegin, std::size_t triangleEnd,
                   RenderStats& stats) {
     const unsigned* codes = ctx.clipCodes.data();
@@ -525,8 +511,8 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
         case ClipClass::Accept: {
             const TriangleScreening screened = screenTriangle(ctx.screenVertices[i0], ctx.screenVertices[i1],
                                                               ctx.screenVertices[i2], state.cull, samples);
-            if (screened.outcome == SetupOutcome::Culled) ++stats.culled;
-            if (screened.outcome != SetupOutcome::Ready) break;
+            if (screened.outcome == SetupOutcome::Culled) ++stats.culled; // isCulled's decision too
+            if (screened.outcome != SetupOutcome::Ready || state.stopAfter == PipelineStop::Geometry) break;
             // The rows rasterizeTriangle's band test uses (snappedRowRange / snappedSampleRowRange).
             const int rowBegin = samples ? int(floorDiv(screened.minY, kSubPixelScale))
                                          : int(firstCentreAtOrAfter(screened.minY, 1));
@@ -551,16 +537,33 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
 template <int kVaryings, class Program>
 void rasterBinned(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, const LaneBands& bands,
                   LaneState& lane, const std::uint32_t* indices, Program& program) {
-    LaneWalk<kVaryings, Program> walk(ctx, state, clipperProto, bands, lane, indices, program);
+    FrameBuffer& fb = ctx.target();
+    MsaaBuffer* msaa = ctx.multisampleTarget();
+    Clipper clipper = clipperProto;
+    RenderStats sink;
+    const ScreenVertex* vertices = ctx.screenVertices.data();
     for (int chunk = 0; chunk < bands.lanes; ++chunk) {
         const std::vector<std::uint32_t>& bin = ctx.bins[std::size_t(chunk) * std::size_t(bands.lanes) + std::size_t(bands.lane)];
         const std::size_t count = bin.size();
         for (std::size_t k = 0; k < count; ++k) {
-            if (k + kPrefetchTriangles < count) walk.prefetchTriangle(3 * std::size_t(bin[k + kPrefetchTriangles] & kBinIndex));
+            if (k + kPrefetchTriangles < count) {
+                const std::uint32_t* ahead = indices + 3 * std::size_t(bin[k + kPrefetchTriangles] & kBinIndex);
+                for (int j = 0; j < 3; ++j) {
+                    prefetchForRead(vertices + ahead[j]);
+                    prefetchForRead(reinterpret_cast<const char*>(vertices + ahead[j] + 1) - 1);
+                }
+            }
             const std::uint32_t entry = bin[k];
-            const std::size_t tri = entry & kBinIndex;
-            if (entry & kBinClip) walk.clip(tri);
-            else walk.accept(tri, (entry & kBinOwner) ? LaneRole::Owner : LaneRole::Helper);
+            const std::size_t t = entry & kBinIndex;
+            const std::uint32_t i0 = indices[3 * t], i1 = indices[3 * t + 1], i2 = indices[3 * t + 2];
+            if (entry & kBinClip) {
+                if (bands.lane == 0) ++lane.stats.clipped;
+                clipAndRasterize<kVaryings>(ctx, state, clipper, bands, lane, sink, t, i0, i1, i2, program);
+                continue;
+            }
+            // (No wireframe here: a wireframe draw runs on one lane.)
+            rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t, vertices[i0], vertices[i1], vertices[i2],
+                                         program, (entry & kBinOwner) ? LaneRole::Owner : LaneRole::Helper);
         }
     }
 }
@@ -661,8 +664,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     }
     LaneState laneStates[kMaxRenderThreads];
     const std::size_t triangles = indexCount / 3;
-    if (triangles >= ctx.binningMinTriangles && state.stopAfter != PipelineStop::Geometry &&
-        triangles <= std::size_t(kBinIndex)) {
+    if (triangles >= ctx.binningMinTriangles && triangles <= std::size_t(kBinIndex)) {
         // 2. Binned primitive stage: each lane screens a chunk of the triangles into the lanes'
         //    bins, then each lane draws its bins (binTriangles, rasterBinned).
         const std::size_t binCount = std::size_t(lanes) * std::size_t(lanes);
@@ -670,7 +672,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         RenderStats chunkStats[kMaxRenderThreads];
         auto binJob = [&](int c) {
             for (int l = 0; l < lanes; ++l) ctx.bins[std::size_t(c) * std::size_t(lanes) + std::size_t(l)].clear();
-            binTriangles<kVaryings>(ctx, state, clipper, c, lanes, indices, triangles * std::size_t(c) / std::size_t(lanes),
+            binTriangles(ctx, state, clipper, c, lanes, indices, triangles * std::size_t(c) / std::size_t(lanes),
                                     triangles * std::size_t(c + 1) / std::size_t(lanes), chunkStats[c]);
         };
         pool.run(binJob);

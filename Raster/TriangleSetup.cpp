@@ -26,9 +26,19 @@ FixedEdge makeEdge(FixedPoint2 from, FixedPoint2 to) {
 // First pixel row whose centre y is >= Y (fixed point): the smallest j with j*256 + 128 >= Y.
 int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 
+// Inlined into both callers even though there are two: a call per triangle costs the single-lane
+// walk a few percent.
+#if defined(__GNUC__) || defined(__clang__)
+#define SR_SETUP_INLINE inline __attribute__((always_inline))
+#elif defined(_MSC_VER)
+#define SR_SETUP_INLINE __forceinline
+#else
+#define SR_SETUP_INLINE inline
+#endif
+
 // setupTriangleCulled's first steps: the vertices snapped (p) and the cull decided from twice
 // the exact signed area. Ready when the triangle is to be set up.
-SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
+SR_SETUP_INLINE SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
                          FixedPoint2 (&p)[3], std::int64_t& doubleArea) {
     // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
     const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);

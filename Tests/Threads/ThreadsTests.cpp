@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "Platform/Demo/SceneSetup.hpp"
@@ -146,11 +147,15 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
         }
         if (t % 13 == 0) positions.back() = positions[positions.size() - 2];                 // degenerate
     }
+    // The partial pipelines too (the bench's stage times): their counters must match as well.
     for (CullMode cull : {CullMode::None, CullMode::CW}) {
-        for (DepthMode depth : {DepthMode::TestWrite, DepthMode::Off}) {
+        for (auto [depth, stop] : {std::pair{DepthMode::TestWrite, PipelineStop::Fill}, std::pair{DepthMode::Off, PipelineStop::Fill},
+                                   std::pair{DepthMode::TestWrite, PipelineStop::Setup},
+                                   std::pair{DepthMode::TestWrite, PipelineStop::Geometry}}) {
             DrawState state;
             state.cull = cull;
             state.depth = depth;
+            state.stopAfter = stop;
             FrameBuffer reference(203, 157);
             RenderContext ref(reference);
             reference.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
@@ -158,8 +163,8 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
             drawProgram<1>(ref, state, positions.size(), indices.data(), indices.size(), program);
             for (int threads : {2, 3, 5})
             for (std::size_t binMin : {kBinningMinTriangles, std::size_t(0)}) {
-                INFO("cull " << cullModeName(cull) << ", depth mode " << int(depth) << ", " << threads << " threads"
-                             << (binMin == 0 ? ", binned" : ""));
+                INFO("cull " << cullModeName(cull) << ", depth mode " << int(depth) << ", stop " << int(stop) << ", "
+                             << threads << " threads" << (binMin == 0 ? ", binned" : ""));
                 FrameBuffer fb(203, 157);
                 RenderContext ctx(fb);
                 ctx.setThreads(threads);
