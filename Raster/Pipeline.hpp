@@ -484,8 +484,8 @@ inline constexpr std::uint32_t kBinClip = 1u << 30;  // crosses a clip plane: cl
 inline constexpr std::uint32_t kBinIndex = kBinClip - 1u;
 
 inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& clipper, int chunk, int lanes,
-                  const std::uint32_t* indices, std::size_t triangleBegin, std::size_t triangleEnd,
-                  RenderStats& stats) {
+                         const std::uint32_t* indices, std::size_t triangleBegin, std::size_t triangleEnd,
+                         RenderStats& stats) {
     const unsigned* codes = ctx.clipCodes.data();
     const int height = ctx.target().height();
     const bool samples = ctx.multisampleTarget() != nullptr;
@@ -673,7 +673,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         auto binJob = [&](int c) {
             for (int l = 0; l < lanes; ++l) ctx.bins[std::size_t(c) * std::size_t(lanes) + std::size_t(l)].clear();
             binTriangles(ctx, state, clipper, c, lanes, indices, triangles * std::size_t(c) / std::size_t(lanes),
-                                    triangles * std::size_t(c + 1) / std::size_t(lanes), chunkStats[c]);
+                         triangles * std::size_t(c + 1) / std::size_t(lanes), chunkStats[c]);
         };
         pool.run(binJob);
         auto binnedJob = [&](int l) {
