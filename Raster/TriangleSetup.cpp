@@ -38,8 +38,8 @@ int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 
 // setupTriangleCulled's first steps: the vertices snapped (p) and the cull decided from twice
 // the exact signed area. Ready when the triangle is to be set up.
-SR_SETUP_INLINE SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
-                         FixedPoint2 (&p)[3], std::int64_t& doubleArea) {
+SR_SETUP_INLINE SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
+                                         CullMode cull, FixedPoint2 (&p)[3], std::int64_t& doubleArea) {
     // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
     const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
     if (!valid) return isCulled(cull, v0, v1, v2) ? SetupOutcome::Culled : SetupOutcome::Empty;
