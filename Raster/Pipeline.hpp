@@ -212,21 +212,18 @@ SR_SIMD_NOINLINE Pixel stencilFragment(Program& program, FrameBuffer& fb, const 
     return program.fragment(f);
 }
 
-// Snapped pixel-row range [begin, end) whose centres a screen triangle can cover (the rows
-// setupTriangle computes), from the y coordinates only: a cheap band test before the setup.
-inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, int& begin,
-                            int& end) {
-    const Fixed y0 = snapToFixed(v0.y), y1 = snapToFixed(v1.y), y2 = snapToFixed(v2.y);
-    begin = int(firstCentreAtOrAfter(std::min({y0, y1, y2}), 1));
-    end = int(firstCentreAtOrAfter(std::max({y0, y1, y2}), 1));
+// Rows [begin, end) of a triangle with snapped y extent [minY, maxY]: those whose centres it can
+// cover (the rows setupTriangle computes), or with `samples` (a multisampled draw) every row the
+// extent touches (msaaRowRange).
+inline void rowsOfSnappedExtent(Fixed minY, Fixed maxY, bool samples, int& begin, int& end) {
+    begin = samples ? int(floorDiv(minY, kSubPixelScale)) : int(firstCentreAtOrAfter(minY, 1));
+    end = samples ? int(floorDiv(maxY, kSubPixelScale)) + 1 : int(firstCentreAtOrAfter(maxY, 1));
 }
-
-// The same for a multisampled draw: every row the snapped y extent touches (msaaRowRange).
-inline void snappedSampleRowRange(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
-                                  int& begin, int& end) {
+// The same from the screen vertices' y coordinates only: a cheap band test before the setup.
+inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, bool samples,
+                            int& begin, int& end) {
     const Fixed y0 = snapToFixed(v0.y), y1 = snapToFixed(v1.y), y2 = snapToFixed(v2.y);
-    begin = int(floorDiv(std::min({y0, y1, y2}), kSubPixelScale));
-    end = int(floorDiv(std::max({y0, y1, y2}), kSubPixelScale)) + 1;
+    rowsOfSnappedExtent(std::min({y0, y1, y2}), std::max({y0, y1, y2}), samples, begin, end);
 }
 
 // A lane's part in a triangle when the caller already knows it (binned draws: binTriangles):
@@ -248,8 +245,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     if (bands.lanes > 1 && role == LaneRole::Unknown) {
         int rowBegin = 0, rowEnd = 0;
         if (std::fabs(v0.y) <= kGuardBand && std::fabs(v1.y) <= kGuardBand && std::fabs(v2.y) <= kGuardBand) {
-            if (msaa) snappedSampleRowRange(v0, v1, v2, rowBegin, rowEnd);
-            else snappedRowRange(v0, v1, v2, rowBegin, rowEnd);
+            snappedRowRange(v0, v1, v2, msaa != nullptr, rowBegin, rowEnd);
         }
         const bool owner = bands.ownerOfRow(rowBegin) == bands.lane;
         if (!owner) {
@@ -513,20 +509,15 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
                                                               ctx.screenVertices[i2], state.cull, samples);
             if (screened.outcome == SetupOutcome::Culled) ++stats.culled; // isCulled's decision too
             if (screened.outcome != SetupOutcome::Ready || state.stopAfter == PipelineStop::Geometry) break;
-            // The rows rasterizeTriangle's band test uses (snappedRowRange / snappedSampleRowRange).
-            const int rowBegin = samples ? int(floorDiv(screened.minY, kSubPixelScale))
-                                         : int(firstCentreAtOrAfter(screened.minY, 1));
-            const int rowEnd = samples ? int(floorDiv(screened.maxY, kSubPixelScale)) + 1
-                                       : int(firstCentreAtOrAfter(screened.maxY, 1));
+            // rasterizeTriangle's decision: the owner of the first row counts it, every other lane
+            // whose bands meet its rows fills them.
+            int rowBegin = 0, rowEnd = 0;
+            rowsOfSnappedExtent(screened.minY, screened.maxY, samples, rowBegin, rowEnd);
             const int owner = LaneBands{0, lanes, height}.ownerOfRow(rowBegin);
-            bins[owner].push_back(std::uint32_t(tri) | kBinOwner);
-            // The other lanes with a band among the rows on the target (LaneBands::meets; band b
-            // belongs to lane b % lanes).
-            const int visibleBegin = std::max(rowBegin, 0), visibleEnd = std::min(rowEnd, height);
-            if (visibleBegin >= visibleEnd) break;
-            const int first = visibleBegin / LaneBands::kBandRows, last = (visibleEnd - 1) / LaneBands::kBandRows;
-            for (int b = first; b <= last && b < first + lanes; ++b)
-                if (b % lanes != owner) bins[b % lanes].push_back(std::uint32_t(tri));
+            for (int l = 0; l < lanes; ++l) {
+                if (l == owner) bins[l].push_back(std::uint32_t(tri) | kBinOwner);
+                else if (LaneBands{l, lanes, height}.meets(rowBegin, rowEnd)) bins[l].push_back(std::uint32_t(tri));
+            }
             break;
         }
         }

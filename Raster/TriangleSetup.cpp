@@ -26,8 +26,8 @@ FixedEdge makeEdge(FixedPoint2 from, FixedPoint2 to) {
 // First pixel row whose centre y is >= Y (fixed point): the smallest j with j*256 + 128 >= Y.
 int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 
-// Inlined into both callers even though there are two: a call per triangle costs the single-lane
-// walk a few percent.
+// Inlined into both callers even though there are two: out of line, `perf` put the call at 8.6%
+// of the one-thread bunny frame (800x600, cull cw).
 #if defined(__GNUC__) || defined(__clang__)
 #define SR_SETUP_INLINE inline __attribute__((always_inline))
 #elif defined(_MSC_VER)
