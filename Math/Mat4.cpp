@@ -107,14 +107,6 @@ Mat4 operator*(const Mat4& a, const Mat4& b) {
     return r;
 }
 
-Vec4 operator*(const Mat4& a, Vec4 v) {
-    const float* m = a.m;
-    return {m[0] * v.x + m[4] * v.y + m[8] * v.z + m[12] * v.w,
-            m[1] * v.x + m[5] * v.y + m[9] * v.z + m[13] * v.w,
-            m[2] * v.x + m[6] * v.y + m[10] * v.z + m[14] * v.w,
-            m[3] * v.x + m[7] * v.y + m[11] * v.z + m[15] * v.w};
-}
-
 bool operator==(const Mat4& a, const Mat4& b) {
     for (int i = 0; i < 16; ++i)
         if (!(a.m[i] == b.m[i])) return false;
