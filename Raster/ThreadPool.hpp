@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <mutex>
@@ -16,9 +17,10 @@ namespace sr {
 // lane has finished (fork-join), so the caller's stack objects the job refers to stay valid.
 // No allocation per job: the job is a function pointer plus a context pointer. Not reentrant
 // (a job must not call run() on the same pool). A pool of 1 lane has no worker thread.
-// Waking a sleeping thread takes tens of microseconds, and a frame has a few jobs per draw, so
-// both sides first poll for a short while (kSpins pause instructions, well under 0.1 ms) before
-// they sleep on the condition variables.
+// Waking a sleeping thread takes tens of microseconds (15 us on a 2-vCPU VM, measured), and a
+// frame has a few jobs per draw, so both sides first poll for a while (kSpinTime) before they
+// sleep on the condition variables: a worker waiting for the next draw while the calling thread
+// sets it up, the calling thread waiting for a lane that got the larger share of a draw.
 class ThreadPool {
 public:
     explicit ThreadPool(int lanes) : lanes_(std::max(lanes, 1)) {
@@ -54,8 +56,7 @@ public:
         }
         wake_.notify_all();
         job(0);
-        for (int i = 0; i < kSpins && pending_.load(std::memory_order_acquire) != 0; ++i) pause();
-        if (pending_.load(std::memory_order_acquire) == 0) return;
+        if (spinUntil([this] { return pending_.load(std::memory_order_acquire) == 0; })) return;
         std::unique_lock<std::mutex> lock(mutex_);
         done_.wait(lock, [this] { return pending_.load(std::memory_order_acquire) == 0; });
     }
@@ -66,7 +67,7 @@ private:
         for (;;) {
             void (*call)(void*, int) = nullptr;
             void* context = nullptr;
-            for (int i = 0; i < kSpins && generation_.load(std::memory_order_acquire) == seen; ++i) pause();
+            spinUntil([&] { return generation_.load(std::memory_order_acquire) != seen; });
             {
                 std::unique_lock<std::mutex> lock(mutex_);
                 wake_.wait(lock, [&] { return stopping_ || generation_.load(std::memory_order_relaxed) != seen; });
@@ -93,7 +94,20 @@ private:
     // One spin-wait hint (x86 PAUSE; elsewhere a yield). Out of line (ThreadPool.cpp), so this
     // header, which Scene.hpp and the Platform files include, pulls in no intrinsics header.
     static void pause();
-    static constexpr int kSpins = 2000;
+    // Polls `ready` (with a pause between polls) until it holds or kSpinTime has passed; returns
+    // whether it holds. Timed rather than counted, since a pause takes 10 to 150 cycles by CPU.
+    template <class Ready>
+    static bool spinUntil(Ready ready) {
+        const auto deadline = std::chrono::steady_clock::now() + kSpinTime;
+        for (;;) {
+            for (int i = 0; i < 16; ++i) {
+                if (ready()) return true;
+                pause();
+            }
+            if (std::chrono::steady_clock::now() >= deadline) return ready();
+        }
+    }
+    static constexpr std::chrono::microseconds kSpinTime{300};
 
     std::atomic<int> pending_{0};
     std::atomic<std::uint64_t> generation_{0};
