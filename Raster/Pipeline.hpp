@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -13,6 +14,7 @@
 #include "Raster/Clipper.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Kernels/KernelConfig.hpp" // SR_SIMD_NOINLINE, SR_UNLIKELY
+#include "Raster/LaneBalance.hpp"
 #include "Raster/Line.hpp"
 #include "Raster/MsaaFill.hpp"
 #include "Raster/PipelineModes.hpp" // PipelineStop, DepthMode, PerspectiveMode
@@ -123,22 +125,26 @@ struct alignas(64) LaneState {
 };
 
 // Which rows a lane fills. One lane: the whole target. Several: the target is cut into bands
-// of kBandRows rows, band b belonging to lane b % lanes (interleaved, so a model in the middle
-// of the screen still spreads over every lane).
+// of kBandRows rows, band b belonging to lane pattern->ownerOfBand(b) (RenderContext::laneBalance:
+// a repeated pattern weighted by the lanes' speed), or to lane b % lanes without a pattern; both
+// interleave, so a model in the middle of the screen still spreads over every lane.
 struct LaneBands {
     static constexpr int kBandRows = 16;
     int lane = 0, lanes = 1, height = 0;
+    const BandPattern* pattern = nullptr; // null, or pattern->lanes == lanes
 
-    int ownerOfRow(int row) const { return (std::clamp(row, 0, std::max(height - 1, 0)) / kBandRows) % lanes; }
+    int ownerOfBand(int band) const { return pattern ? pattern->ownerOfBand(band) : band % lanes; }
+    int ownerOfRow(int row) const { return ownerOfBand(std::clamp(row, 0, std::max(height - 1, 0)) / kBandRows); }
     // True when some band of this lane meets rows [rowBegin, rowEnd) of the target.
     bool meets(int rowBegin, int rowEnd) const {
         rowBegin = std::max(rowBegin, 0);
         rowEnd = std::min(rowEnd, height);
         if (rowBegin >= rowEnd) return false;
         const int first = rowBegin / kBandRows, last = (rowEnd - 1) / kBandRows;
-        if (last - first + 1 >= lanes) return true;
+        // Every lane owns a band of every period of the pattern (of every `lanes` bands without one).
+        if (last - first + 1 >= (pattern ? pattern->period : lanes)) return true;
         for (int b = first; b <= last; ++b)
-            if (b % lanes == lane) return true;
+            if (ownerOfBand(b) == lane) return true;
         return false;
     }
 };
@@ -357,7 +363,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         rowBegin = std::max(rowBegin, 0);
         rowEnd = std::min(rowEnd, fb.height());
         for (int b = rowBegin / LaneBands::kBandRows; b * LaneBands::kBandRows < rowEnd; ++b) {
-            if (b % bands.lanes != bands.lane) continue;
+            if (bands.ownerOfBand(b) != bands.lane) continue;
             const int y0 = b * LaneBands::kBandRows;
             fillIn(depthTag, Scissor{0, y0, fb.width(), std::min(y0 + LaneBands::kBandRows, fb.height())});
         }
@@ -480,8 +486,8 @@ inline constexpr std::uint32_t kBinClip = 1u << 30;  // crosses a clip plane: cl
 inline constexpr std::uint32_t kBinIndex = kBinClip - 1u;
 
 inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& clipper, int chunk, int lanes,
-                         const std::uint32_t* indices, std::size_t triangleBegin, std::size_t triangleEnd,
-                         RenderStats& stats) {
+                         const BandPattern* pattern, const std::uint32_t* indices, std::size_t triangleBegin,
+                         std::size_t triangleEnd, RenderStats& stats) {
     const unsigned* codes = ctx.clipCodes.data();
     const int height = ctx.target().height();
     const bool samples = ctx.multisampleTarget() != nullptr;
@@ -513,10 +519,11 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
             // whose bands meet its rows fills them.
             int rowBegin = 0, rowEnd = 0;
             rowsOfSnappedExtent(screened.minY, screened.maxY, samples, rowBegin, rowEnd);
-            const int owner = LaneBands{0, lanes, height}.ownerOfRow(rowBegin);
+            const int owner = LaneBands{0, lanes, height, pattern}.ownerOfRow(rowBegin);
             for (int l = 0; l < lanes; ++l) {
                 if (l == owner) bins[l].push_back(std::uint32_t(tri) | kBinOwner);
-                else if (LaneBands{l, lanes, height}.meets(rowBegin, rowEnd)) bins[l].push_back(std::uint32_t(tri));
+                else if (LaneBands{l, lanes, height, pattern}.meets(rowBegin, rowEnd))
+                    bins[l].push_back(std::uint32_t(tri));
             }
             break;
         }
@@ -654,6 +661,15 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         pool.run(vertexJob);
     }
     LaneState laneStates[kMaxRenderThreads];
+    // The bands' owners (weighted by the lanes' speed), and each lane's time in the raster job,
+    // reported back so that the next draws' weights follow the lanes' speed (LaneBalance).
+    const BandPattern* pattern = ctx.laneBalance.pattern().lanes == lanes ? &ctx.laneBalance.pattern() : nullptr;
+    double busy[kMaxRenderThreads] = {};
+    auto timed = [&busy](int l, auto&& work) {
+        const auto start = std::chrono::steady_clock::now();
+        work();
+        busy[l] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    };
     const std::size_t triangles = indexCount / 3;
     if (triangles >= ctx.binningMinTriangles && triangles <= std::size_t(kBinIndex)) {
         // 2. Binned primitive stage: each lane screens a chunk of the triangles into the lanes'
@@ -663,15 +679,20 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         RenderStats chunkStats[kMaxRenderThreads];
         auto binJob = [&](int c) {
             for (int l = 0; l < lanes; ++l) ctx.bins[std::size_t(c) * std::size_t(lanes) + std::size_t(l)].clear();
-            binTriangles(ctx, state, clipper, c, lanes, indices, triangles * std::size_t(c) / std::size_t(lanes),
+            binTriangles(ctx, state, clipper, c, lanes, pattern, indices,
+                         triangles * std::size_t(c) / std::size_t(lanes),
                          triangles * std::size_t(c + 1) / std::size_t(lanes), chunkStats[c]);
         };
         pool.run(binJob);
         auto binnedJob = [&](int l) {
-            Program copy = program;
-            rasterBinned<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height()}, laneStates[l], indices, copy);
+            timed(l, [&] {
+                Program copy = program;
+                rasterBinned<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height(), pattern}, laneStates[l],
+                                        indices, copy);
+            });
         };
         pool.run(binnedJob);
+        ctx.laneBalance.record(busy);
         for (int l = 0; l < lanes; ++l) {
             ctx.stats += chunkStats[l];
             ctx.stats += laneStates[l].stats;
@@ -680,11 +701,14 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     }
     // 2. Primitive stage: every lane walks the triangles in order and fills its own bands.
     auto rasterJob = [&](int l) {
-        Program copy = program;
-        rasterLane<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height()}, laneStates[l], indices,
-                              indexCount, copy);
+        timed(l, [&] {
+            Program copy = program;
+            rasterLane<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height(), pattern}, laneStates[l],
+                                  indices, indexCount, copy);
+        });
     };
     pool.run(rasterJob);
+    ctx.laneBalance.record(busy);
     for (int l = 0; l < lanes; ++l) ctx.stats += laneStates[l].stats;
 }
 

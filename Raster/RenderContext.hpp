@@ -8,6 +8,7 @@
 
 #include "Raster/Clipper.hpp"
 #include "Raster/FrameBuffer.hpp"
+#include "Raster/LaneBalance.hpp"
 #include "Raster/Msaa.hpp"
 #include "Raster/ThreadPool.hpp"
 #include "Raster/Vertex.hpp"
@@ -44,6 +45,7 @@ struct RenderStats {
 
 // Most render threads a context runs (lanes of its pool).
 inline constexpr int kMaxRenderThreads = 64;
+static_assert(kMaxRenderThreads <= kMaxBalancedLanes, "LaneBalance holds every lane");
 // Draws of at least this many triangles are binned when drawn on several lanes (see `bins`): below
 // it the saved walk does not pay for the extra fork-join (tens of microseconds).
 inline constexpr std::size_t kBinningMinTriangles = 4096;
@@ -105,11 +107,17 @@ public:
     std::vector<std::vector<std::uint32_t>> bins;
     std::size_t binningMinTriangles = kBinningMinTriangles;
 
+    // Which lane fills which band of rows in a split draw, weighted by the lanes' measured speed
+    // (reset to equal weights by setThreads; tests fix it). The image and the counters do not
+    // depend on it.
+    LaneBalance laneBalance;
+
     // Render threads (1..kMaxRenderThreads; 0 or less means 1). More than one starts a
     // persistent pool that drawProgram() splits its work over; the image is the same.
     void setThreads(int threads) {
         threads = std::clamp(threads, 1, kMaxRenderThreads);
         if (threads == this->threads()) return;
+        laneBalance.reset(threads);
         pool_.reset();
         if (threads > 1) pool_ = std::make_unique<ThreadPool>(threads);
     }

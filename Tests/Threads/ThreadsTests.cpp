@@ -1,6 +1,7 @@
 // Multi-threaded rendering: images, depth and counters bit-identical to one thread, for many scenes and settings.
 #include "TestFramework.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <random>
@@ -37,9 +38,10 @@ std::size_t differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
     return n;
 }
 
-// binMin: RenderContext::binningMinTriangles (0: every draw on several lanes binned).
+// binMin: RenderContext::binningMinTriangles (0: every draw on several lanes binned); weights:
+// the lanes' bands fixed to these weights (LaneBalance::fix) instead of adapting.
 Frame renderDefault(const demo::SceneOptions& options, int threads, const RenderSettings& settings,
-                    std::size_t binMin = kBinningMinTriangles) {
+                    std::size_t binMin = kBinningMinTriangles, const std::vector<int>& weights = {}) {
     static auto scene = demo::loadScene(demo::SceneOptions{});
     REQUIRE(scene.ok());
     const FrameView view =
@@ -49,6 +51,7 @@ Frame renderDefault(const demo::SceneOptions& options, int threads, const Render
     RenderContext ctx(f.fb);
     ctx.setThreads(threads);
     ctx.binningMinTriangles = binMin;
+    if (!weights.empty()) ctx.laneBalance.fix(weights.data(), threads);
     REQUIRE(ctx.threads() == std::max(threads, 1));
     demo::renderFrame(ctx, scene.value(), view, settings);
     demo::renderFrame(ctx, scene.value(), view, settings); // a second frame reuses every buffer
@@ -71,7 +74,77 @@ struct TieProgram {
     }
 };
 
+// Uneven band weights (each list sums to BandPattern::kBandsPerLane per lane).
+const std::vector<int> kSkewedWeights[] = {{15, 1}, {1, 15}, {11, 5}, {1, 1, 22}, {10, 4, 10}, {2, 9, 9, 9, 11}};
+
 } // namespace
+
+TEST_CASE("band patterns: equal weights interleave, uneven ones keep their counts and spread out", "[threads]") {
+    for (int lanes : {1, 2, 3, 5, 64}) {
+        const std::vector<int> equal(std::size_t(lanes), BandPattern::kBandsPerLane);
+        const BandPattern p = spreadBands(equal.data(), lanes);
+        REQUIRE(p.period == BandPattern::kBandsPerLane * lanes);
+        for (int b = 0; b < 3 * p.period; ++b) CHECK(p.ownerOfBand(b) == b % lanes);
+    }
+    for (const std::vector<int>& weights : kSkewedWeights) {
+        const int lanes = int(weights.size());
+        const BandPattern p = spreadBands(weights.data(), lanes);
+        INFO(lanes << " lanes, lane 0 weight " << weights[0]);
+        std::vector<int> count(std::size_t(lanes), 0);
+        for (int i = 0; i < p.period; ++i) {
+            const int l = p.owners[std::size_t(i)];
+            REQUIRE(l < lanes);
+            ++count[std::size_t(l)];
+            // Spread: after every slot each lane holds its share of the slots so far within one
+            // band (a pattern that gave lane 0 its 11 bands first would be 3.4 bands off).
+            for (int k = 0; k < lanes; ++k)
+                CHECK(std::fabs(count[std::size_t(k)] - double(weights[std::size_t(k)]) * (i + 1) / p.period) < 1.0);
+        }
+        for (int l = 0; l < lanes; ++l) CHECK(count[std::size_t(l)] == weights[std::size_t(l)]);
+    }
+}
+
+TEST_CASE("lane balance: the weights follow the lanes' speed and stay put when fixed", "[threads]") {
+    // Lane l takes cost[l] seconds per band of each period: busy time = weight * cost. The
+    // weights that equalise the busy times of 1 : 2 are 2/3 and 1/3 of 16 bands, 10.7 : 5.3.
+    auto settle = [](LaneBalance& balance, const std::vector<double>& cost, int draws) {
+        for (int d = 0; d < draws; ++d) {
+            std::vector<double> busy(cost.size());
+            for (std::size_t l = 0; l < cost.size(); ++l) busy[l] = balance.weight(int(l)) * cost[l];
+            balance.record(busy.data());
+        }
+    };
+    LaneBalance balance;
+    balance.reset(2);
+    CHECK(balance.weight(0) == 8);
+    CHECK(balance.weight(1) == 8);
+    settle(balance, {1e-4, 2e-4}, 200);
+    CHECK(balance.weight(0) == 11);
+    CHECK(balance.weight(1) == 5);
+    // The other way round, and three lanes with the middle one three times slower.
+    settle(balance, {3e-4, 1e-4}, 200);
+    CHECK(balance.weight(0) == 4);
+    CHECK(balance.weight(1) == 12);
+    balance.reset(3);
+    settle(balance, {1e-4, 3e-4, 1e-4}, 200);
+    CHECK(balance.weight(0) == 10);
+    CHECK(balance.weight(1) == 4);
+    CHECK(balance.weight(2) == 10);
+    // Equal speeds keep equal weights (the hysteresis holds them against small noise too).
+    balance.reset(2);
+    settle(balance, {1e-4, 1.03e-4}, 200);
+    CHECK(balance.weight(0) == 8);
+    // A lane that did nothing counts as fast, not infinitely so: every lane keeps a band.
+    settle(balance, {1e-4, 0.0}, 200);
+    CHECK(balance.weight(0) >= 1);
+    CHECK(balance.weight(0) + balance.weight(1) == 16);
+    // Fixed weights do not move.
+    const int fixedWeights[] = {3, 13};
+    balance.fix(fixedWeights, 2);
+    settle(balance, {1e-4, 5e-4}, 200);
+    CHECK(balance.weight(0) == 3);
+    CHECK(balance.pattern().owners[0] == 1);
+}
 
 TEST_CASE("thread pool runs every lane once per job and can be reused", "[threads]") {
     for (int lanes : {1, 2, 3, 8}) {
@@ -126,6 +199,18 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
             CHECK(differingPixels(one.fb, binned.fb) == 0);
             CHECK(sameStats(one.stats, binned.stats));
         }
+        // Bands weighted unevenly (LaneBalance), plain and binned: a lane with one band in 16,
+        // a lane with most of them, a lane whose only band may lie below a small target.
+        for (const std::vector<int>& weights : kSkewedWeights) {
+            const int threads = int(weights.size());
+            INFO(c.width << "x" << c.height << " " << shadingModeName(c.shading) << ", weights " << weights[0] << "/"
+                          << weights[1] << " over " << threads << " threads");
+            for (std::size_t binMin : {kBinningMinTriangles, std::size_t(0)}) {
+                const Frame skewed = renderDefault(options, threads, settings, binMin, weights);
+                CHECK(differingPixels(one.fb, skewed.fb) == 0);
+                CHECK(sameStats(one.stats, skewed.stats));
+            }
+        }
     }
 }
 
@@ -169,6 +254,23 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
                 RenderContext ctx(fb);
                 ctx.setThreads(threads);
                 ctx.binningMinTriangles = binMin;
+                ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+                TieProgram copy{&positions};
+                drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), copy);
+                CHECK(differingPixels(reference, fb) == 0);
+                CHECK(sameStats(ref.stats, ctx.stats));
+            }
+            for (const std::vector<int>& weights : kSkewedWeights)
+            for (std::size_t binMin : {kBinningMinTriangles, std::size_t(0)}) {
+                const int threads = int(weights.size());
+                INFO("cull " << cullModeName(cull) << ", depth mode " << int(depth) << ", stop " << int(stop) << ", "
+                             << threads << " threads, weights " << weights[0] << "/" << weights[1]
+                             << (binMin == 0 ? ", binned" : ""));
+                FrameBuffer fb(203, 157);
+                RenderContext ctx(fb);
+                ctx.setThreads(threads);
+                ctx.binningMinTriangles = binMin;
+                ctx.laneBalance.fix(weights.data(), threads);
                 ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
                 TieProgram copy{&positions};
                 drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), copy);
