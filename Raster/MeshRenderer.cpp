@@ -22,10 +22,14 @@ template <class Base>
 struct KernelProgram : Base {
     FillKernel<Base> kernel = nullptr;
     ShadeRunsKernel<Base> runsKernel = nullptr;
+    FlushKernel<Base> flushKernel = nullptr;
     bool fillKernel(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) const {
         if (!kernel) return false;
         kernel(*this, t, fb, s, shaded);
         return true;
+    }
+    void flushFill(FrameBuffer& fb) const {
+        if (flushKernel) flushKernel(*this, fb);
     }
     bool shadeRuns(const TriangleSetup& t, FrameBuffer& fb, const SpanRun* runs, int count) const {
         if (!runsKernel) return false;
@@ -51,6 +55,7 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
         const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
         withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
+        withKernel.flushKernel = selectFlushKernel<Program>(d.settings.isa, key);
     }
     // The programs' vertex() reads the mesh, the view and (Gouraud) the specular constants, which
     // it names in vertexVariant(): draws of one mesh share their vertex stage inside a

@@ -177,6 +177,20 @@ struct HasFillKernel<Program, std::void_t<decltype(std::declval<Program&>().fill
                                   std::declval<const TriangleSetup&>(), std::declval<FrameBuffer&>(),
                                   std::declval<const Scissor&>(), std::declval<std::uint64_t&>()))>>
     : std::true_type {};
+// ... and optionally void flushFill(FrameBuffer&): writes what the fill kernel has queued on
+// this thread (its colours may wait for later triangles of the draw: Kernels.inl, fillSpans).
+template <class Program, class = void>
+struct HasFlushFill : std::false_type {};
+template <class Program>
+struct HasFlushFill<Program,
+                    std::void_t<decltype(std::declval<const Program&>().flushFill(std::declval<FrameBuffer&>()))>>
+    : std::true_type {};
+// The fill kernel's queued colours written: at the end of a lane's walk of a draw, and before
+// anything else writes colour there (a wireframe edge).
+template <class Program>
+void flushFill(const Program& program, FrameBuffer& fb) {
+    if constexpr (HasFlushFill<Program>::value) program.flushFill(fb);
+}
 
 // One fragment of a draw with the stencil test on (DrawState::stencil; the fill ran without a
 // depth test, which is made here after the stencil test). OpenGL's order: a texel-alpha Mask
@@ -408,6 +422,7 @@ void clipAndRasterize(RenderContext& ctx, const DrawState& state, Clipper& clipp
         drawn |= rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t, screen[0], screen[k + 1], screen[k + 2],
                                               program);
     if (drawn && state.wireframe) {
+        flushFill(program, fb);
         for (int k = 0; k < n; ++k)
             drawWireEdge(fb, msaa, screen[k], screen[(k + 1) % n], state.wireColour, state.depth != DepthMode::Off,
                          state.wireWidth);
@@ -460,6 +475,7 @@ void rasterLane(RenderContext& ctx, const DrawState& state, const Clipper& clipp
             assert(ctx.usable[i0] && ctx.usable[i1] && ctx.usable[i2]);
             if (rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t / 3, s0, s1, s2, program) &&
                 state.wireframe) {
+                flushFill(program, fb);
                 drawWireEdge(fb, msaa, s0, s1, state.wireColour, wireDepthTest, state.wireWidth);
                 drawWireEdge(fb, msaa, s1, s2, state.wireColour, wireDepthTest, state.wireWidth);
                 drawWireEdge(fb, msaa, s2, s0, state.wireColour, wireDepthTest, state.wireWidth);
@@ -640,6 +656,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         LaneState lane;
         if (!transformed) vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program);
         rasterLane<kVaryings>(ctx, state, clipper, LaneBands{0, 1, fb.height()}, lane, indices, indexCount, program);
+        flushFill(program, fb);
         ctx.stats += lane.stats;
         return;
     }
@@ -689,6 +706,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
                 Program copy = program;
                 rasterBinned<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height(), pattern}, laneStates[l],
                                         indices, copy);
+                flushFill(copy, fb);
             });
         };
         pool.run(binnedJob);
@@ -705,6 +723,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
             Program copy = program;
             rasterLane<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height(), pattern}, laneStates[l],
                                   indices, indexCount, copy);
+            flushFill(copy, fb);
         });
     };
     pool.run(rasterJob);

@@ -38,6 +38,13 @@ using FillKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, con
 template <class Prog>
 using ShadeRunsKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, const SpanRun* runs, int count);
 
+// The fill kernel's deferred queue (Kernels.inl, fillSpans): shades and writes the fragments a
+// draw's fill kernel left queued on this thread; called by the pipeline at the end of each lane's
+// walk of the draw and before a wireframe edge (anything else that writes colour). `p`: any
+// program of the draw.
+template <class Prog>
+using FlushKernel = void (*)(const Prog& p, FrameBuffer& fb);
+
 // One table per ISA (Kernels*.cpp); nullptr where the ISA has no kernel for the key (the
 // scalar reference then fills: non-integer shininess).
 namespace kernels_sse2 {
@@ -45,18 +52,24 @@ template <class Prog>
 FillKernel<Prog> fillKernel(const KernelKey& key);
 template <class Prog>
 ShadeRunsKernel<Prog> shadeRunsKernel(const KernelKey& key);
+template <class Prog>
+FlushKernel<Prog> flushKernel(const KernelKey& key);
 }
 namespace kernels_avx2 {
 template <class Prog>
 FillKernel<Prog> fillKernel(const KernelKey& key);
 template <class Prog>
 ShadeRunsKernel<Prog> shadeRunsKernel(const KernelKey& key);
+template <class Prog>
+FlushKernel<Prog> flushKernel(const KernelKey& key);
 }
 namespace kernels_avx512 {
 template <class Prog>
 FillKernel<Prog> fillKernel(const KernelKey& key);
 template <class Prog>
 ShadeRunsKernel<Prog> shadeRunsKernel(const KernelKey& key);
+template <class Prog>
+FlushKernel<Prog> flushKernel(const KernelKey& key);
 }
 
 template <class Prog>
@@ -85,6 +98,23 @@ ShadeRunsKernel<Prog> selectShadeRunsKernel(Isa isa, const KernelKey& key) {
     case Isa::Sse2: return kernels_sse2::shadeRunsKernel<Prog>(key);
     case Isa::Avx2: return kernels_avx2::shadeRunsKernel<Prog>(key);
     case Isa::Avx512: return kernels_avx512::shadeRunsKernel<Prog>(key);
+    }
+#else
+    (void)key;
+#endif
+    return nullptr;
+}
+
+// The same for the fill kernel's queue: the flush that belongs to selectFillKernel's kernel.
+template <class Prog>
+FlushKernel<Prog> selectFlushKernel(Isa isa, const KernelKey& key) {
+    if (!isaAvailable(isa)) return nullptr;
+#if SR_KERNELS_X86
+    switch (isa) {
+    case Isa::Scalar: return nullptr;
+    case Isa::Sse2: return kernels_sse2::flushKernel<Prog>(key);
+    case Isa::Avx2: return kernels_avx2::flushKernel<Prog>(key);
+    case Isa::Avx512: return kernels_avx512::flushKernel<Prog>(key);
     }
 #else
     (void)key;

@@ -608,11 +608,19 @@ struct SpanKernel {
     F gradient[kPlanes];
     F triangleLod; // affine trilinear: the triangle's mip level (else unused)
     float alpha = 1.0f; // below 1: a transparent draw, every colour blended over the target (blendOver)
+    // On (fillSpans, kDeferrable programs): the queue outlives the triangle, so that a draw of
+    // small triangles shades full groups of lanes; see fillSpans.
+    bool deferred = false;
 
     // Transparent draws are drawn with DepthMode::Test (drawStateFor): only those kernels carry
     // the blending code, so the opaque ones are the very loops they were without it.
     static constexpr bool kMayBlend = kDepth == DepthMode::Test;
     bool blending() const { return kMayBlend && alpha < 1.0f; }
+    // Programs whose shading of a fragment reads nothing of its triangle (only the draw's
+    // constants and the fragment's own varyings): their queued fragments may wait for the next
+    // triangle's. Not flat (lit per triangle) nor trilinear (the triangle's uv gradients).
+    static constexpr bool kDeferrable =
+        kV > 0 && Prog::kMode != ShadingMode::Flat && !(Prog::kIsTextured && kFilter == TextureFilter::Trilinear);
 
     // Writes the shaded colour of pixel `dst` (opaque: the colour itself; transparent: blendOver,
     // the scalar pipeline's very function, lane by lane).
@@ -633,6 +641,7 @@ struct SpanKernel {
         for (int i = 0; i < used; ++i) put(fb.colorRow(queue.y[i])[queue.x[i]], out[i]);
     }
 
+    // Shades and writes the queued fragments (fewer than kLanes) and empties the queue.
     void flush() const {
         const int used = queue.count;
         if (used == 0) return;
@@ -643,6 +652,16 @@ struct SpanKernel {
             for (int k = 0; k < kV; ++k) queue.v[k][i] = queue.v[k][used - 1];
         }
         shadeQueued(used);
+        queue.count = 0;
+    }
+
+    // True when a queued fragment lies in row y, columns [x, x + kLanes): a group about to be
+    // written there directly must not be overwritten by an older fragment written later.
+    bool queuedIn(int y, int x) const {
+        const M used = firstN(queue.count);
+        const I qx = iload(queue.x), qy = iload(queue.y);
+        const M hit = used & (qy == iset(y)) & (qx > iset(x - 1)) & (qx < iset(x + kLanes));
+        return bits(hit) != 0;
     }
 
     // A one-pixel span [x, x + 1) of row y on the setup with its plane origin at `origin`
@@ -746,6 +765,8 @@ struct SpanKernel {
                 }
                 const I columns = iset(x) + iiota();
                 if (passBits == bits(mAll())) {
+                    // (A deferred queue may hold older fragments of these pixels: written first.)
+                    if (deferred && queue.count > 0 && queuedIn(y, x)) flush();
                     const I shaded = shadeGroup<Prog, kPersp, kFilter>(p, values, invW, columns, row, triangleLod);
                     if (!blending()) {
                         istore(colour + x, shaded);
@@ -775,21 +796,53 @@ struct SpanKernel {
     }
 };
 
+// The fill kernels' fragment queue: one per thread and kernel, reused by every triangle (only
+// `count` carries over; the rest is written before it is read).
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
+FragmentQueue<Prog::kVaryings>& fillQueue() {
+    static thread_local FragmentQueue<Prog::kVaryings> queue;
+    return queue;
+}
+
+// A kDeferrable program's queue is not flushed at the end of the triangle: the fragments of a
+// draw's small triangles (the bunny's average 4 pixels at 800x600) fill whole groups of lanes
+// together instead of a group each. The colours then reach the target later, in the same order
+// (the queue is written first in order; a whole group written directly first flushes the older
+// fragments of its pixels, queuedIn), and the depth test stays immediate: the image is the
+// same. The pipeline calls flushSpans at the end of each lane's walk of a draw and before
+// anything else writes colour (a wireframe edge).
 template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
 void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) {
+    using Span = SpanKernel<Prog, kDepth, kPersp, kFilter>;
     assert(Prog::kVaryings <= t.varyingCount);
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= fb.width() && s.y1 <= fb.height());
-    // One queue per thread, reused by every triangle (only `count` is reset; the rest is
-    // written before it is read).
-    static thread_local FragmentQueue<Prog::kVaryings> queue;
-    queue.count = 0;
+    FragmentQueue<Prog::kVaryings>& queue = fillQueue<Prog, kDepth, kPersp, kFilter>();
+    if constexpr (!Span::kDeferrable) queue.count = 0;
     assert(kDepth == DepthMode::Test || p.d->alpha >= 1.0f); // blending kernels: DepthMode::Test only
-    SpanKernel<Prog, kDepth, kPersp, kFilter> span{p, t, fb, shaded, queue, {}, fzero(), p.d->alpha};
+    Span span{p, t, fb, shaded, queue, {}, fzero(), p.d->alpha, Span::kDeferrable};
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));
-    for (int k = 0; k < SpanKernel<Prog, kDepth, kPersp, kFilter>::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
+    for (int k = 0; k < Span::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
     forEachSpan(t, s, span);
-    if constexpr (Prog::kVaryings > 0) span.flush();
+    if constexpr (Prog::kVaryings > 0 && !Span::kDeferrable) span.flush();
+}
+
+// Shades and writes what fillSpans left queued on this thread (nothing for a program that is not
+// kDeferrable); `p` is any program of the draw (the queued fragments read only its constants).
+template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
+void flushSpans(const Prog& p, FrameBuffer& fb) {
+    using Span = SpanKernel<Prog, kDepth, kPersp, kFilter>;
+    if constexpr (Span::kDeferrable) {
+        FragmentQueue<Prog::kVaryings>& queue = fillQueue<Prog, kDepth, kPersp, kFilter>();
+        if (queue.count == 0) return;
+        const TriangleSetup none{}; // (the shading of a deferrable program reads no triangle)
+        std::uint64_t shaded = 0;   // (counted when queued)
+        const Span span{p, none, fb, shaded, queue, {}, fzero(), p.d->alpha, true};
+        span.flush();
+    } else {
+        (void)p;
+        (void)fb;
+    }
 }
 
 // The multisampled fill's shading (MsaaFill.hpp): the pixels of the given runs, shaded into fb's
@@ -829,11 +882,13 @@ template <class Prog>
 struct KernelPair {
     FillKernel<Prog> fill = nullptr;
     ShadeRunsKernel<Prog> runs = nullptr;
+    FlushKernel<Prog> flush = nullptr; // the fill's deferred queue
 };
 
 template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
 KernelPair<Prog> entries() {
-    return {&fillSpans<Prog, kDepth, kPersp, kFilter>, &shadeRunSpans<Prog, kPersp, kFilter>};
+    return {&fillSpans<Prog, kDepth, kPersp, kFilter>, &shadeRunSpans<Prog, kPersp, kFilter>,
+            &flushSpans<Prog, kDepth, kPersp, kFilter>};
 }
 
 // Resolves the key's run-time values into template arguments, one level at a time; a program
@@ -882,6 +937,16 @@ ShadeRunsKernel<Prog> shadeRunsKernel(const KernelKey& key) {
     return pickPerspective<Prog, DepthMode::Off>(key).runs; // no depth test: the fill did it per sample
 }
 
+template <class Prog>
+FlushKernel<Prog> flushKernel(const KernelKey& key) {
+    switch (key.depth) {
+    case DepthMode::Off: return pickPerspective<Prog, DepthMode::Off>(key).flush;
+    case DepthMode::Test: return pickPerspective<Prog, DepthMode::Test>(key).flush;
+    case DepthMode::TestWrite: return pickPerspective<Prog, DepthMode::TestWrite>(key).flush;
+    }
+    return nullptr;
+}
+
 // The one shading model this translation unit instantiates, untextured and textured:
 // SR_KERNEL_PROGRAM, defined by the file that includes Kernels<Isa>.inl (one file per ISA and
 // shading model, so that no single file compiles all 2 x 4 programs' kernels).
@@ -889,9 +954,13 @@ template FillKernel<programs::SR_KERNEL_PROGRAM<false>> fillKernel(const KernelK
 template FillKernel<programs::SR_KERNEL_PROGRAM<true>> fillKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false>> shadeRunsKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true>> shadeRunsKernel(const KernelKey&);
+template FlushKernel<programs::SR_KERNEL_PROGRAM<false>> flushKernel(const KernelKey&);
+template FlushKernel<programs::SR_KERNEL_PROGRAM<true>> flushKernel(const KernelKey&);
 #ifdef SR_KERNEL_RGB_VARIANTS // the program's RGB-terms variant too (Gouraud under coloured lights)
 template FillKernel<programs::SR_KERNEL_PROGRAM<false, true>> fillKernel(const KernelKey&);
 template FillKernel<programs::SR_KERNEL_PROGRAM<true, true>> fillKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false, true>> shadeRunsKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true, true>> shadeRunsKernel(const KernelKey&);
+template FlushKernel<programs::SR_KERNEL_PROGRAM<false, true>> flushKernel(const KernelKey&);
+template FlushKernel<programs::SR_KERNEL_PROGRAM<true, true>> flushKernel(const KernelKey&);
 #endif
