@@ -58,9 +58,9 @@ void LaneBalance::record(const double* busySeconds) {
     // second. The shares that would have made the busy times equal are the speeds' fractions.
     std::array<double, kMaxBalancedLanes> speed{};
     double speedSum = 0.0;
-    const double floor = total * 1e-3; // a lane that did (almost) nothing counts as very fast, not infinitely
+    const double least = total * 1e-3; // a lane that did (almost) nothing counts as very fast, not infinitely
     for (int l = 0; l < lanes_; ++l) {
-        speed[std::size_t(l)] = weights_[std::size_t(l)] / std::max(busy_[std::size_t(l)], floor);
+        speed[std::size_t(l)] = weights_[std::size_t(l)] / std::max(busy_[std::size_t(l)], least);
         speedSum += speed[std::size_t(l)];
     }
     for (int l = 0; l < lanes_; ++l)

@@ -26,8 +26,8 @@ struct BandPattern {
 BandPattern spreadBands(const int* weights, int lanes);
 
 // The weights of the lanes' bands, adapted to their speed. The lanes of these 2-vCPU VMs do not
-// run at the same speed (a neighbour on the second vCPU made it 1.5x slower in a plain FMA loop,
-// by the minute), and a split draw waits for its slowest lane: each draw reports each lane's own
+// run at the same speed (one vCPU 1.5x slower than the other in a plain FMA loop, which one
+// changing by the minute), and a split draw waits for its slowest lane: each draw reports each lane's own
 // busy time (record), and once enough time has been seen the weights move towards equal busy
 // times, smoothed, so one noisy draw does not move them. Which lane fills which row never changes
 // the image or the counters (Pipeline.hpp), only how long the draw takes.
