@@ -66,8 +66,12 @@ Texture::Level Texture::makeLevel(int width, int height) {
     l.maskX = isPowerOfTwo(width) ? std::uint32_t(width - 1) : 0u;
     l.maskY = isPowerOfTwo(height) ? std::uint32_t(height - 1) : 0u;
     // A size of 1 is a power of two with mask 0: the generic branch handles it (index 0 always).
-    l.texels.assign(std::size_t(width) * std::size_t(height), 0u);
+    l.texels.assign(std::size_t(l.stride()) * std::size_t(height), 0u);
     return l;
+}
+
+void Texture::Level::padRows() {
+    for (int y = 0; y < height; ++y) row(y)[width] = row(y)[0];
 }
 
 // One box-filter step (see the header): destination texel x takes source texels 2x, 2x + 1, and
@@ -93,21 +97,22 @@ Texture::Level Texture::downsample(const Level& src) {
             std::uint32_t sum[4] = {0, 0, 0, 0};
             for (int j = y0; j < y0 + ny; ++j)
                 for (int i = x0; i < x0 + nx; ++i) {
-                    const std::uint32_t t = src.texels[std::size_t(j) * std::size_t(src.width) + std::size_t(i)];
+                    const std::uint32_t t = src.row(j)[i];
                     for (int c = 0; c < 4; ++c) sum[c] += (t >> (8 * c)) & 0xFFu;
                 }
             const std::uint32_t n = std::uint32_t(nx * ny);
-            dst.texels[std::size_t(y) * std::size_t(w) + std::size_t(x)] =
-                packRgba(divRoundEven(sum[0], n), divRoundEven(sum[1], n), divRoundEven(sum[2], n),
-                         divRoundEven(sum[3], n));
+            dst.row(y)[x] = packRgba(divRoundEven(sum[0], n), divRoundEven(sum[1], n), divRoundEven(sum[2], n),
+                                     divRoundEven(sum[3], n));
         }
     }
+    dst.padRows();
     return dst;
 }
 
 Texture::Texture() {
     levels_.push_back(makeLevel(1, 1));
-    levels_[0].texels[0] = 0xFFFFFFFFu;
+    levels_[0].row(0)[0] = 0xFFFFFFFFu;
+    levels_[0].padRows();
 }
 
 Texture Texture::fromRgba8(int width, int height, const std::uint8_t* rgbaTopRowFirst) {
@@ -115,7 +120,8 @@ Texture Texture::fromRgba8(int width, int height, const std::uint8_t* rgbaTopRow
     assert(rgbaTopRowFirst != nullptr);
     Texture t;
     if (width < 1 || width > kMaxTextureSize || height < 1 || height > kMaxTextureSize || !rgbaTopRowFirst) {
-        t.levels_[0].texels[0] = packRgba(255, 0, 255, 255); // release builds: visible "bad texture"
+        t.levels_[0].row(0)[0] = packRgba(255, 0, 255, 255); // release builds: visible "bad texture"
+        t.levels_[0].padRows();
         return t;
     }
     t.levels_.clear();
@@ -123,12 +129,13 @@ Texture Texture::fromRgba8(int width, int height, const std::uint8_t* rgbaTopRow
     // Flip: texel row y (bottom-first) is image row height - 1 - y.
     for (int y = 0; y < height; ++y) {
         const std::uint8_t* src = rgbaTopRowFirst + std::size_t(height - 1 - y) * std::size_t(width) * 4;
-        std::uint32_t* dst = base.texels.data() + std::size_t(y) * std::size_t(width);
+        std::uint32_t* dst = base.row(y);
         for (int x = 0; x < width; ++x, src += 4) {
             dst[x] = packRgba(src[0], src[1], src[2], src[3]);
             t.hasAlpha_ = t.hasAlpha_ || src[3] != 255;
         }
     }
+    base.padRows();
     t.levels_.push_back(std::move(base));
     while (t.levels_.back().width > 1 || t.levels_.back().height > 1) {
         Level next = downsample(t.levels_.back());
@@ -141,7 +148,7 @@ std::uint32_t Texture::texel(int level, int x, int y) const {
     assert(level >= 0 && level < levelCount());
     const Level& l = levels_[std::size_t(level)];
     assert(x >= 0 && x < l.width && y >= 0 && y < l.height);
-    return l.texels[std::size_t(y) * std::size_t(l.width) + std::size_t(x)];
+    return l.row(y)[x];
 }
 
 } // namespace sr

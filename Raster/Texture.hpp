@@ -91,15 +91,18 @@ public:
     Color texelColor(int level, int x, int y) const;
 
     // One level's storage, for the SIMD samplers of Raster/Kernels: packed RGBA8 texels, bottom
-    // row first; mask = size - 1 for a power-of-two size, else 0.
+    // row first, texel (x, y) at texels[y * stride + x]; mask = size - 1 for a power-of-two size,
+    // else 0. stride = width + 1: each row ends with a copy of its texel 0 (texels[y * stride +
+    // width]), so that a texel and its right neighbour under GL_REPEAT lie next to each other in
+    // memory for every x, the last one included: one 64-bit load fetches a bilinear pair.
     struct LevelView {
         const std::uint32_t* texels = nullptr;
-        int width = 0, height = 0;
+        int width = 0, height = 0, stride = 0;
         std::uint32_t maskX = 0, maskY = 0;
     };
     LevelView levelView(int level) const {
         const Level& l = levels_[std::size_t(level)];
-        return {l.texels.data(), l.width, l.height, l.maskX, l.maskY};
+        return {l.texels.data(), l.width, l.height, l.stride(), l.maskX, l.maskY};
     }
 
     // --- Sampling -------------------------------------------------------------------------------
@@ -133,8 +136,13 @@ private:
     struct Level {
         int width = 0, height = 0;
         std::uint32_t maskX = 0, maskY = 0; // width - 1 / height - 1 when a power of two, else 0
-        // Packed RGBA8, bottom row first, rows packed.
+        // Packed RGBA8, bottom row first; each row is followed by a copy of its first texel
+        // (LevelView: the GL_REPEAT neighbour of its last), set by padRows.
         std::vector<std::uint32_t> texels;
+        int stride() const { return width + 1; }
+        std::uint32_t* row(int y) { return texels.data() + std::size_t(y) * std::size_t(stride()); }
+        const std::uint32_t* row(int y) const { return texels.data() + std::size_t(y) * std::size_t(stride()); }
+        void padRows(); // copies each row's texel 0 after its last
     };
 
     static Level makeLevel(int width, int height);

@@ -182,8 +182,8 @@ struct TextureSampling {
         int x0, x1, y0, y1;
         Wrap<kWrap>::pair(tx.i0, l.width, l.maskX, x0, x1);
         Wrap<kWrap>::pair(ty.i0, l.height, l.maskY, y0, y1);
-        const std::uint32_t* row0 = l.texels.data() + std::size_t(y0) * std::size_t(l.width);
-        const std::uint32_t* row1 = l.texels.data() + std::size_t(y1) * std::size_t(l.width);
+        const std::uint32_t* row0 = l.row(y0);
+        const std::uint32_t* row1 = l.row(y1);
         return blend2x2(row0[x0], row0[x1], row1[x0], row1[x1], tx.w, ty.w);
     }
 
@@ -191,7 +191,7 @@ struct TextureSampling {
     static Color nearest(const Level& l, Vec2 uv) {
         const int x = Wrap<kWrap>::one(nearestTap(uv.x, l.width, kWrap), l.width, l.maskX);
         const int y = Wrap<kWrap>::one(nearestTap(uv.y, l.height, kWrap), l.height, l.maskY);
-        return unpackColor(l.texels[std::size_t(y) * std::size_t(l.width) + std::size_t(x)]);
+        return unpackColor(l.row(y)[x]);
     }
 
     template <WrapMode kWrap, class Levels>

@@ -309,16 +309,31 @@ SR_SIMD_INLINE I wrapIndex(I i, int size, std::uint32_t mask) {
     }
 }
 
-// GL_LINEAR taps along one axis (linearTaps + Wrap<kWrap>::pair): wrapped texel indices a (i0)
-// and b (i0 + 1), and the 8-bit weight w of b.
-template <WrapMode kWrap>
-SR_SIMD_INLINE void linearAxis(F u, int size, std::uint32_t mask, I& a, I& b, I& w) {
+// The texel coordinate u * size - 0.5 of linearTaps in fixed point with kBits fraction bits,
+// floor((d size - 0.5) 2^kBits + 2^(kBits - 9)) for the reduced coordinate d (exact in double:
+// d has at most 24 significant bits and size at most 15 bits). kBits = 8 is linearTaps' X (rounded to
+// nearest: + 0.5); kBits = 9 holds the 8-bit X of this size and of half this size (halfLevelX).
+template <WrapMode kWrap, int kBits = 8>
+SR_SIMD_INLINE I linearFixed(F u, int size) {
     const D sizeD = dset(double(size));
     auto fixedX = [&](D d) SR_SIMD_LAMBDA {
         d = reduceCoordinate<kWrap>(d);
-        return dfloor(((d * sizeD - dset(0.5)) * dset(256.0)) + dset(0.5));
+        return dfloor(((d * sizeD - dset(0.5)) * dset(double(1 << kBits))) + dset(double(1 << kBits) / 512.0));
     };
-    const I x = toInt(fixedX(lowHalf(u)), fixedX(highHalf(u)));
+    return toInt(fixedX(lowHalf(u)), fixedX(highHalf(u)));
+}
+
+// From linearFixed<kWrap, 9>(u, size) = floor(2 X - 255), X = d size 256: the 8-bit X of this size,
+// floor(X - 127.5) = floor((2 X - 255) / 2), and of size / 2, floor(X / 2 - 127.5) =
+// floor((2 X - 255 - 255) / 4) (floor(y / n) == floor(floor(y) / n) for integer n). So the
+// trilinear blend's second level costs no second conversion when its size is exactly half.
+SR_SIMD_INLINE I thisLevelX(I x9) { return shiftRightArith<1>(x9); }
+SR_SIMD_INLINE I halfLevelX(I x9) { return shiftRightArith<2>(x9 - iset(255)); }
+
+// GL_LINEAR taps along one axis (linearTaps + Wrap<kWrap>::pair) from the 8-bit X of
+// linearFixed: wrapped texel indices a (i0) and b (i0 + 1), and the 8-bit weight w of b.
+template <WrapMode kWrap>
+SR_SIMD_INLINE void linearAxis(I x, int size, std::uint32_t mask, I& a, I& b, I& w) {
     const I i0 = shiftRightArith<8>(x);
     w = x & iset(255);
     const I one = iset(1);
@@ -347,25 +362,63 @@ SR_SIMD_INLINE I nearestAxis(F u, int size, std::uint32_t mask) {
 template <int kShift>
 SR_SIMD_INLINE F channel(I texel) { return toFloat(shiftRightLogical<kShift>(texel) & iset(0xFF)); }
 
-// GL_LINEAR in one level (TextureSampling::bilinear + blend2x2), before the final division:
-// per channel the integer blend ((t00 (256 - wx) + t10 wx) (256 - wy) + (t01 (256 - wx) + t11 wx) wy)
-// as a float. Bytes times 8-bit weights are integers below 2^24, so every product and sum is
-// exact and the float holds the integer. u and v must be on the vector path.
+// The horizontal taps a (weight 256 - w) and b (weight w) of linearAxis as one pair of texels
+// next to each other in memory, x and x + 1 (Texture::LevelView: each row ends with a copy of its
+// texel 0), and the weight w' of x + 1, such that t[a] (256 - w) + t[b] w == t[x] (256 - w') +
+// t[x + 1] w' exactly:
+//  Repeat: b is a + 1, or 0 after the last texel, which the row's copy stands for: x = a, w' = w;
+//  Clamp: b is a + 1, or a at an edge: x = a, w' = w or 0 (t[a] 256 either way);
+//  Mirror: b is a + 1, a - 1 (a mirrored period) or a: x = min(a, b), w' = w, 256 - w or 0.
 template <WrapMode kWrap>
-SR_SIMD_INLINE Rgb bilinearRaw(const Texture::LevelView& l, F u, F v) {
-    I x0, x1, wx, y0, y1, wy;
-    linearAxis<kWrap>(u, l.width, l.maskX, x0, x1, wx);
-    linearAxis<kWrap>(v, l.height, l.maskY, y0, y1, wy);
-    const I width = iset(l.width);
-    const I row0 = mulLow(y0, width), row1 = mulLow(y1, width);
-    const I t00 = gather(l.texels, row0 + x0), t10 = gather(l.texels, row0 + x1);
-    const I t01 = gather(l.texels, row1 + x0), t11 = gather(l.texels, row1 + x1);
-    const I w256 = iset(256);
-    const F bx = toFloat(wx), ax = toFloat(w256 - wx), by = toFloat(wy), ay = toFloat(w256 - wy);
-    auto blend = [&](F c00, F c10, F c01, F c11) SR_SIMD_LAMBDA { return (c00 * ax + c10 * bx) * ay + (c01 * ax + c11 * bx) * by; };
-    return {blend(channel<0>(t00), channel<0>(t10), channel<0>(t01), channel<0>(t11)),
-            blend(channel<8>(t00), channel<8>(t10), channel<8>(t01), channel<8>(t11)),
-            blend(channel<16>(t00), channel<16>(t10), channel<16>(t01), channel<16>(t11))};
+SR_SIMD_INLINE void adjacentPair(I a, I b, I w, I& x, I& wPair) {
+    if constexpr (kWrap == WrapMode::Repeat) {
+        x = a;
+        wPair = w;
+    } else if constexpr (kWrap == WrapMode::Clamp) {
+        x = a;
+        wPair = select(b == a, iset(0), w);
+    } else {
+        x = imin(a, b);
+        wPair = select(b == a, iset(0), select(b < a, iset(256) - w, w));
+    }
+}
+
+// A level's GL_LINEAR result per channel before the final division (TextureSampling's Raw):
+// integers below 255 * 65536.
+struct RawRgb {
+    I r, g, b;
+};
+
+// GL_LINEAR in one level (TextureSampling::bilinear + blend2x2), before the final division:
+// per channel the integer blend ((t00 (256 - wx) + t10 wx) (256 - wy) + (t01 (256 - wx) + t11 wx) wy),
+// exactly. The horizontal blend takes two channels at once: red and blue (bytes 0 and 2) sit in
+// the two 16-bit halves of one word, as do green and alpha, and each half's t (256 - wx) + t' wx
+// is at most 255 * 256 < 2^16, so one 32-bit multiply-add blends both without a carry between
+// them; the vertical blend is per channel in 32 bits. fixedU, fixedV: the 8-bit X of u and v on
+// this level (linearFixed), of uv on the vector path. Each row's two texels come from one 64-bit
+// load per lane (adjacentPair).
+template <WrapMode kWrap>
+SR_SIMD_INLINE RawRgb bilinearRaw(const Texture::LevelView& l, I fixedU, I fixedV) {
+    I x0, x1, wxTaps, y0, y1, wy;
+    linearAxis<kWrap>(fixedU, l.width, l.maskX, x0, x1, wxTaps);
+    linearAxis<kWrap>(fixedV, l.height, l.maskY, y0, y1, wy);
+    I x, wx;
+    adjacentPair<kWrap>(x0, x1, wxTaps, x, wx);
+    const I stride = iset(l.stride);
+    I t00, t10, t01, t11;
+    gatherPair(l.texels, mulLow(y0, stride) + x, t00, t10);
+    gatherPair(l.texels, mulLow(y1, stride) + x, t01, t11);
+    const I w256 = iset(256), evenBytes = iset(0x00FF00FF), low16 = iset(0xFFFF);
+    const I ax = w256 - wx, ay = w256 - wy;
+    auto row = [&](I t0, I t1, I& rb, I& ga) SR_SIMD_LAMBDA {
+        rb = mulLow(t0 & evenBytes, ax) + mulLow(t1 & evenBytes, wx);
+        ga = mulLow(shiftRightLogical<8>(t0) & evenBytes, ax) + mulLow(shiftRightLogical<8>(t1) & evenBytes, wx);
+    };
+    I rb0, ga0, rb1, ga1;
+    row(t00, t10, rb0, ga0);
+    row(t01, t11, rb1, ga1);
+    return {mulLow(rb0 & low16, ay) + mulLow(rb1 & low16, wy), mulLow(ga0 & low16, ay) + mulLow(ga1 & low16, wy),
+            mulLow(shiftRightLogical<16>(rb0), ay) + mulLow(shiftRightLogical<16>(rb1), wy)};
 }
 
 // log2Positive (TextureLod.hpp) per lane, for normal positive finite x: the same operations.
@@ -432,16 +485,34 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
     for (int k = lo; k <= hi; ++k) {
         const M mine = level == iset(k);
         if (bits(mine) == 0) continue;
-        const Rgb c0 = bilinearRaw<kWrap>(texture.levelView(k), u, v);
-        I r0 = truncToInt(c0.r), g0 = truncToInt(c0.g), b0 = truncToInt(c0.b);
+        const Texture::LevelView here = texture.levelView(k);
         // The next level only where a lane blends it in (wl > 0): magnified lanes (lod <= 0) and
         // whole-number lods read one level, exactly what the blend with wl = 0 returns.
-        if (k < last && bits(mine & (wl > iset(0))) != 0) {
-            const Rgb c1 = bilinearRaw<kWrap>(texture.levelView(k + 1), u, v);
+        const bool blend = k < last && bits(mine & (wl > iset(0))) != 0;
+        const Texture::LevelView next = blend ? texture.levelView(k + 1) : here;
+        I fixedU, fixedV, nextU{}, nextV{};
+        if (blend && next.width * 2 == here.width && next.height * 2 == here.height) {
+            const I u9 = linearFixed<kWrap, 9>(u, here.width), v9 = linearFixed<kWrap, 9>(v, here.height);
+            fixedU = thisLevelX(u9);
+            fixedV = thisLevelX(v9);
+            nextU = halfLevelX(u9);
+            nextV = halfLevelX(v9);
+        } else {
+            fixedU = linearFixed<kWrap>(u, here.width);
+            fixedV = linearFixed<kWrap>(v, here.height);
+            if (blend) {
+                nextU = linearFixed<kWrap>(u, next.width);
+                nextV = linearFixed<kWrap>(v, next.height);
+            }
+        }
+        const RawRgb c0 = bilinearRaw<kWrap>(here, fixedU, fixedV);
+        I r0 = c0.r, g0 = c0.g, b0 = c0.b;
+        if (blend) {
+            const RawRgb c1 = bilinearRaw<kWrap>(next, nextU, nextV);
             const I half = iset(128);
-            r0 = shiftRightLogical<8>(mulLow(r0, keep) + mulLow(truncToInt(c1.r), wl) + half);
-            g0 = shiftRightLogical<8>(mulLow(g0, keep) + mulLow(truncToInt(c1.g), wl) + half);
-            b0 = shiftRightLogical<8>(mulLow(b0, keep) + mulLow(truncToInt(c1.b), wl) + half);
+            r0 = shiftRightLogical<8>(mulLow(r0, keep) + mulLow(c1.r, wl) + half);
+            g0 = shiftRightLogical<8>(mulLow(g0, keep) + mulLow(c1.g, wl) + half);
+            b0 = shiftRightLogical<8>(mulLow(b0, keep) + mulLow(c1.b, wl) + half);
         }
         r = select(mine, r0, r);
         g = select(mine, g0, g);
@@ -465,13 +536,14 @@ SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, F u, F v, F invW, F triangle
         const Texture::LevelView l = texture.levelView(0);
         const I x = nearestAxis<kWrap>(uSafe, l.width, l.maskX);
         const I y = nearestAxis<kWrap>(vSafe, l.height, l.maskY);
-        const I t = gather(l.texels, mulLow(y, iset(l.width)) + x);
+        const I t = gather(l.texels, mulLow(y, iset(l.stride)) + x);
         const F scale = fset(255.0f); // kUnorm8: byte / 255.0f, correctly rounded
         kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
     } else if constexpr (kFilter == TextureFilter::Bilinear) {
-        const Rgb raw = bilinearRaw<kWrap>(texture.levelView(0), uSafe, vSafe);
+        const Texture::LevelView l = texture.levelView(0);
+        const RawRgb raw = bilinearRaw<kWrap>(l, linearFixed<kWrap>(uSafe, l.width), linearFixed<kWrap>(vSafe, l.height));
         const F scale = fset(255.0f * 65536.0f); // then raw / (255 * 65536)
-        kd = {raw.r / scale, raw.g / scale, raw.b / scale};
+        kd = {toFloat(raw.r) / scale, toFloat(raw.g) / scale, toFloat(raw.b) / scale};
     } else {
         if constexpr (kPersp == PerspectiveMode::Affine) lod = triangleLod;
         else lod = mipLevels(p, u, v, invW);

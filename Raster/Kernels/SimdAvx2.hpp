@@ -78,6 +78,17 @@ SR_SIMD_INLINE I asInt(F a) { return {_mm256_castps_si256(a.v)}; }
 SR_SIMD_INLINE I gather(const std::uint32_t* base, I index) {
     return {_mm256_i32gather_epi32(reinterpret_cast<const int*>(base), index.v, 4)};
 }
+// base[index[i]] and base[index[i] + 1] per lane: two 64-bit gathers of 4 lanes each, split into
+// the lanes' first and second words (even and odd words, then the 64-bit quarters in order).
+SR_SIMD_INLINE void gatherPair(const std::uint32_t* base, I index, I& first, I& second) {
+    const auto* p = reinterpret_cast<const long long*>(base);
+    const __m256 lo = _mm256_castsi256_ps(_mm256_i32gather_epi64(p, _mm256_castsi256_si128(index.v), 4));
+    const __m256 hi = _mm256_castsi256_ps(_mm256_i32gather_epi64(p, _mm256_extracti128_si256(index.v, 1), 4));
+    first = {_mm256_permute4x64_epi64(_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0))),
+                                      _MM_SHUFFLE(3, 1, 2, 0))};
+    second = {_mm256_permute4x64_epi64(_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1))),
+                                       _MM_SHUFFLE(3, 1, 2, 0))};
+}
 // The smallest / largest lane (three halving steps).
 SR_SIMD_INLINE int reduceMin(I a) {
     __m128i m = _mm_min_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));

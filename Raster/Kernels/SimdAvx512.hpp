@@ -74,6 +74,15 @@ SR_SIMD_INLINE I truncToInt(F a) { return {_mm512_cvttps_epi32(a.v)}; }
 SR_SIMD_INLINE F asFloat(I a) { return {_mm512_castsi512_ps(a.v)}; }
 SR_SIMD_INLINE I asInt(F a) { return {_mm512_castps_si512(a.v)}; }
 SR_SIMD_INLINE I gather(const std::uint32_t* base, I index) { return {_mm512_i32gather_epi32(index.v, base, 4)}; }
+// base[index[i]] and base[index[i] + 1] per lane: two 64-bit gathers of 8 lanes each (half the
+// element loads of two 32-bit gathers), split into the lanes' first and second words.
+SR_SIMD_INLINE void gatherPair(const std::uint32_t* base, I index, I& first, I& second) {
+    const __m512i lo = _mm512_i32gather_epi64(_mm512_castsi512_si256(index.v), base, 4);
+    const __m512i hi = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(index.v, 1), base, 4);
+    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
+    first = {_mm512_permutex2var_epi32(lo, even, hi)};
+    second = {_mm512_permutex2var_epi32(lo, _mm512_add_epi32(even, _mm512_set1_epi32(1)), hi)};
+}
 SR_SIMD_INLINE int reduceMin(I a) { return _mm512_reduce_min_epi32(a.v); }
 SR_SIMD_INLINE int reduceMax(I a) { return _mm512_reduce_max_epi32(a.v); }
 

@@ -92,6 +92,13 @@ SR_SIMD_INLINE I gather(const std::uint32_t* base, I index) {
     _mm_store_si128(reinterpret_cast<__m128i*>(i), index.v);
     return {_mm_set_epi32(int(base[i[3]]), int(base[i[2]]), int(base[i[1]]), int(base[i[0]]))};
 }
+// base[index[i]] and base[index[i] + 1] per lane.
+SR_SIMD_INLINE void gatherPair(const std::uint32_t* base, I index, I& first, I& second) {
+    alignas(16) std::int32_t i[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(i), index.v);
+    first = {_mm_set_epi32(int(base[i[3]]), int(base[i[2]]), int(base[i[1]]), int(base[i[0]]))};
+    second = {_mm_set_epi32(int(base[i[3] + 1]), int(base[i[2] + 1]), int(base[i[1] + 1]), int(base[i[0] + 1]))};
+}
 // The smallest / largest lane (two halving steps; imin / imax are compare-and-select here).
 SR_SIMD_INLINE int reduceMin(I a) {
     a = imin(a, I{_mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2))});

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <utility>
 
 #include "TextureReference.hpp"
 #include "TextureTestUtil.hpp"
@@ -34,6 +35,28 @@ TEST_CASE("mip chain sizes halve with floor down to 1x1, as glGenerateMipmap's",
         REQUIRE(t.levelHeight(t.levelCount() - 1) == 1);
         // A constant texture stays constant at every level.
         for (int k = 0; k < t.levelCount(); ++k) REQUIRE(t.texel(k, 0, 0) == 0x04030201u);
+    }
+}
+
+TEST_CASE("every level's rows end with a copy of their first texel (the SIMD samplers' texel pairs)", "[texture][mip]") {
+    // The kernels fetch texel x and its GL_REPEAT right neighbour with one 64-bit load from
+    // LevelView::texels + y * stride + x; for the last x the neighbour is the row's copy of texel 0.
+    for (const auto& [w, h] : {std::pair{1, 1}, std::pair{2, 3}, std::pair{13, 7}, std::pair{32, 16}, std::pair{5, 1}}) {
+        const Texture t = makeTexture(w, h, [](int x, int y) {
+            return Rgba8{std::uint8_t(17 * x + 3 * y), std::uint8_t(5 * x + 29 * y), std::uint8_t(x * y), std::uint8_t(255 - x)};
+        });
+        for (int k = 0; k < t.levelCount(); ++k) {
+            const Texture::LevelView l = t.levelView(k);
+            INFO(w << "x" << h << " level " << k);
+            REQUIRE(l.width == t.levelWidth(k));
+            REQUIRE(l.height == t.levelHeight(k));
+            REQUIRE(l.stride == l.width + 1);
+            for (int y = 0; y < l.height; ++y) {
+                for (int x = 0; x < l.width; ++x)
+                    REQUIRE(l.texels[std::size_t(y) * std::size_t(l.stride) + std::size_t(x)] == t.texel(k, x, y));
+                REQUIRE(l.texels[std::size_t(y) * std::size_t(l.stride) + std::size_t(l.width)] == t.texel(k, 0, y));
+            }
+        }
     }
 }
 
