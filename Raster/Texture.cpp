@@ -141,6 +141,14 @@ Texture Texture::fromRgba8(int width, int height, const std::uint8_t* rgbaTopRow
         Level next = downsample(t.levels_.back());
         t.levels_.push_back(std::move(next));
     }
+    // halvingLevels: along each axis size_k == 1 or size_k * 2^k == the base size.
+    auto halves = [](int size, int base, int k) { return size == 1 || (std::int64_t(size) << k) == base; };
+    t.halvingLevels_ = 0;
+    while (t.halvingLevels_ < t.levelCount()) {
+        const Level& l = t.levels_[std::size_t(t.halvingLevels_)];
+        if (!halves(l.width, width, t.halvingLevels_) || !halves(l.height, height, t.halvingLevels_)) break;
+        ++t.halvingLevels_;
+    }
     return t;
 }
 

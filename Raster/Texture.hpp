@@ -80,6 +80,11 @@ public:
     int width() const { return levels_[0].width; }
     int height() const { return levels_[0].height; }
     int levelCount() const { return int(levels_.size()); }
+    // Levels [0, halvingLevels()) have along each axis either the base size / 2^k exactly (no
+    // rounding on the way down) or size 1: a texel coordinate on such a level follows from the
+    // base level's by a shift (the SIMD trilinear sampler's levelX). Every level of a
+    // power-of-two texture; levels 0-5 of a 640 x 480 one (480 / 2^6 is not whole).
+    int halvingLevels() const { return halvingLevels_; }
     int levelWidth(int level) const { return levels_[std::size_t(level)].width; }
     int levelHeight(int level) const { return levels_[std::size_t(level)].height; }
     // Whether any base-level texel has alpha below 255 (then so may every filtered value; else
@@ -150,6 +155,7 @@ private:
 
     std::vector<Level> levels_; // levels_[0] is the base level; never empty
     bool hasAlpha_ = false;
+    int halvingLevels_ = 1;
 };
 
 } // namespace sr

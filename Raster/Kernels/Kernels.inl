@@ -309,29 +309,25 @@ SR_SIMD_INLINE I wrapIndex(I i, int size, std::uint32_t mask) {
     }
 }
 
-// The texel coordinate u * size - 0.5 of linearTaps in fixed point with kBits fraction bits,
-// floor((d size - 0.5) 2^kBits + 2^(kBits - 9)) for the reduced coordinate d (exact in double:
-// d has at most 24 significant bits and size at most 15 bits). kBits = 8 is linearTaps' X (rounded to
-// nearest: + 0.5); kBits = 9 holds the 8-bit X of this size and of half this size (halfLevelX).
-template <WrapMode kWrap, int kBits = 8>
-SR_SIMD_INLINE I linearFixed(F u, int size) {
-    const D sizeD = dset(double(size));
-    auto fixedX = [&](D d) SR_SIMD_LAMBDA {
-        d = reduceCoordinate<kWrap>(d);
-        return dfloor(((d * sizeD - dset(0.5)) * dset(double(1 << kBits))) + dset(double(1 << kBits) / 512.0));
-    };
+// The texel coordinate of u on an axis of `size` texels with 9 fraction bits, Z = floor(d size 512)
+// for the reduced coordinate d (exact in double: d has at most 24 significant bits, size at most
+// 15 bits). From it levelX takes linearTaps' 8-bit X = floor((d size - 0.5) 256 + 0.5) of this size
+// and of every size / 2^k.
+template <WrapMode kWrap>
+SR_SIMD_INLINE I texelFixed(F u, int size) {
+    const D scale = dset(double(size) * 512.0);
+    auto fixedX = [&](D d) SR_SIMD_LAMBDA { return dfloor(reduceCoordinate<kWrap>(d) * scale); };
     return toInt(fixedX(lowHalf(u)), fixedX(highHalf(u)));
 }
 
-// From linearFixed<kWrap, 9>(u, size) = floor(2 X - 255), X = d size 256: the 8-bit X of this size,
-// floor(X - 127.5) = floor((2 X - 255) / 2), and of size / 2, floor(X / 2 - 127.5) =
-// floor((2 X - 255 - 255) / 4) (floor(y / n) == floor(floor(y) / n) for integer n). So the
-// trilinear blend's second level costs no second conversion when its size is exactly half.
-SR_SIMD_INLINE I thisLevelX(I x9) { return shiftRightArith<1>(x9); }
-SR_SIMD_INLINE I halfLevelX(I x9) { return shiftRightArith<2>(x9 - iset(255)); }
+// linearTaps' 8-bit X on an axis of size / 2^k from texelFixed's Z on the axis of `size`: with
+// Y = d size 256, X_k = floor(Y / 2^k - 127.5) = floor((2 Y - 255 2^k) / 2^(k + 1)) =
+// floor((Z - 255 2^k) / 2^(k + 1)), since floor(y / n) == floor(floor(y) / n) for integer n and
+// 255 2^k is an integer. k = 0 is the axis's own X.
+SR_SIMD_INLINE I levelX(I z, int k) { return shiftRightArith(z - iset(255 << k), k + 1); }
 
 // GL_LINEAR taps along one axis (linearTaps + Wrap<kWrap>::pair) from the 8-bit X of
-// linearFixed: wrapped texel indices a (i0) and b (i0 + 1), and the 8-bit weight w of b.
+// levelX: wrapped texel indices a (i0) and b (i0 + 1), and the 8-bit weight w of b.
 template <WrapMode kWrap>
 SR_SIMD_INLINE void linearAxis(I x, int size, std::uint32_t mask, I& a, I& b, I& w) {
     const I i0 = shiftRightArith<8>(x);
@@ -395,7 +391,7 @@ struct RawRgb {
 // the two 16-bit halves of one word, as do green and alpha, and each half's t (256 - wx) + t' wx
 // is at most 255 * 256 < 2^16, so one 32-bit multiply-add blends both without a carry between
 // them; the vertical blend is per channel in 32 bits. fixedU, fixedV: the 8-bit X of u and v on
-// this level (linearFixed), of uv on the vector path. Each row's two texels come from one 64-bit
+// this level (levelX), of uv on the vector path. Each row's two texels come from one 64-bit
 // load per lane (adjacentPair).
 template <WrapMode kWrap>
 SR_SIMD_INLINE RawRgb bilinearRaw(const Texture::LevelView& l, I fixedU, I fixedV) {
@@ -481,33 +477,36 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
     const I wl = select(top, iset(0), truncToInt((lod - toFloat(level)) * fset(256.0f)));
     const I keep = iset(256) - wl;
     const int lo = reduceMin(level), hi = reduceMax(level);
+    // The base level's fixed-point coordinates, from which the levels that halve it take theirs
+    // (levelX; an axis of size 1 reads its one texel whatever the coordinate: 0); other levels
+    // convert u and v at their own size.
+    const Texture::LevelView base = texture.levelView(0);
+    const I zu = texelFixed<kWrap>(u, base.width), zv = texelFixed<kWrap>(v, base.height);
+    const int halving = texture.halvingLevels();
+    auto coordinates = [&](const Texture::LevelView& l, int k, I& x, I& y) SR_SIMD_LAMBDA {
+        if (k < halving) {
+            x = l.width == 1 ? iset(0) : levelX(zu, k);
+            y = l.height == 1 ? iset(0) : levelX(zv, k);
+        } else {
+            x = levelX(texelFixed<kWrap>(u, l.width), 0);
+            y = levelX(texelFixed<kWrap>(v, l.height), 0);
+        }
+    };
     I r = iset(0), g = iset(0), b = iset(0);
     for (int k = lo; k <= hi; ++k) {
         const M mine = level == iset(k);
         if (bits(mine) == 0) continue;
         const Texture::LevelView here = texture.levelView(k);
-        // The next level only where a lane blends it in (wl > 0): magnified lanes (lod <= 0) and
-        // whole-number lods read one level, exactly what the blend with wl = 0 returns.
-        const bool blend = k < last && bits(mine & (wl > iset(0))) != 0;
-        const Texture::LevelView next = blend ? texture.levelView(k + 1) : here;
-        I fixedU, fixedV, nextU{}, nextV{};
-        if (blend && next.width * 2 == here.width && next.height * 2 == here.height) {
-            const I u9 = linearFixed<kWrap, 9>(u, here.width), v9 = linearFixed<kWrap, 9>(v, here.height);
-            fixedU = thisLevelX(u9);
-            fixedV = thisLevelX(v9);
-            nextU = halfLevelX(u9);
-            nextV = halfLevelX(v9);
-        } else {
-            fixedU = linearFixed<kWrap>(u, here.width);
-            fixedV = linearFixed<kWrap>(v, here.height);
-            if (blend) {
-                nextU = linearFixed<kWrap>(u, next.width);
-                nextV = linearFixed<kWrap>(v, next.height);
-            }
-        }
+        I fixedU, fixedV;
+        coordinates(here, k, fixedU, fixedV);
         const RawRgb c0 = bilinearRaw<kWrap>(here, fixedU, fixedV);
         I r0 = c0.r, g0 = c0.g, b0 = c0.b;
-        if (blend) {
+        // The next level only where a lane blends it in (wl > 0): magnified lanes (lod <= 0) and
+        // whole-number lods read one level, exactly what the blend with wl = 0 returns.
+        if (k < last && bits(mine & (wl > iset(0))) != 0) {
+            const Texture::LevelView next = texture.levelView(k + 1);
+            I nextU, nextV;
+            coordinates(next, k + 1, nextU, nextV);
             const RawRgb c1 = bilinearRaw<kWrap>(next, nextU, nextV);
             const I half = iset(128);
             r0 = shiftRightLogical<8>(mulLow(r0, keep) + mulLow(c1.r, wl) + half);
@@ -541,7 +540,7 @@ SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, F u, F v, F invW, F triangle
         kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
     } else if constexpr (kFilter == TextureFilter::Bilinear) {
         const Texture::LevelView l = texture.levelView(0);
-        const RawRgb raw = bilinearRaw<kWrap>(l, linearFixed<kWrap>(uSafe, l.width), linearFixed<kWrap>(vSafe, l.height));
+        const RawRgb raw = bilinearRaw<kWrap>(l, levelX(texelFixed<kWrap>(uSafe, l.width), 0), levelX(texelFixed<kWrap>(vSafe, l.height), 0));
         const F scale = fset(255.0f * 65536.0f); // then raw / (255 * 65536)
         kd = {toFloat(raw.r) / scale, toFloat(raw.g) / scale, toFloat(raw.b) / scale};
     } else {

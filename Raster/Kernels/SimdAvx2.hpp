@@ -62,6 +62,7 @@ SR_SIMD_INLINE I operator|(I a, I b) { return {_mm256_or_si256(a.v, b.v)}; }
 template <int k> SR_SIMD_INLINE I shiftLeft(I a) { return {_mm256_slli_epi32(a.v, k)}; }
 template <int k> SR_SIMD_INLINE I shiftRightLogical(I a) { return {_mm256_srli_epi32(a.v, k)}; }
 template <int k> SR_SIMD_INLINE I shiftRightArith(I a) { return {_mm256_srai_epi32(a.v, k)}; }
+SR_SIMD_INLINE I shiftRightArith(I a, int count) { return {_mm256_sra_epi32(a.v, _mm_cvtsi32_si128(count))}; }
 SR_SIMD_INLINE M operator==(I a, I b) { return {_mm256_castsi256_ps(_mm256_cmpeq_epi32(a.v, b.v))}; }
 SR_SIMD_INLINE M operator>(I a, I b) { return {_mm256_castsi256_ps(_mm256_cmpgt_epi32(a.v, b.v))}; }
 SR_SIMD_INLINE M operator<(I a, I b) { return {_mm256_castsi256_ps(_mm256_cmpgt_epi32(b.v, a.v))}; }

@@ -62,6 +62,7 @@ SR_SIMD_INLINE I operator|(I a, I b) { return {_mm512_or_si512(a.v, b.v)}; }
 template <int k> SR_SIMD_INLINE I shiftLeft(I a) { return {_mm512_slli_epi32(a.v, k)}; }
 template <int k> SR_SIMD_INLINE I shiftRightLogical(I a) { return {_mm512_srli_epi32(a.v, k)}; }
 template <int k> SR_SIMD_INLINE I shiftRightArith(I a) { return {_mm512_srai_epi32(a.v, k)}; }
+SR_SIMD_INLINE I shiftRightArith(I a, int count) { return {_mm512_sra_epi32(a.v, _mm_cvtsi32_si128(count))}; }
 SR_SIMD_INLINE M operator==(I a, I b) { return {_mm512_cmpeq_epi32_mask(a.v, b.v)}; }
 SR_SIMD_INLINE M operator>(I a, I b) { return {_mm512_cmpgt_epi32_mask(a.v, b.v)}; }
 SR_SIMD_INLINE M operator<(I a, I b) { return {_mm512_cmplt_epi32_mask(a.v, b.v)}; }

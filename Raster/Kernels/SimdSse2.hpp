@@ -66,6 +66,7 @@ SR_SIMD_INLINE I operator|(I a, I b) { return {_mm_or_si128(a.v, b.v)}; }
 template <int k> SR_SIMD_INLINE I shiftLeft(I a) { return {_mm_slli_epi32(a.v, k)}; }
 template <int k> SR_SIMD_INLINE I shiftRightLogical(I a) { return {_mm_srli_epi32(a.v, k)}; }
 template <int k> SR_SIMD_INLINE I shiftRightArith(I a) { return {_mm_srai_epi32(a.v, k)}; }
+SR_SIMD_INLINE I shiftRightArith(I a, int count) { return {_mm_sra_epi32(a.v, _mm_cvtsi32_si128(count))}; }
 SR_SIMD_INLINE M operator==(I a, I b) { return {_mm_castsi128_ps(_mm_cmpeq_epi32(a.v, b.v))}; }
 SR_SIMD_INLINE M operator>(I a, I b) { return {_mm_castsi128_ps(_mm_cmpgt_epi32(a.v, b.v))}; }
 SR_SIMD_INLINE M operator<(I a, I b) { return {_mm_castsi128_ps(_mm_cmplt_epi32(a.v, b.v))}; }

@@ -60,6 +60,25 @@ TEST_CASE("every level's rows end with a copy of their first texel (the SIMD sam
     }
 }
 
+TEST_CASE("halvingLevels: the leading levels whose axes are the base size / 2^k exactly, or 1", "[texture][mip]") {
+    struct Case {
+        int w, h, halving;
+    };
+    // 480 = 15 * 2^5: 480 .. 15 halve, 15 -> 7 does not; 13 -> 6 does not; 12 -> 6 -> 3 -> 1 (size 1
+    // counts); 2x8 -> 1x4 -> 1x2 -> 1x1 (a width of 1 from level 1 on); 6x4 -> 3x2 -> 1x1.
+    for (const Case& c : {Case{1, 1, 1}, Case{256, 256, 9}, Case{640, 480, 6}, Case{13, 7, 1}, Case{12, 12, 4},
+                          Case{2, 8, 4}, Case{6, 4, 3}, Case{7, 8, 1}, Case{1024, 1, 11}}) {
+        const Texture t = makeTexture(c.w, c.h, [](int, int) { return Rgba8{1, 2, 3, 4}; });
+        INFO(c.w << "x" << c.h);
+        REQUIRE(t.halvingLevels() == c.halving);
+        // The definition, level by level.
+        for (int k = 0; k < t.halvingLevels(); ++k) {
+            REQUIRE((t.levelWidth(k) == 1 || t.levelWidth(k) << k == c.w));
+            REQUIRE((t.levelHeight(k) == 1 || t.levelHeight(k) << k == c.h));
+        }
+    }
+}
+
 TEST_CASE("a 4x4 mip chain: the 2x2 and 1x1 averages by hand, ties rounded to even", "[texture][mip]") {
     // Texel rows bottom first (y = 0 is the bottom row). Red, green and alpha; blue is constant 77.
     const int red[4][4] = {{10, 20, 30, 40}, {30, 40, 50, 60}, {200, 200, 0, 0}, {100, 100, 4, 8}};
