@@ -476,7 +476,10 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
     const I level = select(top, iset(last), truncToInt(select(top, fzero(), lod)));
     const I wl = select(top, iset(0), truncToInt((lod - toFloat(level)) * fset(256.0f)));
     const I keep = iset(256) - wl;
-    const int lo = reduceMin(level), hi = reduceMax(level);
+    // The levels the lanes read: usually one (no reduction across the lanes then).
+    const int first = firstLane(level);
+    const bool oneLevel = bits(level == iset(first)) == bits(mAll());
+    const int lo = oneLevel ? first : reduceMin(level), hi = oneLevel ? first : reduceMax(level);
     // The base level's fixed-point coordinates, from which the levels that halve it take theirs
     // (levelX; an axis of size 1 reads its one texel whatever the coordinate: 0); other levels
     // convert u and v at their own size.

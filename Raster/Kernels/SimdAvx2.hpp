@@ -90,6 +90,7 @@ SR_SIMD_INLINE void gatherPair(const std::uint32_t* base, I index, I& first, I& 
     second = {_mm256_permute4x64_epi64(_mm256_castps_si256(_mm256_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1))),
                                        _MM_SHUFFLE(3, 1, 2, 0))};
 }
+SR_SIMD_INLINE int firstLane(I a) { return _mm_cvtsi128_si32(_mm256_castsi256_si128(a.v)); }
 // The smallest / largest lane (three halving steps).
 SR_SIMD_INLINE int reduceMin(I a) {
     __m128i m = _mm_min_epi32(_mm256_castsi256_si128(a.v), _mm256_extracti128_si256(a.v, 1));

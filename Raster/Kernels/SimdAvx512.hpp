@@ -84,6 +84,7 @@ SR_SIMD_INLINE void gatherPair(const std::uint32_t* base, I index, I& first, I& 
     first = {_mm512_permutex2var_epi32(lo, even, hi)};
     second = {_mm512_permutex2var_epi32(lo, _mm512_add_epi32(even, _mm512_set1_epi32(1)), hi)};
 }
+SR_SIMD_INLINE int firstLane(I a) { return _mm_cvtsi128_si32(_mm512_castsi512_si128(a.v)); }
 SR_SIMD_INLINE int reduceMin(I a) { return _mm512_reduce_min_epi32(a.v); }
 SR_SIMD_INLINE int reduceMax(I a) { return _mm512_reduce_max_epi32(a.v); }
 

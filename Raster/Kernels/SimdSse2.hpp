@@ -100,6 +100,7 @@ SR_SIMD_INLINE void gatherPair(const std::uint32_t* base, I index, I& first, I& 
     first = {_mm_set_epi32(int(base[i[3]]), int(base[i[2]]), int(base[i[1]]), int(base[i[0]]))};
     second = {_mm_set_epi32(int(base[i[3] + 1]), int(base[i[2] + 1]), int(base[i[1] + 1]), int(base[i[0] + 1]))};
 }
+SR_SIMD_INLINE int firstLane(I a) { return _mm_cvtsi128_si32(a.v); }
 // The smallest / largest lane (two halving steps; imin / imax are compare-and-select here).
 SR_SIMD_INLINE int reduceMin(I a) {
     a = imin(a, I{_mm_shuffle_epi32(a.v, _MM_SHUFFLE(1, 0, 3, 2))});
