@@ -483,8 +483,7 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
     // The base level's fixed-point coordinates, from which the levels that halve it take theirs
     // (levelX; an axis of size 1 reads its one texel whatever the coordinate: 0); other levels
     // convert u and v at their own size.
-    const Texture::LevelView base = texture.levelView(0);
-    const I zu = texelFixed<kWrap>(u, base.width), zv = texelFixed<kWrap>(v, base.height);
+    const I zu = texelFixed<kWrap>(u, texture.width()), zv = texelFixed<kWrap>(v, texture.height());
     const int halving = texture.halvingLevels();
     auto coordinates = [&](const Texture::LevelView& l, int k, I& x, I& y) SR_SIMD_LAMBDA {
         if (k < halving) {
@@ -997,13 +996,18 @@ KernelPair<Prog> pickPerspective(const KernelKey& key) {
 }
 
 template <class Prog>
-FillKernel<Prog> fillKernel(const KernelKey& key) {
+KernelPair<Prog> pickDepth(const KernelKey& key) {
     switch (key.depth) {
-    case DepthMode::Off: return pickPerspective<Prog, DepthMode::Off>(key).fill;
-    case DepthMode::Test: return pickPerspective<Prog, DepthMode::Test>(key).fill;
-    case DepthMode::TestWrite: return pickPerspective<Prog, DepthMode::TestWrite>(key).fill;
+    case DepthMode::Off: return pickPerspective<Prog, DepthMode::Off>(key);
+    case DepthMode::Test: return pickPerspective<Prog, DepthMode::Test>(key);
+    case DepthMode::TestWrite: return pickPerspective<Prog, DepthMode::TestWrite>(key);
     }
-    return nullptr;
+    return {};
+}
+
+template <class Prog>
+FillKernel<Prog> fillKernel(const KernelKey& key) {
+    return pickDepth<Prog>(key).fill;
 }
 
 template <class Prog>
@@ -1013,12 +1017,7 @@ ShadeRunsKernel<Prog> shadeRunsKernel(const KernelKey& key) {
 
 template <class Prog>
 FlushKernel<Prog> flushKernel(const KernelKey& key) {
-    switch (key.depth) {
-    case DepthMode::Off: return pickPerspective<Prog, DepthMode::Off>(key).flush;
-    case DepthMode::Test: return pickPerspective<Prog, DepthMode::Test>(key).flush;
-    case DepthMode::TestWrite: return pickPerspective<Prog, DepthMode::TestWrite>(key).flush;
-    }
-    return nullptr;
+    return pickDepth<Prog>(key).flush;
 }
 
 // The one shading model this translation unit instantiates, untextured and textured:
