@@ -61,12 +61,17 @@ inline __m128i laneMask(unsigned bits) {
 // writes passed[x - lo]. Depth of sample k: the plane at the sample point of pixel `lo` in
 // double, then + (x - lo) ddx in double, rounded once to float (so every path gets the same
 // floats: the stored depths do not depend on how coverage was found).
-template <int kN, DepthMode kDepth, bool kVector>
+// `decided(x, pass, cover)` is called for every pixel of the row, left to right, once its
+// passing samples are known (RunList: the pixels to shade, listed in the same pass).
+template <int kN, DepthMode kDepth, bool kVector, class Decided>
 void depthTestRow(const TriangleSetup& t, const SampleOffset* pattern, float* depth, int y, int lo, int hi,
-                  const std::uint8_t* covered, std::uint8_t* passed) {
+                  const std::uint8_t* covered, std::uint8_t* passed, Decided&& decided) {
     if constexpr (kDepth == DepthMode::Off) {
         (void)t, (void)pattern, (void)depth, (void)y;
-        std::copy(covered, covered + (hi - lo), passed);
+        for (int x = lo; x < hi; ++x) {
+            passed[x - lo] = covered[x - lo];
+            decided(x, covered[x - lo], covered[x - lo]);
+        }
     } else {
         const double ddx = t.ddx[kPlaneZ];
         double zStart[kN];
@@ -77,6 +82,7 @@ void depthTestRow(const TriangleSetup& t, const SampleOffset* pattern, float* de
             const unsigned cover = covered[x - lo];
             if (cover == 0) {
                 passed[x - lo] = 0;
+                decided(x, 0u, 0u);
                 continue;
             }
             float* stored = depth + std::size_t(x) * kN;
@@ -103,6 +109,7 @@ void depthTestRow(const TriangleSetup& t, const SampleOffset* pattern, float* de
                     pass |= ok << (4 * g);
                 }
                 passed[x - lo] = std::uint8_t(pass);
+                decided(x, pass, cover);
                 continue;
             }
 #endif
@@ -113,6 +120,7 @@ void depthTestRow(const TriangleSetup& t, const SampleOffset* pattern, float* de
                 pass |= unsigned(ok) << k;
             }
             passed[x - lo] = std::uint8_t(pass);
+            decided(x, pass, cover);
         }
     }
 }
@@ -138,6 +146,51 @@ void listRuns(MsaaScratch& scratch, int y, int lo, int hi, int c0, int c1, const
             scratch.runs.push_back({y, x, x + 1, m.dx, m.dy});
             ++x;
         }
+    }
+}
+
+// listRuns' list built pixel by pixel, left to right, as the depth test decides each pixel (the
+// Auto method: one pass over the row instead of two; the Reference method keeps listRuns, and
+// the test compares them).
+template <int kN>
+struct RunList {
+    MsaaScratch& scratch;
+    const Centroid* centroids = centroidTable<kN>();
+    int y = 0, c0 = 0, c1 = 0;
+    int from = -1; // the open run's first pixel (-1: none)
+
+    RunList(MsaaScratch& s, int row, int lo, int hi, int centre0, int centre1)
+        : scratch(s), y(row), c0(std::max(centre0, lo)), c1(std::min(centre1, hi)) {}
+    void operator()(int x, unsigned pass, unsigned cover) {
+        if (pass != 0 && x >= c0 && x < c1) {
+            if (from < 0) from = x;
+            return;
+        }
+        close(x);
+        if (pass != 0) {
+            const Centroid& m = centroids[cover];
+            scratch.runs.push_back({y, x, x + 1, m.dx, m.dy});
+        }
+    }
+    void close(int x) {
+        if (from < 0) return;
+        scratch.runs.push_back({y, from, x, 0.0, 0.0});
+        from = -1;
+    }
+};
+
+// The row's depth test and its pixels to shade: in one pass (Auto, kVector) or the depth test
+// then listRuns (Reference).
+template <int kN, DepthMode kDepth, bool kVector>
+void testAndListRow(const TriangleSetup& t, const SampleOffset* pattern, float* depth, MsaaScratch& scratch, int y,
+                    int lo, int hi, int c0, int c1, const std::uint8_t* covered, std::uint8_t* passed) {
+    if constexpr (kVector) {
+        RunList<kN> runs(scratch, y, lo, hi, c0, c1);
+        depthTestRow<kN, kDepth, true>(t, pattern, depth, y, lo, hi, covered, passed, runs);
+        runs.close(hi);
+    } else {
+        depthTestRow<kN, kDepth, false>(t, pattern, depth, y, lo, hi, covered, passed, [](int, unsigned, unsigned) {});
+        listRuns<kN>(scratch, y, lo, hi, c0, c1, covered, passed);
     }
 }
 
@@ -192,8 +245,8 @@ void coverByWalks(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
         std::fill(covered + (inner0 - lo), covered + (inner1 - lo), std::uint8_t((1u << n) - 1u));
         for (int x = inner1; x < hi; ++x) covered[x - lo] = maskAt(x);
         target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
-        depthTestRow<kN, kDepth, kVector>(t, pattern, target.depthRow(y), y, lo, hi, covered, passed);
-        listRuns<kN>(scratch, y, lo, hi, spans[2 * n], spans[2 * n + 1], covered, passed);
+        testAndListRow<kN, kDepth, kVector>(t, pattern, target.depthRow(y), scratch, y, lo, hi, spans[2 * n],
+                                            spans[2 * n + 1], covered, passed);
     }
 }
 
@@ -341,8 +394,7 @@ bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scis
         scratch.rows.push_back({y, lo, hi, offset});
         used += boxWidth;
         target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
-        depthTestRow<kN, kDepth, true>(t, pattern, target.depthRow(y), y, lo, hi, covered, passed);
-        listRuns<kN>(scratch, y, lo, hi, c0, c1, covered, passed);
+        testAndListRow<kN, kDepth, true>(t, pattern, target.depthRow(y), scratch, y, lo, hi, c0, c1, covered, passed);
     }
     return true;
 }
@@ -362,6 +414,8 @@ void coverSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
     // samples is width * n * 4 bytes): ask for all of its depth and colour lines now, so that
     // their cache misses overlap with each other and with the coverage below instead of stalling
     // the depth test one line at a time (a large triangle's rows stream well on their own).
+    // (Keep the loop inline here: moved into a function of its own, GCC 12 at -O2 takes that
+    // function, which only prefetches, for one without effects and drops every call to it.)
     const int boxX0 = std::max(t.minX - 1, s.x0), boxX1 = std::min(t.maxX + 2, s.x1);
     if (boxX1 - boxX0 <= 64 && rowEnd - rowBegin <= 64) {
         constexpr std::size_t kLine = 64 / sizeof(float); // samples per 64-byte cache line

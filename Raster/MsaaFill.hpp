@@ -62,7 +62,8 @@ inline void msaaRowRange(const TriangleSetup& t, int& rowBegin, int& rowEnd) {
 // How coverTriangleSamples finds the covered samples and tests their depth (both give the same
 // result: tested).
 enum class MsaaCoverageMethod {
-    Auto,      // edge functions for a small triangle, else the walks; the depth test 4 samples at a time
+    Auto,      // edge functions for a small triangle, else the walks; the depth test 4 samples at a
+               // time, the pixels to shade listed in the same pass over the row
     Reference, // n + 1 exact edge walks (forEachSpan), one per sample and one for the centre, and
                // the depth test sample by sample: the readable twin
 };
