@@ -326,6 +326,10 @@ SR_SIMD_INLINE I texelFixed(F u, int size) {
 // 255 2^k is an integer. k = 0 is the axis's own X.
 SR_SIMD_INLINE I levelX(I z, int k) { return shiftRightArith(z - iset(255 << k), k + 1); }
 
+// linearTaps' 8-bit X of u on an axis of `size` texels, from u itself.
+template <WrapMode kWrap>
+SR_SIMD_INLINE I linearX(F u, int size) { return levelX(texelFixed<kWrap>(u, size), 0); }
+
 // GL_LINEAR taps along one axis (linearTaps + Wrap<kWrap>::pair) from the 8-bit X of
 // levelX: wrapped texel indices a (i0) and b (i0 + 1), and the 8-bit weight w of b.
 template <WrapMode kWrap>
@@ -490,8 +494,8 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
             x = l.width == 1 ? iset(0) : levelX(zu, k);
             y = l.height == 1 ? iset(0) : levelX(zv, k);
         } else {
-            x = levelX(texelFixed<kWrap>(u, l.width), 0);
-            y = levelX(texelFixed<kWrap>(v, l.height), 0);
+            x = linearX<kWrap>(u, l.width);
+            y = linearX<kWrap>(v, l.height);
         }
     };
     I r = iset(0), g = iset(0), b = iset(0);
@@ -542,7 +546,7 @@ SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, F u, F v, F invW, F triangle
         kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
     } else if constexpr (kFilter == TextureFilter::Bilinear) {
         const Texture::LevelView l = texture.levelView(0);
-        const RawRgb raw = bilinearRaw<kWrap>(l, levelX(texelFixed<kWrap>(uSafe, l.width), 0), levelX(texelFixed<kWrap>(vSafe, l.height), 0));
+        const RawRgb raw = bilinearRaw<kWrap>(l, linearX<kWrap>(uSafe, l.width), linearX<kWrap>(vSafe, l.height));
         const F scale = fset(255.0f * 65536.0f); // then raw / (255 * 65536)
         kd = {toFloat(raw.r) / scale, toFloat(raw.g) / scale, toFloat(raw.b) / scale};
     } else {
