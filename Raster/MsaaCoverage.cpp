@@ -353,7 +353,10 @@ template <int kN, DepthMode kDepth>
 bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, int rowBegin, int rowEnd,
                           MsaaScratch& scratch) {
     if (!msaaSmallTriangle(t)) return false;
-    const int x0 = std::max(t.minX - 1, s.x0), x1 = std::min(t.maxX + 2, s.x1);
+    int x0 = 0, x1 = 0;
+    msaaColumnRange(t, x0, x1);
+    x0 = std::max(x0, s.x0);
+    x1 = std::min(x1, s.x1);
     if (x0 >= x1) return true;
 
     // The vertices (from the setup's edges), ordered clockwise.
@@ -408,7 +411,11 @@ void coverSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
     msaaRowRange(t, rowBegin, rowEnd);
     rowBegin = std::max(rowBegin, s.y0);
     rowEnd = std::min(rowEnd, s.y1);
-    if (rowBegin >= rowEnd || t.maxX + 1 < s.x0 || t.minX - 1 >= s.x1) return;
+    int boxX0 = 0, boxX1 = 0;
+    msaaColumnRange(t, boxX0, boxX1);
+    boxX0 = std::max(boxX0, s.x0);
+    boxX1 = std::min(boxX1, s.x1);
+    if (rowBegin >= rowEnd || boxX0 >= boxX1) return;
 
     // A small triangle's samples are a few short pieces of rows far apart in memory (a row of
     // samples is width * n * 4 bytes): ask for all of its depth and colour lines now, so that
@@ -416,7 +423,6 @@ void coverSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
     // the depth test one line at a time (a large triangle's rows stream well on their own).
     // (Keep the loop inline here: moved into a function of its own, GCC 12 at -O2 takes that
     // function, which only prefetches, for one without effects and drops every call to it.)
-    const int boxX0 = std::max(t.minX - 1, s.x0), boxX1 = std::min(t.maxX + 2, s.x1);
     if (boxX1 - boxX0 <= 64 && rowEnd - rowBegin <= 64) {
         constexpr std::size_t kLine = 64 / sizeof(float); // samples per 64-byte cache line
         for (int y = rowBegin; y < rowEnd; ++y) {

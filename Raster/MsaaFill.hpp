@@ -68,14 +68,26 @@ enum class MsaaCoverageMethod {
                // the depth test sample by sample: the readable twin
 };
 
-// Whether coverTriangleSamples tests triangle `t` with edge functions (Auto): its snapped extent
-// plus the one-pixel margin the sample offsets need fits in kMsaaSmallSide pixels each way, so
-// every edge value over that box is below 2 * (32 * 256) * (34 * 256) < 2^28: exact in int32.
+// Pixel columns [x0, x1) a triangle's samples can fall in: the columns of its snapped extent
+// (t.minX, t.maxX: the columns of its leftmost and rightmost vertex). Every sample lies strictly
+// inside its own pixel (each pattern offset is below half a pixel each way: tested), and a
+// covered sample lies inside the closed triangle, so within its extent: no column outside it
+// has a covered sample. The analogue of msaaRowRange.
+inline void msaaColumnRange(const TriangleSetup& t, int& x0, int& x1) {
+    x0 = t.minX;
+    x1 = t.maxX + 1;
+}
+
+// Whether coverTriangleSamples tests triangle `t` with edge functions (Auto): its columns and
+// rows (msaaColumnRange, msaaRowRange) fit in kMsaaSmallSide pixels each way, so that every
+// vertex and sample point of that box lies within 32 * 256 of every other each way, and every
+// edge value over the box is at most 2 * (32 * 256)^2 = 2^27 in magnitude: exact in int32.
 inline constexpr int kMsaaSmallSide = 32;
 inline bool msaaSmallTriangle(const TriangleSetup& t) {
-    int rowBegin = 0, rowEnd = 0;
+    int rowBegin = 0, rowEnd = 0, x0 = 0, x1 = 0;
     msaaRowRange(t, rowBegin, rowEnd);
-    return t.maxX - t.minX + 3 <= kMsaaSmallSide && rowEnd - rowBegin <= kMsaaSmallSide;
+    msaaColumnRange(t, x0, x1);
+    return x1 - x0 <= kMsaaSmallSide && rowEnd - rowBegin <= kMsaaSmallSide;
 }
 
 // The multisampled fill's first stage (MsaaCoverage.cpp): for triangle `t` inside the scissor,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <random>
 #include <utility>
@@ -277,8 +278,13 @@ TEST_CASE("MSAA coverage and depth (edge functions, vector depth test) equal the
                 // Sizes from sub-pixel to larger than the edge-function box (kMsaaSmallSide).
                 const float size = i % 3 == 0 ? 1.5f : i % 3 == 1 ? 12.0f : 45.0f;
                 const float cx = uniform(rng, -4, kW + 4), cy = uniform(rng, -4, kH + 4);
+                // Every other triangle on the patterns' 1/16-pixel grid: vertices on pixel edges
+                // and on sample points, where the edge-function box (msaaColumnRange) is tightest.
+                const bool onGrid = i % 2 == 1;
+                auto coordinate = [&](float c) { return onGrid ? std::round(c * 16.0f) / 16.0f : c; };
                 auto around = [&] {
-                    return vtx(cx + uniform(rng, -size, size), cy + uniform(rng, -size, size), uniform(rng, 0.0f, 1.0f));
+                    return vtx(coordinate(cx + uniform(rng, -size, size)), coordinate(cy + uniform(rng, -size, size)),
+                               uniform(rng, 0.0f, 1.0f));
                 };
                 const ScreenVertex v0 = around(), v1 = around(), v2 = around();
                 TriangleSetup t;
