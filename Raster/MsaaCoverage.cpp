@@ -42,6 +42,10 @@ const Centroid* centroidTable() {
     return table.data();
 }
 
+// Samples per 64-byte cache line (colour and depth samples are 4 bytes each).
+constexpr std::size_t kLine = 64 / sizeof(float);
+static_assert(sizeof(Pixel) == sizeof(float), "a colour and a depth sample are the same size");
+
 // Room for `count` masks in the scratch rows.
 void reserveMasks(MsaaScratch& scratch, std::size_t count) {
     if (scratch.covered.size() < count) {
@@ -397,7 +401,15 @@ bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scis
         scratch.rows.push_back({y, lo, hi, offset});
         used += boxWidth;
         target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
+        const std::size_t listed = scratch.runs.size();
         testAndListRow<kN, kDepth, true>(t, pattern, target.depthRow(y), scratch, y, lo, hi, c0, c1, covered, passed);
+        if (scratch.runs.size() != listed) {
+            // A sample passed: the row's colour is written after the shading; ask for its lines.
+            Pixel* colour = target.colourRow(y);
+            for (std::size_t i = std::size_t(lo) * kN, to = std::size_t(hi) * kN; i < to; i += kLine)
+                prefetchForWrite(colour + i);
+            prefetchForWrite(colour + std::size_t(hi) * kN - 1);
+        }
     }
     return true;
 }
@@ -418,20 +430,22 @@ void coverSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
     if (rowBegin >= rowEnd || boxX0 >= boxX1) return;
 
     // A small triangle's samples are a few short pieces of rows far apart in memory (a row of
-    // samples is width * n * 4 bytes): ask for all of its depth and colour lines now, so that
-    // their cache misses overlap with each other and with the coverage below instead of stalling
-    // the depth test one line at a time (a large triangle's rows stream well on their own).
-    // (Keep the loop inline here: moved into a function of its own, GCC 12 at -O2 takes that
-    // function, which only prefetches, for one without effects and drops every call to it.)
+    // samples is width * n * 4 bytes): ask for all of its depth lines now, so that their cache
+    // misses overlap with each other and with the coverage below instead of stalling the depth
+    // test one line at a time (a large triangle's rows stream well on their own). Its colour
+    // lines too, unless coverByEdgeFunctions takes it: that asks for a row's colour lines once a
+    // sample of the row has passed the depth test (with no culling, half of the bunny's
+    // triangles pass none and never write a colour).
+    // (Keep the loops inline: moved into a function of its own, GCC 12 at -O2 takes a function
+    // that only prefetches for one without effects and drops every call to it.)
+    const bool colourNow = method == MsaaCoverageMethod::Reference || !msaaSmallTriangle(t);
     if (boxX1 - boxX0 <= 64 && rowEnd - rowBegin <= 64) {
-        constexpr std::size_t kLine = 64 / sizeof(float); // samples per 64-byte cache line
         for (int y = rowBegin; y < rowEnd; ++y) {
             const std::size_t from = std::size_t(boxX0) * kN, to = std::size_t(boxX1) * kN;
-            for (std::size_t i = from; i < to; i += kLine) {
-                prefetchForWrite(target.depthRow(y) + i);
-                prefetchForWrite(target.colourRow(y) + i);
-            }
+            for (std::size_t i = from; i < to; i += kLine) prefetchForWrite(target.depthRow(y) + i);
             prefetchForWrite(target.depthRow(y) + to - 1);
+            if (!colourNow) continue;
+            for (std::size_t i = from; i < to; i += kLine) prefetchForWrite(target.colourRow(y) + i);
             prefetchForWrite(target.colourRow(y) + to - 1);
         }
     }
