@@ -682,7 +682,7 @@ struct SpanKernel {
     FrameBuffer& fb;
     std::uint64_t& shaded;
     FragmentQueue<kV>& queue;
-    F gradient[kPlanes];
+    std::array<F, kPlanes> gradient; // per plane: its step one pixel right (gradientsOf)
     F triangleLod; // affine trilinear: the triangle's mip level (else unused)
     float alpha = 1.0f; // below 1: a transparent draw, every colour blended over the target (blendOver)
     // On (fillSpans, kDeferrable programs): the queue outlives the triangle, so that a draw of
@@ -698,6 +698,14 @@ struct SpanKernel {
     // triangle's. Not flat (lit per triangle) nor trilinear (the triangle's uv gradients).
     static constexpr bool kDeferrable =
         kV > 0 && Prog::kMode != ShadingMode::Flat && !(Prog::kIsTextured && kFilter == TextureFilter::Trilinear);
+
+    // The planes' steps one pixel right, as the span loop adds them (made in place by the
+    // kernel's initialiser: a member left to the aggregate's `{}` is zeroed first, every triangle).
+    static std::array<F, kPlanes> gradientsOf(const TriangleSetup& setup) {
+        std::array<F, kPlanes> g;
+        for (int k = 0; k < kPlanes; ++k) g[std::size_t(k)] = fset(setup.ddxStep[k]);
+        return g;
+    }
 
     // Writes the shaded colour of pixel `dst` (opaque: the colour itself; transparent: blendOver,
     // the scalar pipeline's very function, lane by lane).
@@ -722,12 +730,13 @@ struct SpanKernel {
     void flush() const {
         const int used = queue.count;
         if (used == 0) return;
-        for (int i = used; i < kLanes; ++i) { // repeat the last fragment (results dropped)
-            queue.x[i] = queue.x[used - 1];
-            queue.y[i] = queue.y[used - 1];
-            queue.invW[i] = queue.invW[used - 1];
-            for (int k = 0; k < kV; ++k) queue.v[k][i] = queue.v[k][used - 1];
-        }
+        // Lanes [used, kLanes) repeat the last fragment (their results are dropped): a vector
+        // blend per array, not a scalar store per lane and array.
+        const M keep = firstN(used);
+        istore(queue.x, select(keep, iload(queue.x), iset(queue.x[used - 1])));
+        istore(queue.y, select(keep, iload(queue.y), iset(queue.y[used - 1])));
+        fstore(queue.invW, select(keep, fload(queue.invW), fset(queue.invW[used - 1])));
+        for (int k = 0; k < kV; ++k) fstore(queue.v[k], select(keep, fload(queue.v[k]), fset(queue.v[k][used - 1])));
         shadeQueued(used);
         queue.count = 0;
     }
@@ -896,10 +905,9 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
     FragmentQueue<Prog::kVaryings>& queue = fillQueue<Prog, kDepth, kPersp, kFilter>();
     if constexpr (!Span::kDeferrable) queue.count = 0;
     assert(kDepth == DepthMode::Test || p.d->alpha >= 1.0f); // blending kernels: DepthMode::Test only
-    Span span{p, t, fb, shaded, queue, {}, fzero(), p.d->alpha, Span::kDeferrable};
+    Span span{p, t, fb, shaded, queue, Span::gradientsOf(t), fzero(), p.d->alpha, Span::kDeferrable};
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));
-    for (int k = 0; k < Span::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
     forEachSpan(t, s, span);
     if constexpr (Prog::kVaryings > 0 && !Span::kDeferrable) span.flush();
 }
@@ -934,10 +942,9 @@ void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const
     using Span = SpanKernel<Prog, DepthMode::Off, kPersp, kFilter>;
     // Runs at the centre go through the span loop; a pixel shaded off its centre (at its
     // centroid) is queued on its own with the plane origin moved (queueOne, movedOrigin).
-    Span span{p, t, fb, shaded, queue, {}, fzero()};
+    Span span{p, t, fb, shaded, queue, Span::gradientsOf(t), fzero()};
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));
-    for (int k = 0; k < Span::kPlanes; ++k) span.gradient[k] = fset(t.ddxStep[k]);
     for (int r = 0; r < count; ++r) {
         const SpanRun& run = runs[r];
         if constexpr (Prog::kVaryings > 0) {
