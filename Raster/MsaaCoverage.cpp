@@ -46,6 +46,26 @@ const Centroid* centroidTable() {
 constexpr std::size_t kLine = 64 / sizeof(float);
 static_assert(sizeof(Pixel) == sizeof(float), "a colour and a depth sample are the same size");
 
+// Append a row or run record by storing its fields in place. (A braced `push_back({...})` builds
+// the record on the stack with narrow stores and copies it with one wide load, which cannot be
+// forwarded from them: it waits until they reach the cache, behind every older store, the sample
+// writes and their cache misses included. perf showed that wait as 12-16% of this file's time.)
+void addRow(MsaaScratch& scratch, int y, int lo, int hi, std::size_t offset) {
+    MsaaScratch::Row& row = scratch.rows.emplace_back();
+    row.y = y;
+    row.lo = lo;
+    row.hi = hi;
+    row.offset = offset;
+}
+void addRun(MsaaScratch& scratch, int y, int x0, int x1, double dx, double dy) {
+    SpanRun& run = scratch.runs.emplace_back();
+    run.y = y;
+    run.x0 = x0;
+    run.x1 = x1;
+    run.dx = dx;
+    run.dy = dy;
+}
+
 // Room for `count` masks in the scratch rows.
 void reserveMasks(MsaaScratch& scratch, std::size_t count) {
     if (scratch.covered.size() < count) {
@@ -144,10 +164,10 @@ void listRuns(MsaaScratch& scratch, int y, int lo, int hi, int c0, int c1, const
         } else if (x >= c0 && x < c1) {
             const int from = x;
             while (x < c1 && passed[x - lo] != 0) ++x;
-            scratch.runs.push_back({y, from, x, 0.0, 0.0});
+            addRun(scratch, y, from, x, 0.0, 0.0);
         } else {
             const Centroid& m = centroids[covered[x - lo]];
-            scratch.runs.push_back({y, x, x + 1, m.dx, m.dy});
+            addRun(scratch, y, x, x + 1, m.dx, m.dy);
             ++x;
         }
     }
@@ -173,12 +193,12 @@ struct RunList {
         close(x);
         if (pass != 0) {
             const Centroid& m = centroids[cover];
-            scratch.runs.push_back({y, x, x + 1, m.dx, m.dy});
+            addRun(scratch, y, x, x + 1, m.dx, m.dy);
         }
     }
     void close(int x) {
         if (from < 0) return;
-        scratch.runs.push_back({y, from, x, 0.0, 0.0});
+        addRun(scratch, y, from, x, 0.0, 0.0);
         from = -1;
     }
 };
@@ -230,7 +250,7 @@ void coverByWalks(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
         reserveMasks(scratch, used + width);
         std::uint8_t* covered = scratch.covered.data() + used;
         std::uint8_t* passed = scratch.passed.data() + used;
-        scratch.rows.push_back({y, lo, hi, used});
+        addRow(scratch, y, lo, hi, used);
         used += width;
         // Every sample is covered in the spans' intersection [inner0, inner1); the few pixels
         // at either end are tested sample by sample.
@@ -398,7 +418,7 @@ bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scis
         const std::size_t offset = used + std::size_t(lo - x0);
         std::uint8_t* covered = scratch.covered.data() + offset;
         std::uint8_t* passed = scratch.passed.data() + offset;
-        scratch.rows.push_back({y, lo, hi, offset});
+        addRow(scratch, y, lo, hi, offset);
         used += boxWidth;
         target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
         const std::size_t listed = scratch.runs.size();
