@@ -682,8 +682,8 @@ struct SpanKernel {
     FrameBuffer& fb;
     std::uint64_t& shaded;
     FragmentQueue<kV>& queue;
-    std::array<F, kPlanes> gradient; // per plane: its step one pixel right (gradientsOf)
-    F triangleLod; // affine trilinear: the triangle's mip level (else unused)
+    F gradient[kPlanes]; // per plane: its step one pixel right
+    F triangleLod = fzero(); // affine trilinear: the triangle's mip level (else unused)
     float alpha = 1.0f; // below 1: a transparent draw, every colour blended over the target (blendOver)
     // On (fillSpans, kDeferrable programs): the queue outlives the triangle, so that a draw of
     // small triangles shades full groups of lanes; see fillSpans.
@@ -699,12 +699,13 @@ struct SpanKernel {
     static constexpr bool kDeferrable =
         kV > 0 && Prog::kMode != ShadingMode::Flat && !(Prog::kIsTextured && kFilter == TextureFilter::Trilinear);
 
-    // The planes' steps one pixel right, as the span loop adds them (made in place by the
-    // kernel's initialiser: a member left to the aggregate's `{}` is zeroed first, every triangle).
-    static std::array<F, kPlanes> gradientsOf(const TriangleSetup& setup) {
-        std::array<F, kPlanes> g;
-        for (int k = 0; k < kPlanes; ++k) g[std::size_t(k)] = fset(setup.ddxStep[k]);
-        return g;
+    // A constructor, not an aggregate: initialised as an aggregate, the whole kernel (its plane
+    // steps are 8 vectors for Phong) was zeroed first with a `rep stos`, every triangle.
+    SpanKernel(const Prog& program, const TriangleSetup& setup, FrameBuffer& target, std::uint64_t& shadedCount,
+               FragmentQueue<kV>& fragments, float opacity = 1.0f, bool deferQueue = false)
+        : p(program), t(setup), fb(target), shaded(shadedCount), queue(fragments), alpha(opacity),
+          deferred(deferQueue) {
+        for (int k = 0; k < kPlanes; ++k) gradient[k] = fset(setup.ddxStep[k]);
     }
 
     // Writes the shaded colour of pixel `dst` (opaque: the colour itself; transparent: blendOver,
@@ -905,7 +906,7 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
     FragmentQueue<Prog::kVaryings>& queue = fillQueue<Prog, kDepth, kPersp, kFilter>();
     if constexpr (!Span::kDeferrable) queue.count = 0;
     assert(kDepth == DepthMode::Test || p.d->alpha >= 1.0f); // blending kernels: DepthMode::Test only
-    Span span{p, t, fb, shaded, queue, Span::gradientsOf(t), fzero(), p.d->alpha, Span::kDeferrable};
+    Span span(p, t, fb, shaded, queue, p.d->alpha, Span::kDeferrable);
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));
     forEachSpan(t, s, span);
@@ -922,7 +923,7 @@ void flushSpans(const Prog& p, FrameBuffer& fb) {
         if (queue.count == 0) return;
         const TriangleSetup none{}; // (the shading of a deferrable program reads no triangle)
         std::uint64_t shaded = 0;   // (counted when queued)
-        const Span span{p, none, fb, shaded, queue, {}, fzero(), p.d->alpha, true};
+        const Span span(p, none, fb, shaded, queue, p.d->alpha, true);
         span.flush();
     } else {
         (void)p;
@@ -942,7 +943,7 @@ void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const
     using Span = SpanKernel<Prog, DepthMode::Off, kPersp, kFilter>;
     // Runs at the centre go through the span loop; a pixel shaded off its centre (at its
     // centroid) is queued on its own with the plane origin moved (queueOne, movedOrigin).
-    Span span{p, t, fb, shaded, queue, Span::gradientsOf(t), fzero()};
+    Span span(p, t, fb, shaded, queue);
     if constexpr (Prog::kIsTextured && kFilter == TextureFilter::Trilinear && kPersp == PerspectiveMode::Affine)
         span.triangleLod = fset(affineMipLevel(p));
     for (int r = 0; r < count; ++r) {

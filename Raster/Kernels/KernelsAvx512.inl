@@ -17,7 +17,6 @@
 #endif
 
 #include <algorithm>
-#include <array>
 #include <cassert>
 #include <cstdint>
 #include <limits>
