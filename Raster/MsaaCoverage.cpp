@@ -373,16 +373,12 @@ struct SampleMasks {
 #endif
 };
 
-// Returns false (and does nothing) for a triangle too large for the int32 box.
+// Pixels [x0, x1) x [rowBegin, rowEnd): the triangle's columns and rows inside the scissor, not
+// empty; the triangle is small (msaaSmallTriangle: the int32 box).
 template <int kN, DepthMode kDepth>
-bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, int rowBegin, int rowEnd,
+void coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, int x0, int x1, int rowBegin, int rowEnd,
                           MsaaScratch& scratch) {
-    if (!msaaSmallTriangle(t)) return false;
-    int x0 = 0, x1 = 0;
-    msaaColumnRange(t, x0, x1);
-    x0 = std::max(x0, s.x0);
-    x1 = std::min(x1, s.x1);
-    if (x0 >= x1) return true;
+    assert(msaaSmallTriangle(t) && x0 < x1 && rowBegin < rowEnd);
 
     // The vertices (from the setup's edges), ordered clockwise.
     const FixedEdge& l = t.longEdge;
@@ -432,7 +428,6 @@ bool coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, const Scis
             prefetchForWrite(colour + std::size_t(hi) * kN - 1);
         }
     }
-    return true;
 }
 
 template <int kN, DepthMode kDepth>
@@ -459,23 +454,20 @@ void coverSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
     // triangles pass none and never write a colour).
     // (Keep the loops inline: moved into a function of its own, GCC 12 at -O2 takes a function
     // that only prefetches for one without effects and drops every call to it.)
-    const bool colourNow = method == MsaaCoverageMethod::Reference || !msaaSmallTriangle(t);
+    const bool edgeFunctions = method == MsaaCoverageMethod::Auto && msaaSmallTriangle(t);
     if (boxX1 - boxX0 <= 64 && rowEnd - rowBegin <= 64) {
         for (int y = rowBegin; y < rowEnd; ++y) {
             const std::size_t from = std::size_t(boxX0) * kN, to = std::size_t(boxX1) * kN;
             for (std::size_t i = from; i < to; i += kLine) prefetchForWrite(target.depthRow(y) + i);
             prefetchForWrite(target.depthRow(y) + to - 1);
-            if (!colourNow) continue;
+            if (edgeFunctions) continue;
             for (std::size_t i = from; i < to; i += kLine) prefetchForWrite(target.colourRow(y) + i);
             prefetchForWrite(target.colourRow(y) + to - 1);
         }
     }
-    if (method == MsaaCoverageMethod::Reference) {
-        coverByWalks<kN, kDepth, false>(t, target, s, rowBegin, rowEnd, scratch);
-        return;
-    }
-    if (coverByEdgeFunctions<kN, kDepth>(t, target, s, rowBegin, rowEnd, scratch)) return;
-    coverByWalks<kN, kDepth, true>(t, target, s, rowBegin, rowEnd, scratch);
+    if (edgeFunctions) coverByEdgeFunctions<kN, kDepth>(t, target, boxX0, boxX1, rowBegin, rowEnd, scratch);
+    else if (method == MsaaCoverageMethod::Reference) coverByWalks<kN, kDepth, false>(t, target, s, rowBegin, rowEnd, scratch);
+    else coverByWalks<kN, kDepth, true>(t, target, s, rowBegin, rowEnd, scratch);
 }
 
 template <int kN>
