@@ -2,6 +2,7 @@
 #pragma once
 
 #include "Math/Color.hpp"
+#include "Raster/ColorSpace.hpp"
 #include "Raster/FrameBuffer.hpp" // Pixel
 
 namespace sr {
@@ -13,6 +14,17 @@ inline Pixel blendOver(Pixel src, Pixel dst, float alpha) {
     const float keep = 1.0f - alpha;
     const auto mix = [&](unsigned s, unsigned d) { return float(s) / 255.0f * alpha + float(d) / 255.0f * keep; };
     return packBgra8(Color{mix(pixelR(src), pixelR(dst)), mix(pixelG(src), pixelG(dst)), mix(pixelB(src), pixelB(dst)), 1.0f});
+}
+
+// The same in linear light (ColorMode::Linear): both stored pixels decoded from sRGB, mixed in
+// float, the result encoded again (encodeSrgb8).
+inline Pixel blendOverLinear(Pixel src, Pixel dst, float alpha) {
+    const Color s = unpackLinearBgra8(src), d = unpackLinearBgra8(dst);
+    const float keep = 1.0f - alpha;
+    return packLinearBgra8(Color{s.r * alpha + d.r * keep, s.g * alpha + d.g * keep, s.b * alpha + d.b * keep, 1.0f});
+}
+inline Pixel blendOver(Pixel src, Pixel dst, float alpha, bool linear) {
+    return linear ? blendOverLinear(src, dst, alpha) : blendOver(src, dst, alpha);
 }
 
 // Per-fragment opacity from the texture (glTF alphaMode MASK or BLEND with a base colour texture
@@ -31,6 +43,7 @@ struct TexelAlpha {
     AlphaMode mode = AlphaMode::Off;
     float factor = 1.0f; // the material's constant alpha (glTF baseColorFactor alpha)
     float cutoff = 0.5f; // Mask only (glTF alphaCutoff)
+    bool linear = false; // Blend in linear light (blendOverLinear); set per draw by the colour mode
     bool on() const { return mode != AlphaMode::Off; }
 };
 

@@ -15,12 +15,16 @@ struct Mesh {
     std::vector<Vec3> positions;
     std::vector<Vec3> normals;
     std::vector<Vec2> uvs;
+    // Tangent space of a normal map: xyz the unit tangent (along +u), w = +-1 the handedness of
+    // the bitangent (B = w N x T, glTF TANGENT's convention). Empty, or one per position.
+    std::vector<Vec4> tangents;
     std::vector<std::uint32_t> indices; // 3 per triangle
 
     std::size_t vertexCount() const { return positions.size(); }
     std::size_t triangleCount() const { return indices.size() / 3; }
     bool hasNormals() const { return !normals.empty() && normals.size() == positions.size(); }
     bool hasUvs() const { return !uvs.empty() && uvs.size() == positions.size(); }
+    bool hasTangents() const { return !tangents.empty() && tangents.size() == positions.size(); }
 };
 
 // Every index refers to an existing vertex and the index count is a multiple of 3. Loaders

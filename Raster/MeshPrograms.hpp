@@ -45,7 +45,18 @@ struct DrawContext {
     bool whiteLights;       // view.lighting.whiteDirectional(): one-number terms (blinnPhong), else RGB (lightTerms)
     bool doubleSided = true; // false: the draw's back faces are culled whatever settings.cull says
     TexelAlpha texelAlpha;   // on only for a textured draw whose texture has alpha (activeTexelAlpha)
+    // ColorMode::Linear: texels decoded from sRGB, the colour encoded (encode below); the draw
+    // then has no span kernels.
+    bool linear = false;
+    float exposureScale = 1.0f;                 // 2^settings.exposure (linear only)
+    const SurfaceMaterial* material = nullptr;  // the pbr program's maps and factors
 };
+
+// The stored pixel of a shaded colour: on display values as it is (packBgra8); in linear light
+// tone-mapped and sRGB-encoded (packLinearBgra8).
+inline Pixel encode(const DrawContext& d, Color c) {
+    return d.linear ? packLinearBgra8(c, d.settings.toneMap, d.exposureScale) : packBgra8(c);
+}
 
 // The lighting terms at world point p with unit normal n and unit view vector v, per channel:
 // blinnPhong's one-number terms when every light is white and directional (the same floats as
@@ -70,7 +81,8 @@ inline Color sampleTexel(const DrawContext& d, const TriangleSetup* setup, const
                                     : uvDerivatives(*setup, kU, kV, f.invW, uv.x, uv.y);
         lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, d.texture->width(), d.texture->height());
     }
-    return d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
+    return d.linear ? d.texture->sampleSrgb(uv, lod, d.settings.filter, d.settings.wrap)
+                    : d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
 }
 
 // Diffuse colour at a textured fragment: the texel times the draw's kd (the reference's
@@ -99,6 +111,8 @@ inline DrawState drawStateFor(const DrawContext& d) {
         s.blendAlpha = std::max(d.alpha, 0.0f);
         s.depth = DepthMode::Test;
     }
+    s.linearBlend = d.linear;
+    s.texelAlpha.linear = d.linear;
     s.stencil = d.settings.stencil;
     s.colourWrite = d.settings.colourWrite;
     s.depthEqualPasses = d.settings.depthEqualPasses;
@@ -129,7 +143,7 @@ struct UnlitProgram {
     void vertex(std::size_t i, ClipVertex& out) const { transformVertex<kTextured>(*d, i, out); }
     void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
     Pixel fragment(const Fragment<kVaryings>& f) const {
-        if constexpr (kTextured) return packBgra8(sampleKd(*d, setup, f));
+        if constexpr (kTextured) return encode(*d, sampleKd(*d, setup, f));
         else return flat;
     }
     template <bool kT = kTextured, std::enable_if_t<kT, int> = 0> // textured programs only (HasFragmentAlpha)
@@ -166,11 +180,11 @@ struct FlatProgram {
                    p2 = d->mesh.positions[d->indices[3 * tri + 2]];
         const Vec3 centroid = (p0 + p1 + p2) / 3.0f;
         terms = litTerms(*d, faceNormal(p0, p1, p2), centroid, normalize(d->view.eye - centroid));
-        if constexpr (!kTextured) flat = packBgra8(applyTerms(d->kd, d->specular.ks, terms));
+        if constexpr (!kTextured) flat = encode(*d, applyTerms(d->kd, d->specular.ks, terms));
     }
     Pixel fragment(const Fragment<kVaryings>& f) const {
         ensureLit();
-        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, terms));
+        if constexpr (kTextured) return encode(*d, applyTerms(sampleKd(*d, setup, f), d->specular.ks, terms));
         else return flat;
     }
     template <bool kT = kTextured, std::enable_if_t<kT, int> = 0> // textured programs only (HasFragmentAlpha)
@@ -219,9 +233,9 @@ struct GouraudProgram {
         if constexpr (kRgb) {
             const RgbTerms t{{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], 1.0f},
                              {f.varyings[kT + 3], f.varyings[kT + 4], f.varyings[kT + 5], 1.0f}};
-            return packBgra8(applyTerms(kd, d->specular.ks, t));
+            return encode(*d, applyTerms(kd, d->specular.ks, t));
         } else {
-            return packBgra8(applyTerms(kd, d->specular.ks, LightTerms{f.varyings[kT], f.varyings[kT + 1]}));
+            return encode(*d, applyTerms(kd, d->specular.ks, LightTerms{f.varyings[kT], f.varyings[kT + 1]}));
         }
     }
     template <bool kT = kTextured, std::enable_if_t<kT, int> = 0> // textured programs only (HasFragmentAlpha)
@@ -256,8 +270,8 @@ struct PhongProgram {
         const Vec3 v = normalize(d->view.eye - p);
         const RgbTerms t = d->view.shadows ? shadowedTerms(d->view.lighting, d->specular, n, p, v, *d->view.shadows)
                                            : litTerms(*d, n, p, v);
-        if constexpr (kTextured) return packBgra8(applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
-        else return packBgra8(applyTerms(d->kd, d->specular.ks, t));
+        if constexpr (kTextured) return encode(*d, applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
+        else return encode(*d, applyTerms(d->kd, d->specular.ks, t));
     }
     template <bool kT = kTextured, std::enable_if_t<kT, int> = 0> // textured programs only (HasFragmentAlpha)
     float fragmentAlpha(const Fragment<kVaryings>& f) const { return sampleTexel(*d, setup, f).a; }

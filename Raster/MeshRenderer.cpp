@@ -6,6 +6,7 @@
 
 #include "Raster/Kernels/KernelTable.hpp"
 #include "Raster/MeshPrograms.hpp"
+#include "Raster/PbrProgram.hpp"
 #include "Raster/Pipeline.hpp"
 
 namespace sr {
@@ -14,6 +15,7 @@ namespace {
 using programs::DrawContext;
 using programs::FlatProgram;
 using programs::GouraudProgram;
+using programs::PbrProgram;
 using programs::PhongProgram;
 using programs::UnlitProgram;
 
@@ -51,11 +53,14 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
     KernelProgram<Program> withKernel{program};
     // Phong kernels test the shadow maps per pixel as the scalar program does (Kernels.inl's
     // shadowVisibility); flat and Gouraud light per triangle / vertex, unshadowed (Shadow.hpp).
-    if (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular)) {
-        const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
-        withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
-        withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
-        withKernel.flushKernel = selectFlushKernel<Program>(d.settings.isa, key);
+    // The kernels compute on display values: a linear draw, and pbr, fill with the scalar loop.
+    if constexpr (Program::kMode != ShadingMode::Pbr) {
+        if (!d.linear && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
+            const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
+            withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
+            withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
+            withKernel.flushKernel = selectFlushKernel<Program>(d.settings.isa, key);
+        }
     }
     // The programs' vertex() reads the mesh, the view and (Gouraud) the specular constants, which
     // it names in vertexVariant(): draws of one mesh share their vertex stage inside a
@@ -66,14 +71,33 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
 template <bool kTextured>
 void drawShaded(RenderContext& ctx, const DrawContext& d, ShadingMode mode, std::size_t indexCount) {
     switch (mode) {
-    case ShadingMode::Unlit: drawWith(ctx, d, indexCount, UnlitProgram<kTextured>(&d, packBgra8(d.kd))); break;
+    case ShadingMode::Unlit: drawWith(ctx, d, indexCount, UnlitProgram<kTextured>(&d, programs::encode(d, d.kd))); break;
     case ShadingMode::Flat: drawWith(ctx, d, indexCount, FlatProgram<kTextured>(&d)); break;
     case ShadingMode::Gouraud:
         if (d.whiteLights) drawWith(ctx, d, indexCount, GouraudProgram<kTextured>(&d));
         else drawWith(ctx, d, indexCount, GouraudProgram<kTextured, true>(&d)); // RGB terms: six varyings
         break;
-    case ShadingMode::Phong: drawWith(ctx, d, indexCount, PhongProgram<kTextured>(&d)); break;
+    case ShadingMode::Phong:
+    case ShadingMode::Pbr: // a draw without a glTF material (drawMesh): Phong
+        drawWith(ctx, d, indexCount, PhongProgram<kTextured>(&d));
+        break;
     }
+}
+
+// A glTF material under ShadingMode::Pbr: the maps it has (with uvs), the tangents its normal
+// map needs (without them the map is not applied).
+void drawPbr(RenderContext& ctx, const DrawContext& base, const SurfaceMaterial& material, std::size_t indexCount) {
+    const Mesh& mesh = base.mesh;
+    const Texture* anyMap = material.texture      ? material.texture
+                            : material.metallicRoughness ? material.metallicRoughness
+                            : material.emissive   ? material.emissive
+                                                  : material.normalMap;
+    const bool maps = anyMap != nullptr && mesh.hasUvs();
+    DrawContext d = base;
+    d.texture = maps ? anyMap : nullptr; // the uv varyings' rebase (drawStateFor)
+    if (!maps) drawWith(ctx, d, indexCount, PbrProgram<false, false>(&d));
+    else if (material.normalMap && mesh.hasTangents()) drawWith(ctx, d, indexCount, PbrProgram<true, true>(&d));
+    else drawWith(ctx, d, indexCount, PbrProgram<true, false>(&d));
 }
 
 } // namespace
@@ -86,11 +110,25 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& f
     if (textured && material.wrap && settings.wrapFromFile) settings.wrap = *material.wrap;
     if (textured && material.filter && settings.filterFromFile) settings.filter = *material.filter;
     ShadingMode mode = settings.shading;
-    if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong)) mode = ShadingMode::Flat;
-    const DrawContext d{view,     settings, mesh, indices, textured ? material.texture : nullptr,
-                        textured ? material.tint : material.kd, material.specular, material.alpha,
-                        view.lighting.whiteDirectional(), material.doubleSided, activeTexelAlpha(material, mesh)};
-    if (textured) drawShaded<true>(ctx, d, mode, indexCount);
+    if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong || mode == ShadingMode::Pbr))
+        mode = ShadingMode::Flat;
+    const bool pbr = mode == ShadingMode::Pbr && material.pbr != nullptr;
+    // The Blinn-Phong models see physical lights divided by pi (Lighting::physical).
+    FrameView phongView;
+    const FrameView* v = &view;
+    if (!pbr && view.lighting.physical) {
+        phongView = view;
+        phongView.lighting = blinnPhongLighting(view.lighting);
+        v = &phongView;
+    }
+    DrawContext d{*v,       settings, mesh, indices, textured ? material.texture : nullptr,
+                  textured ? material.tint : material.kd, material.specular, material.alpha,
+                  v->lighting.whiteDirectional(), material.doubleSided, activeTexelAlpha(material, mesh)};
+    d.linear = settings.colour == ColorMode::Linear;
+    d.exposureScale = std::exp2(settings.exposure);
+    d.material = &material;
+    if (pbr) drawPbr(ctx, d, material, indexCount);
+    else if (textured) drawShaded<true>(ctx, d, mode, indexCount);
     else drawShaded<false>(ctx, d, mode, indexCount);
 }
 

@@ -46,6 +46,9 @@ struct DrawState {
     // (Blend.hpp), per pixel or, multisampled, per sample; the span kernels blend as the scalar
     // loop does (their colours go through blendOver). Such a draw is drawn with DepthMode::Test.
     float blendAlpha = 1.0f;
+    // Blends in linear light (blendOverLinear: ColorMode::Linear); the scalar loop's blends only
+    // (linear draws have no kernels), and not per sample under MSAA.
+    bool linearBlend = false;
     // On: per-fragment alpha from the program's fragmentAlpha (Blend.hpp's TexelAlpha: Mask keeps
     // or discards, Blend blends with it); the draw is then filled by the scalar loop with
     // DepthMode::Test, a kept Mask fragment writing its own depth.
@@ -80,7 +83,7 @@ SR_SIMD_NOINLINE Pixel texelAlphaFragment(const Program& program, FrameBuffer& f
         return program.fragment(f);
     }
     ++shaded;
-    return blendOver(program.fragment(f), behind, a);
+    return blendOver(program.fragment(f), behind, a, texelAlpha.linear);
 }
 
 // A clipped triangle's uv varyings rebased before clipping (VaryingRebase), so the clipper's
@@ -228,7 +231,7 @@ SR_SIMD_NOINLINE Pixel stencilFragment(Program& program, FrameBuffer& fb, const 
         depth = f.z;
     if (!state.colourWrite) return behind;
     ++shaded;
-    if (a < 1.0f) return blendOver(program.fragment(f), behind, a);
+    if (a < 1.0f) return blendOver(program.fragment(f), behind, a, state.linearBlend);
     return program.fragment(f);
 }
 
@@ -293,14 +296,15 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     // Count the fragments that pass the depth test (one add per pixel: overdraw statistics).
     std::uint64_t& shaded = lane.stats.fragmentsShaded;
     const float alpha = state.blendAlpha;
+    const bool linearBlend = state.linearBlend;
     const TexelAlpha texelAlpha = state.texelAlpha;
     constexpr bool kFragmentAlpha = HasFragmentAlpha<Program, kVaryings>::value;
-    auto counted = [&shaded, &program, &fb, alpha, texelAlpha](const Fragment<kVaryings>& f) {
+    auto counted = [&shaded, &program, &fb, alpha, linearBlend, texelAlpha](const Fragment<kVaryings>& f) {
         if constexpr (kFragmentAlpha) {
             if (SR_UNLIKELY(texelAlpha.on())) return detail::texelAlphaFragment(program, fb, texelAlpha, f, shaded);
         }
         ++shaded;
-        if (alpha < 1.0f) return blendOver(program.fragment(f), fb.colorRow(f.y)[f.x], alpha);
+        if (alpha < 1.0f) return blendOver(program.fragment(f), fb.colorRow(f.y)[f.x], alpha, linearBlend);
         return program.fragment(f);
     };
     // The program's own kernel if it has one for this draw; else the scalar loop, depth mode x

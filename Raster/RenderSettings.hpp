@@ -5,6 +5,7 @@
 
 #include "Math/Mat4.hpp"
 #include "Raster/Blend.hpp" // TexelAlpha
+#include "Raster/ColorSpace.hpp" // ColorMode, ToneMap
 #include "Raster/Cull.hpp"
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/PipelineModes.hpp" // PerspectiveMode, PipelineStop
@@ -15,6 +16,8 @@
 #include "Raster/Texture.hpp"
 
 namespace sr {
+
+struct PbrFactors; // Brdf.hpp
 
 // A selection outline (issue 17, the stencil buffer's use): after the opaque draws, scene draw
 // `draw` (an opaque one) is drawn again without colour and with the GEQUAL depth test, marking 1
@@ -57,6 +60,12 @@ struct RenderSettings {
     // and the GEQUAL depth test (DrawState::colourWrite, depthEqualPasses: the stencil path only).
     StencilState stencil;
     bool colourWrite = true, depthEqualPasses = false;
+    // Colour arithmetic (ColorSpace.hpp): Gamma on display values, Linear in linear light with
+    // the result tone-mapped (toneMap, at 2^exposure) and sRGB-encoded. Linear draws are filled
+    // by the scalar programs (the span kernels compute on display values).
+    ColorMode colour = ColorMode::Gamma;
+    ToneMap toneMap = ToneMap::None;
+    float exposure = 0.0f; // EV: the linear colour is scaled by 2^exposure before tone mapping
 };
 
 // What every draw of one frame shares.
@@ -87,6 +96,13 @@ struct SurfaceMaterial {
     // settings let the file choose (RenderSettings::wrapFromFile / filterFromFile).
     std::optional<WrapMode> wrap;
     std::optional<TextureFilter> filter;
+    // A glTF material's metallic-roughness input (the pbr shading model's; null for OBJ/MTL and
+    // the built-in scene) and its other maps (null: none; used when the mesh has uvs).
+    const PbrFactors* pbr = nullptr;
+    const Texture* metallicRoughness = nullptr;
+    const Texture* emissive = nullptr;
+    const Texture* normalMap = nullptr;
+    const Texture* occlusion = nullptr;
 };
 
 } // namespace sr

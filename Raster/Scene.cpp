@@ -37,6 +37,14 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
     material.filter = d.filter;
     if (textureOverride) material.texture = textureOverride;
     else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
+    if (d.pbr) {
+        material.pbr = &*d.pbr;
+        const auto map = [&](int i) { return i >= 0 ? &scene.textures[std::size_t(i)] : nullptr; };
+        material.metallicRoughness = map(d.metallicRoughnessTexture);
+        material.emissive = map(d.emissiveTexture);
+        material.normalMap = map(d.normalTexture);
+        material.occlusion = map(d.occlusionTexture);
+    }
     return material;
 }
 

@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "Raster/Brdf.hpp" // PbrFactors
 #include "Raster/Mesh.hpp"
 #include "Raster/MeshRenderer.hpp"
 #include "Raster/Texture.hpp"
@@ -25,6 +26,10 @@ struct SceneDraw {
     bool doubleSided = true;             // false (a glTF single-sided material): back faces culled whatever the cull mode
     std::optional<WrapMode> wrap;        // the texture's sampler (glTF), where it says (SurfaceMaterial)
     std::optional<TextureFilter> filter;
+    // A glTF material's metallic-roughness input and maps (indices into Scene::textures, -1 =
+    // none): what the pbr shading model reads (SurfaceMaterial::pbr).
+    std::optional<PbrFactors> pbr;
+    int metallicRoughnessTexture = -1, emissiveTexture = -1, normalTexture = -1, occlusionTexture = -1;
 };
 
 // World-space line segments (index pairs) or points, in one flat colour (lines are unlit).

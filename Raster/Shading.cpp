@@ -14,6 +14,7 @@ const char* shadingModeName(ShadingMode mode) {
     case ShadingMode::Flat: return "flat";
     case ShadingMode::Gouraud: return "gouraud";
     case ShadingMode::Phong: return "phong";
+    case ShadingMode::Pbr: return "pbr";
     }
     return "?";
 }
@@ -21,9 +22,23 @@ const char* shadingModeName(ShadingMode mode) {
 std::optional<ShadingMode> parseShadingMode(std::string_view text) {
     std::string lower(text);
     for (char& c : lower) c = char(std::tolower(static_cast<unsigned char>(c)));
-    for (ShadingMode m : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
+    for (ShadingMode m : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong, ShadingMode::Pbr})
         if (lower == shadingModeName(m)) return m;
     return std::nullopt;
+}
+
+Lighting blinnPhongLighting(const Lighting& lighting) {
+    Lighting out = lighting;
+    if (!lighting.physical) return out;
+    // A division by the float pi, so the default light of a physical scene (colour pi) becomes
+    // exactly white (1) and keeps the one-number terms.
+    for (Light& l : out.lights) {
+        l.colour.r /= kPiF;
+        l.colour.g /= kPiF;
+        l.colour.b /= kPiF;
+    }
+    out.physical = false;
+    return out;
 }
 
 Light Light::directional(Vec3 toLight, Color colour) {

@@ -15,12 +15,16 @@
 namespace sr {
 
 // Unlit: kd only. Flat: lit once per triangle with its face normal. Gouraud: lit per vertex,
-// the terms interpolated. Phong: normals and positions interpolated, lit per pixel.
-enum class ShadingMode { Unlit, Flat, Gouraud, Phong };
+// the terms interpolated. Phong: normals and positions interpolated, lit per pixel (Blinn-Phong).
+// Pbr: as Phong, but the glTF metallic-roughness BRDF (Brdf.hpp) with the material's maps; only
+// a glTF material has its input (a draw without one is shaded Phong).
+enum class ShadingMode { Unlit, Flat, Gouraud, Phong, Pbr };
 
 const char* shadingModeName(ShadingMode mode);
 // "unlit", "flat", "gouraud", "phong" (ASCII case-insensitive); anything else: nullopt.
 std::optional<ShadingMode> parseShadingMode(std::string_view text);
+
+inline constexpr float kPiF = 3.14159265358979323846f;
 
 // A punctual light (glTF KHR_lights_punctual): directional, point or spot, with a colour that
 // already includes its intensity (a plain multiplier on the lit colour: no physical units, no
@@ -55,6 +59,11 @@ struct Light {
 struct Lighting {
     std::vector<Light> lights{Light::directional(normalize(Vec3(1, 1, 1)))};
     float ambient = 0.1f;
+    // The lights are in KHR_lights_punctual's units (colour x intensity in lux or candela: a glTF
+    // scene's), as the pbr model reads them. The Blinn-Phong models, whose kd x N.L is the
+    // albedo's full colour, are lit by them divided by pi (blinnPhongLighting), so that a
+    // Lambertian surface looks the same in both.
+    bool physical = false;
     // Every light white and directional: the terms are one number each (LightTerms, blinnPhong),
     // the path every scene took before coloured lights; otherwise RGB terms (lightTerms).
     bool whiteDirectional() const {
@@ -63,6 +72,10 @@ struct Lighting {
         return true;
     }
 };
+
+// The lighting the Blinn-Phong models see: `lighting` itself, or with physical lights each
+// colour divided by pi (Lighting::physical).
+Lighting blinnPhongLighting(const Lighting& lighting);
 
 // The specular constants of one surface (a material's MTL Ks and Ns). The defaults are the
 // reference's values for a surface without a material: white ks 0.5, shininess 32.

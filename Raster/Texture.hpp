@@ -133,6 +133,12 @@ public:
     // read one level only.
     Color sampleTrilinear(Vec2 uv, float lod, WrapMode wrap) const;
 
+    // The same filters on decoded texels (linear light, ColorSpace.hpp): each texel's colour
+    // channels are decoded from sRGB through a 256-entry table BEFORE they are weighted (as a GPU
+    // samples an SRGB8_ALPHA8 texture), alpha taken as it is; same taps and 8-bit weights as the
+    // paths above, the weighting in float. The mip levels are those of the stored bytes.
+    Color sampleSrgb(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const;
+
     // The fast paths above are tested bit-identical to a straightforward reference of sample()
     // (generic per-texel wrap and fetch through this public API, no specialisation): the test-only
     // sampleReference of Tests/Texture/TextureReference.hpp.

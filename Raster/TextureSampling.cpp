@@ -2,6 +2,8 @@
 // per wrap mode, power-of-two masks, a byte -> float table) and texelColor.
 #include "Texture.hpp"
 
+#include "Raster/ColorSpace.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -205,7 +207,57 @@ struct TextureSampling {
         if (wl == 0) return c0; // == blendLevels(c0, c1, 0) exactly
         return blendLevels(c0, bilinear<kWrap>(levels[std::size_t(level) + 1], uv), wl);
     }
+
+    // The decoded twins (sampleSrgb): the same taps and weights, each texel decoded first.
+    static Color decoded(std::uint32_t t) {
+        const auto& d = srgbDecodeTable();
+        return {d[t & 0xFFu], d[(t >> 8) & 0xFFu], d[(t >> 16) & 0xFFu], kUnorm8[t >> 24]};
+    }
+    template <WrapMode kWrap, class Level>
+    static Color bilinearDecoded(const Level& l, Vec2 uv) {
+        const LinearTaps tx = linearTaps(uv.x, l.width, kWrap);
+        const LinearTaps ty = linearTaps(uv.y, l.height, kWrap);
+        int x0, x1, y0, y1;
+        Wrap<kWrap>::pair(tx.i0, l.width, l.maskX, x0, x1);
+        Wrap<kWrap>::pair(ty.i0, l.height, l.maskY, y0, y1);
+        const Color c00 = decoded(l.row(y0)[x0]), c10 = decoded(l.row(y0)[x1]);
+        const Color c01 = decoded(l.row(y1)[x0]), c11 = decoded(l.row(y1)[x1]);
+        const float wx = float(tx.w) / 256.0f, wy = float(ty.w) / 256.0f;
+        const auto mix = [](Color a, Color b, float w) {
+            return Color{a.r + (b.r - a.r) * w, a.g + (b.g - a.g) * w, a.b + (b.b - a.b) * w, a.a + (b.a - a.a) * w};
+        };
+        return mix(mix(c00, c10, wx), mix(c01, c11, wx), wy);
+    }
+    template <WrapMode kWrap, class Levels>
+    static Color sampleDecoded(const Levels& levels, Vec2 uv, float lod, TextureFilter filter) {
+        const auto& base = levels[0];
+        if (filter == TextureFilter::Nearest) {
+            const int x = Wrap<kWrap>::one(nearestTap(uv.x, base.width, kWrap), base.width, base.maskX);
+            const int y = Wrap<kWrap>::one(nearestTap(uv.y, base.height, kWrap), base.height, base.maskY);
+            return decoded(base.row(y)[x]);
+        }
+        if (filter == TextureFilter::Bilinear) return bilinearDecoded<kWrap>(base, uv);
+        const int last = int(levels.size()) - 1;
+        if (!(lod > 0.0f)) lod = 0.0f;
+        if (lod >= float(last)) return bilinearDecoded<kWrap>(levels[std::size_t(last)], uv);
+        const int level = int(lod);
+        const int wl = lodWeight(lod - float(level));
+        const Color c0 = bilinearDecoded<kWrap>(levels[std::size_t(level)], uv);
+        if (wl == 0) return c0;
+        const Color c1 = bilinearDecoded<kWrap>(levels[std::size_t(level) + 1], uv);
+        const float w = float(wl) / 256.0f;
+        return {c0.r + (c1.r - c0.r) * w, c0.g + (c1.g - c0.g) * w, c0.b + (c1.b - c0.b) * w, c0.a + (c1.a - c0.a) * w};
+    }
 };
+
+Color Texture::sampleSrgb(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const {
+    switch (wrap) {
+    case WrapMode::Repeat: return TextureSampling::sampleDecoded<WrapMode::Repeat>(levels_, uv, lod, filter);
+    case WrapMode::Clamp: return TextureSampling::sampleDecoded<WrapMode::Clamp>(levels_, uv, lod, filter);
+    case WrapMode::Mirror: return TextureSampling::sampleDecoded<WrapMode::Mirror>(levels_, uv, lod, filter);
+    }
+    return {};
+}
 
 Color Texture::sampleNearest(Vec2 uv, WrapMode wrap) const {
     const Level& l = levels_[0];

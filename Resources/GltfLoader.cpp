@@ -247,6 +247,21 @@ Material materialFrom(const tinygltf::Material& gm) {
     const double alpha = rough * rough;
     const double n = alpha > 0.0 ? 2.0 / (alpha * alpha) - 2.0 : 1024.0;
     m.shininess = float(std::clamp(std::round(n), 1.0, 1024.0));
+    PbrFactors f;
+    f.baseColor = Color{float(base[0]), float(base[1]), float(base[2]), 1.0f};
+    f.metallic = float(metal);
+    f.roughness = float(rough);
+    double emissive[3] = {0, 0, 0};
+    for (std::size_t c = 0; c < 3 && c < gm.emissiveFactor.size(); ++c) emissive[c] = std::clamp(gm.emissiveFactor[c], 0.0, 1.0);
+    double strength = 1.0;
+    if (const auto ext = gm.extensions.find("KHR_materials_emissive_strength"); ext != gm.extensions.end()) {
+        const tinygltf::Value& v = ext->second;
+        if (v.IsObject() && v.Has("emissiveStrength") && v.Get("emissiveStrength").IsNumber())
+            strength = std::max(v.Get("emissiveStrength").GetNumberAsDouble(), 0.0);
+    }
+    f.emissive = Vec3{float(emissive[0] * strength), float(emissive[1] * strength), float(emissive[2] * strength)};
+    f.normalScale = std::isfinite(gm.normalTexture.scale) ? float(gm.normalTexture.scale) : 1.0f;
+    f.occlusionStrength = float(std::clamp(gm.occlusionTexture.strength, 0.0, 1.0));
     // Alpha modes. With the factor's alpha alone (untextured, or a texture without alpha): BLEND
     // blends with it, MASK keeps the surface when it reaches alphaCutoff and drops it otherwise,
     // OPAQUE ignores it. With a base colour texture, texelAlpha holds the per-fragment rule (the
@@ -260,6 +275,8 @@ Material materialFrom(const tinygltf::Material& gm) {
         m.alpha = a >= gm.alphaCutoff ? 1.0f : 0.0f;
         m.texelAlpha = {AlphaMode::Mask, float(a), float(gm.alphaCutoff)};
     }
+    f.baseColor.a = float(a);
+    m.pbr = f;
     return m;
 }
 
@@ -571,15 +588,27 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
     }
     if (b.triangles + tris.size() / 3 > limits.maxTriangles)
         return Status::failure("more than " + std::to_string(limits.maxTriangles) + " triangles");
-    if (b.model.mesh.vertexCount() + count > limits.maxVertices)
+    // A primitive without NORMAL is drawn with flat normals (glTF "Meshes": "client
+    // implementations MUST calculate flat normals"): each triangle gets vertices of its own, so
+    // the area-weighted normal below is its face normal. vertex k of the primitive reads element
+    // source[k] of the accessors (itself when the vertices stay shared).
+    std::vector<std::uint32_t> source;
+    std::size_t vertices = count;
+    if (!normals) {
+        source = tris;
+        vertices = tris.size();
+        for (std::size_t k = 0; k < tris.size(); ++k) tris[k] = std::uint32_t(k);
+    }
+    const auto src = [&](std::size_t k) { return source.empty() ? k : std::size_t(source[k]); };
+    if (b.model.mesh.vertexCount() + vertices > limits.maxVertices)
         return Status::failure("more than " + std::to_string(limits.maxVertices) + " vertices");
 
     // Vertices in world space.
     Mesh& mesh = b.model.mesh;
     const auto base = std::uint32_t(mesh.positions.size());
-    std::vector<Vec3d> world3(count);
-    for (std::size_t i = 0; i < count; ++i) {
-        auto pf = worldPosition(pos.value(), i, world, what);
+    std::vector<Vec3d> world3(vertices);
+    for (std::size_t i = 0; i < vertices; ++i) {
+        auto pf = worldPosition(pos.value(), src(i), world, what);
         if (!pf) return Status::failure(pf.error());
         world3[i] = Vec3d(pf.value());
         mesh.positions.push_back(pf.value());
@@ -593,7 +622,7 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
     const double det = a[0][0] * cof[0][0] + a[0][1] * cof[0][1] + a[0][2] * cof[0][2];
     std::vector<Vec3d> accum;
     if (!normals) {
-        accum.assign(count, Vec3d{});
+        accum.assign(vertices, Vec3d{});
         for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
             const Vec3d p0 = world3[tris[t]], p1 = world3[tris[t + 1]], p2 = world3[tris[t + 2]];
             Vec3d fn = cross(p1 - p0, p2 - p0);
@@ -604,7 +633,7 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
     } else {
         b.anyFileNormal = true;
     }
-    for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t i = 0; i < vertices; ++i) {
         Vec3d nv;
         if (normals) {
             const double x = readFloat(*normals, i, 0), y = readFloat(*normals, i, 1), z = readFloat(*normals, i, 2);
@@ -624,8 +653,8 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
             mesh.uvs.assign(base, Vec2{}); // earlier vertices had none: (0, 0)
             b.model.hasUvs = true;
         }
-        for (std::size_t i = 0; i < count; ++i) {
-            const float u = readFloat(*uvs, i, 0), v = readFloat(*uvs, i, 1);
+        for (std::size_t i = 0; i < vertices; ++i) {
+            const float u = readFloat(*uvs, src(i), 0), v = readFloat(*uvs, src(i), 1);
             mesh.uvs.emplace_back(std::isfinite(u) ? u : 0.0f, std::isfinite(v) ? 1.0f - v : 0.0f);
         }
     } else if (b.model.hasUvs) {
@@ -887,8 +916,13 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
         } else {
             for (std::size_t i = 0; i < g.materials.size(); ++i) {
                 const int textureIndex = g.materials[i].pbrMetallicRoughness.baseColorTexture.index;
-                model.materials[i].texture = slotForTexture(textureIndex);
-                if (model.materials[i].texture < 0) continue;
+                Material& mat = model.materials[i];
+                mat.metallicRoughnessTexture = slotForTexture(g.materials[i].pbrMetallicRoughness.metallicRoughnessTexture.index);
+                mat.emissiveTexture = slotForTexture(g.materials[i].emissiveTexture.index);
+                mat.normalTexture = slotForTexture(g.materials[i].normalTexture.index);
+                mat.occlusionTexture = slotForTexture(g.materials[i].occlusionTexture.index);
+                mat.texture = slotForTexture(textureIndex);
+                if (mat.texture < 0) continue;
                 const int sampler = g.textures[std::size_t(textureIndex)].sampler;
                 if (sampler < 0) continue; // none: repeat, and the filter of the settings
                 if (std::size_t(sampler) >= g.samplers.size())

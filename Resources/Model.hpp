@@ -10,6 +10,7 @@
 #include "Math/Color.hpp"
 #include "Math/Vec.hpp"
 #include "Raster/Blend.hpp" // TexelAlpha
+#include "Raster/Brdf.hpp"  // PbrFactors
 #include "Raster/Mesh.hpp"
 #include "Raster/Shading.hpp" // Light
 #include "Raster/Texture.hpp" // WrapMode, TextureFilter
@@ -39,6 +40,11 @@ struct Material {
     // --wrap / --filter chose them: RenderSettings::wrapFromFile, filterFromFile). OBJ: unset.
     std::optional<WrapMode> wrap;
     std::optional<TextureFilter> filter;
+    // glTF: the metallic-roughness material as the specification defines it (the pbr shading
+    // model's input; kd, ks and shininess above are its Blinn-Phong mapping), and its other maps
+    // (indices into Model::textures, -1 = none; sampled with the base colour texture's sampler).
+    std::optional<PbrFactors> pbr;
+    int metallicRoughnessTexture = -1, emissiveTexture = -1, normalTexture = -1, occlusionTexture = -1;
 };
 
 // The triangles of one material: one draw call. One range per material (faces without one form

@@ -74,12 +74,14 @@ public:
     void setCameras(std::vector<CameraSetup> cameras) { cameras_ = std::move(cameras); }
     // The scene's own lights (LoadedScene::lights); none: the one directional light toLight.
     void setLights(std::vector<Light> lights) { lights_ = std::move(lights); }
+    // The lights' units (LoadedScene::physical: a glTF scene's).
+    void setPhysicalLights(bool physical) { physical_ = physical; }
     int cameraIndex() const { return cameraIndex_; }
 
     // The camera as a setup for the one view builder (makeFrameView): the starting setup while
     // the camera is where it started, else eye = position, target = position + forward, up = +Y.
     CameraSetup cameraSetup() const;
-    FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_, lights_); }
+    FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_, lights_, physical_); }
 
     // "cull none | phong | bilinear | exact | ssaa 4" (or "| msaa 4" while multisampling; + " | wireframe",
     // " | depth view", " | help").
@@ -98,6 +100,7 @@ private:
     RenderSettings settings_;
     Vec3 toLight_;
     std::vector<Light> lights_;
+    bool physical_ = false;
     MotionTuning tuning_;
     bool depthView_ = false;
     bool help_ = false;

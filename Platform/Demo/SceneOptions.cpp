@@ -93,7 +93,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
                                          "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera",
-                                         "--sky",   "--skybox",  "--outline", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
+                                         "--sky",   "--skybox",  "--outline", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
@@ -194,9 +194,21 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         o.farZ = *v;
     } else if (flag == "--shading") {
         const auto m = parseShadingMode(value);
-        if (!m) return bad("unlit, flat, gouraud or phong");
+        if (!m) return bad("unlit, flat, gouraud, phong or pbr");
         o.shading = *m;
         o.explicitShading = true;
+    } else if (flag == "--color") {
+        const auto m = parseColorMode(value);
+        if (!m) return bad("linear or gamma");
+        o.colour = *m;
+    } else if (flag == "--tonemap") {
+        const auto m = parseToneMap(value);
+        if (!m) return bad("none, aces or neutral");
+        o.toneMap = *m;
+    } else if (flag == "--exposure") {
+        const auto v = parseNumber(value);
+        if (!v || !(*v >= -32.0 && *v <= 32.0)) return bad("a number of stops from -32 to 32");
+        o.exposure = float(*v);
     } else if (flag == "--camera") {
         const auto v = parseInt(value);
         if (!v || *v < 0 || *v > 65535) return bad("a camera number from 0 (the file's cameras, in node order)");
@@ -308,7 +320,13 @@ std::string sceneFlagsHelp() {
            "  --near Z --far Z      clip distances, near >= 1e-06 (default: auto-fitted, or 0.1 / 100\n"
            "                        with --eye)\n"
            "  --light x,y,z         direction to the light (default 1,1,1)\n"
-           "  --shading MODE        unlit | flat | gouraud | phong (default phong)\n"
+           "  --shading MODE        unlit | flat | gouraud | phong | pbr (default: pbr for glTF, the\n"
+           "                        spec's metallic-roughness BRDF; phong otherwise; pbr needs glTF)\n"
+           "  --color C             linear | gamma: colour arithmetic in linear light (sRGB textures\n"
+           "                        decoded, the result sRGB-encoded; default for glTF) or on display\n"
+           "                        values (default for OBJ and the built-in scene)\n"
+           "  --tonemap T           none (default: clamp) | aces | neutral (Khronos PBR Neutral); linear only\n"
+           "  --exposure EV         scale the linear colour by 2^EV before tone mapping (default 0)\n"
            "  --texture PATH        texture for every material (overrides map_Kd)\n"
            "  --sky S               none (default: black) | gradient: what shows where nothing is drawn\n"
            "  --skybox DIR          cube-map sky: DIR holds px, nx, py, ny, pz, nz images (OpenGL's\n"

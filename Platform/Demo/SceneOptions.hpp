@@ -11,6 +11,7 @@
 #include "Math/Color.hpp"
 #include "Math/Vec.hpp"
 #include "Raster/Kernels/Isa.hpp"
+#include "Raster/ColorSpace.hpp"
 #include "Raster/Cull.hpp"
 #include "Raster/Shading.hpp"
 #include "Raster/Shadow.hpp"
@@ -87,6 +88,11 @@ struct SceneOptions {
     // procedural SkyGradient), or --skybox DIR (six cube-map faces: Resources/Skybox.hpp).
     Sky::Kind sky = Sky::Kind::None;
     std::string skybox;
+    // --color linear|gamma (unset: the scene's own convention, applySceneDefaults), --tonemap,
+    // --exposure EV (linear only: Raster/ColorSpace.hpp).
+    std::optional<ColorMode> colour;
+    ToneMap toneMap = ToneMap::None;
+    float exposure = 0.0f;
 };
 
 // Largest accepted --width / --height and --threads.

@@ -33,6 +33,13 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
     for (const Image& img : model.textures)
         scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
     const Mesh& src = model.mesh;
+    // A range reads uvs when it has a base colour texture or any other map of a glTF material.
+    const auto usesUvs = [&](const DrawRange& range) {
+        if (range.texture >= 0) return true;
+        if (range.material < 0 || !model.hasUvs) return false;
+        const Material& m = model.materials[std::size_t(range.material)];
+        return m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 || m.normalTexture >= 0;
+    };
     std::vector<std::uint32_t> remap(src.vertexCount(), kNoVertex);
     std::vector<std::uint32_t> firstIndex(model.ranges.size(), 0);
     std::vector<int> meshOf(model.ranges.size(), -1);
@@ -40,12 +47,12 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
         Mesh part;
         for (std::size_t r = 0; r < model.ranges.size(); ++r) {
             const DrawRange& range = model.ranges[r];
-            if ((range.texture >= 0) != textured) continue;
+            if (usesUvs(range) != textured) continue;
             firstIndex[r] = appendRange(part, src, range.firstIndex, range.indexCount, remap);
             meshOf[r] = int(scene.meshes.size());
         }
         for (const DrawRange& range : model.ranges)
-            if ((range.texture >= 0) == textured) clearRange(src, range.firstIndex, range.indexCount, remap);
+            if (usesUvs(range) == textured) clearRange(src, range.firstIndex, range.indexCount, remap);
         if (!part.indices.empty()) scene.meshes.push_back(std::move(part));
     }
     for (std::size_t r = 0; r < model.ranges.size(); ++r) {
@@ -71,6 +78,13 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
             d.specular = Specular{m->ks, m->shininess};
             d.alpha = m->alpha;
             d.texelAlpha = m->texelAlpha;
+            d.pbr = m->pbr;
+            if (model.hasUvs) {
+                d.metallicRoughnessTexture = m->metallicRoughnessTexture;
+                d.emissiveTexture = m->emissiveTexture;
+                d.normalTexture = m->normalTexture;
+                d.occlusionTexture = m->occlusionTexture;
+            }
             if (!(d.alpha > 0.0f)) continue; // fully transparent (glTF MASK below its cutoff): nothing to draw
         }
         scene.draws.push_back(d);
@@ -188,6 +202,7 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         if (!model) return Result<LoadedScene>::failure(model.error());
         Model& m = model.value();
         out.warnings = m.warnings;
+        out.physical = isGltfPath(options.obj);
         // Bounding sphere: centre of the AABB of every 'v', radius = farthest vertex from it.
         out.centre = (m.boundsMin + m.boundsMax) * 0.5f;
         double r = 0.0;
@@ -202,7 +217,7 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         out.radius = r > 0.0 ? r : 1.0;
         out.description = options.obj + ": " + std::to_string(m.mesh.triangleCount()) + " triangles, " +
                           std::to_string(m.textures.size()) + " textures, normals " +
-                          (m.normalsFromFile ? "from the file" : "computed (area-weighted)");
+                          (m.normalsFromFile ? "from the file" : out.physical ? "flat where the file has none" : "computed (area-weighted)");
         if (!m.lineSets.empty()) {
             std::size_t segments = 0, points = 0;
             for (const LineSet& l : m.lineSets) (l.points ? points : segments) += l.points ? l.indices.size() : l.indices.size() / 2;
@@ -236,6 +251,19 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
                                             std::to_string(out.cameras.size()) + " camera(s)" +
                                             (out.cameras.empty() ? "" : " (numbered from 0)"));
     return Result<LoadedScene>(std::move(out));
+}
+
+std::optional<std::string> applySceneDefaults(SceneOptions& o, const LoadedScene& s) {
+    if (!s.physical) {
+        if (o.shading == ShadingMode::Pbr)
+            return (s.builtIn ? std::string("the built-in scene") : o.obj) +
+                   ": --shading pbr needs glTF metallic-roughness materials; OBJ/MTL and the built-in scene are "
+                   "shaded phong at best";
+        return std::nullopt;
+    }
+    if (!o.colour) o.colour = ColorMode::Linear;
+    if (!o.explicitShading && o.shading == ShadingMode::Phong) o.shading = ShadingMode::Pbr;
+    return std::nullopt;
 }
 
 CameraSetup resolveCamera(const SceneOptions& o, const LoadedScene& s) {
@@ -290,7 +318,8 @@ Light keyLight(Vec3 light) {
     return Light::directional(l > 0 ? Vec3(float(lx / l), float(ly / l), float(lz / l)) : Vec3(0, 0, 1));
 }
 
-FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light, const std::vector<Light>& sceneLights) {
+FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light, const std::vector<Light>& sceneLights,
+                        bool physical) {
     const double aspect = (width > 0 && height > 0) ? double(width) / double(height) : 1.0;
     // As Camera::setNearFar: near clamped into Camera's range, a far not beyond it is infinite.
     const double nearZ = usableNear(c.nearZ);
@@ -316,11 +345,14 @@ FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light,
         v.rays.right = Vec3(float(s.x * tx), float(s.y * tx), float(s.z * tx));
         v.rays.up = Vec3(float(u.x * ty), float(u.y * ty), float(u.z * ty));
     }
+    v.lighting.physical = physical;
+    if (physical) v.lighting.ambient = 0.0f;
     if (!sceneLights.empty()) {
         v.lighting.lights = sceneLights; // the scene's own lights; --light is for scenes without
         return v;
     }
     v.lighting.lights = {keyLight(light)};
+    if (physical) v.lighting.lights[0].colour = {kPiF, kPiF, kPiF, 1.0f};
     return v;
 }
 
@@ -339,6 +371,9 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.shadows = o.shadows;
     s.ssaa = o.ssaa;
     s.msaa = o.msaa;
+    s.colour = o.colour.value_or(ColorMode::Gamma);
+    s.toneMap = o.toneMap;
+    s.exposure = o.exposure;
     return s;
 }
 

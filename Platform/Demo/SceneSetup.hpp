@@ -32,10 +32,19 @@ struct LoadedScene {
                                       // --light and its fill light); none: --light's one alone
     std::vector<std::string> warnings;
     std::string description; // one line: what was loaded (triangles, textures, normals)
+    // A glTF scene: its materials are metallic-roughness (pbr), its colours linear and its
+    // lights in physical units (Lighting::physical); the default light then has intensity pi.
+    bool physical = false;
 };
 
 // Loads options.obj (or builds the default scene when empty). Errors name the file.
 Result<LoadedScene> loadScene(const SceneOptions& options);
+
+// The scene's own conventions where the flags left them open: a glTF scene is shaded pbr (when
+// no --shading was given and no preset asked for less than Phong) in linear light (unless
+// --color says otherwise); any other scene keeps gamma. --shading pbr on a scene without glTF
+// materials is an error (its line returned).
+std::optional<std::string> applySceneDefaults(SceneOptions& options, const LoadedScene& scene);
 
 // Compacting ranges of a model's mesh into meshes of their own. appendRange appends the triangles
 // indices[firstIndex .. firstIndex + indexCount) of `src` to `part`, with their vertices (normals
@@ -68,8 +77,11 @@ Light keyLight(Vec3 direction);
 // World -> clip for the camera (reversed-Z; MVP computed in double, rounded once to float, as
 // the reference renderer does), the eye, and the lights: the scene's own (LoadedScene::lights)
 // when it has any, else keyLight(light) alone.
+// With `physical` (LoadedScene::physical) the lights are in KHR_lights_punctual's units, the
+// default light has intensity pi (a white Lambertian surface facing it shows its albedo) and
+// there is no ambient term (glTF has none).
 FrameView makeFrameView(const CameraSetup& camera, int width, int height, Vec3 light,
-                        const std::vector<Light>& sceneLights);
+                        const std::vector<Light>& sceneLights, bool physical = false);
 
 RenderSettings makeRenderSettings(const SceneOptions& options);
 

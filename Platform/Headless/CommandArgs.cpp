@@ -171,10 +171,15 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
         for (const std::string& w : p->scene.warnings) err << "softraster: warning: " << w << "\n";
         err << "softraster: " << p->scene.description << "\n";
     }
-    p->camera = demo::resolveCamera(a.scene, p->scene);
+    p->options = a.scene;
+    if (const auto problem = demo::applySceneDefaults(p->options, p->scene)) {
+        err << "softraster: " << *problem << "\n";
+        return nullptr;
+    }
+    p->camera = demo::resolveCamera(p->options, p->scene);
     if (!a.quiet) err << "softraster: camera: " << demo::cameraFlags(p->camera) << "\n";
-    p->view = demo::makeFrameView(p->camera, a.scene.width, a.scene.height, a.scene.light, p->scene.lights);
-    p->settings = demo::makeRenderSettings(a.scene);
+    p->view = demo::makeFrameView(p->camera, a.scene.width, a.scene.height, a.scene.light, p->scene.lights, p->scene.physical);
+    p->settings = demo::makeRenderSettings(p->options);
     if (!p->framebuffer.resize(a.scene.width, a.scene.height)) {
         err << "softraster: cannot allocate a " << a.scene.width << "x" << a.scene.height << " framebuffer\n";
         return nullptr;

@@ -48,6 +48,7 @@ std::string usage(Subcommand command);
 // A loaded scene with its framebuffer, context, view and settings, ready to render.
 struct PreparedScene {
     demo::LoadedScene scene;
+    demo::SceneOptions options; // the flags with the scene's own defaults applied (applySceneDefaults)
     demo::CameraSetup camera;
     FrameView view;
     RenderSettings settings;
@@ -58,7 +59,8 @@ struct PreparedScene {
 };
 
 // Loads the scene, resolves the camera (printed on err as flags, like the reference), builds
-// the framebuffer. Errors (unreadable model/texture) are reported on err; returns null then.
+// the framebuffer. Errors (unreadable model/texture, a shading model the scene cannot have) are
+// reported on err; returns null then.
 std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& args, std::ostream& err);
 
 } // namespace sr::headless

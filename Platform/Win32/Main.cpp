@@ -81,7 +81,7 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
         reportError("SoftRaster: " + parsed.error + "\n" + demo::usageText("SoftRaster.exe"));
         return demo::kExitUsage;
     }
-    const demo::DemoOptions& options = parsed.options;
+    demo::DemoOptions options = parsed.options; // applySceneDefaults completes it
     if (options.help) {
         const std::string text = demo::usageText("SoftRaster.exe");
         if (!win32::writeStdout(text))
@@ -98,6 +98,10 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
     const demo::LoadedScene& scene = loaded.value();
     for (const std::string& warning : scene.warnings)
         win32::writeStderr("SoftRaster: warning: " + warning + "\n");
+    if (const auto problem = demo::applySceneDefaults(options.scene, scene)) {
+        reportError("SoftRaster: " + *problem + "\n");
+        return demo::kExitFailure;
+    }
 
     // The fly camera starts at the resolved eye / target; a model's speed follows its size
     // (half its bounding radius per second), the built-in scene's is the tuned default.
@@ -109,6 +113,7 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
                                     options.scene.light, tuning);
     controller.setCameras(scene.cameras); // V cycles through the model's own cameras
     controller.setLights(scene.lights);
+    controller.setPhysicalLights(scene.physical);
 
     win32::enableDpiAwareness(); // before any window exists
     win32::MainWindow window(scene, controller);

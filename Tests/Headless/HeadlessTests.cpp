@@ -86,7 +86,7 @@ TEST_CASE("every bad flag or value gives one clear line and exit code 2", "[head
         {{"render", "--eye", "1,2"}, "bad value for --eye: '1,2'"},
         {{"render", "--eye", "1,2,1e39"}, "bad value for --eye: '1,2,1e39'"},
         {{"render", "--light", "0,0,0"}, "--light must not be the zero vector"},
-        {{"render", "--shading", "toon"}, "bad value for --shading: 'toon' (expected unlit, flat, gouraud or phong)"},
+        {{"render", "--shading", "toon"}, "bad value for --shading: 'toon' (expected unlit, flat, gouraud, phong or pbr)"},
         {{"render", "--cull", "back"}, "bad value for --cull: 'back' (expected none, cw or ccw)"},
         {{"render", "--filter", "aniso"}, "bad value for --filter: 'aniso'"},
         {{"render", "--persp", "span4"}, "bad value for --persp: 'span4' (expected exact or affine)"},

@@ -94,7 +94,8 @@ inline void drawMeshGeneral(RenderContext& ctx, const FrameView& view, const Ren
                 return packBgra8(applyTerms(kd, ks,
                                             RgbTerms{{f.varyings[8], f.varyings[9], f.varyings[10], 1.0f},
                                                      {f.varyings[11], f.varyings[12], f.varyings[13], 1.0f}}));
-            case ShadingMode::Phong: {
+            case ShadingMode::Phong:
+            case ShadingMode::Pbr: { // no glTF material here: drawn as Phong, as drawMesh does
                 const Vec3 p{f.varyings[2], f.varyings[3], f.varyings[4]};
                 const Vec3 n = normalize(Vec3{f.varyings[5], f.varyings[6], f.varyings[7]});
                 return packBgra8(applyTerms(kd, ks, lightTerms(view.lighting, material.specular, n, p, normalize(view.eye - p))));

@@ -96,10 +96,17 @@ TEST_CASE("glTF primitives: triangles, strips and fans; u8, u16, u32 and no indi
     const int five = a.floats(std::vector<float>(p.begin(), p.begin() + 15), "VEC3");
     const int u8 = a.indices({0, 1, 2, 3, 4}, 5121);
     const int u32 = a.indices({4, 3, 2, 1, 0}, 5125);
-    const auto attr = [](int acc) { return "{\"POSITION\":" + std::to_string(acc) + "}"; };
-    a.meshes = "[{\"primitives\":[{\"attributes\":" + attr(six) + "},"                                     // triangles, no indices
-               "{\"attributes\":" + attr(five) + ",\"indices\":" + std::to_string(u8) + ",\"mode\":5}," // strip
-               "{\"attributes\":" + attr(five) + ",\"indices\":" + std::to_string(u32) + ",\"mode\":6}]}]"; // fan
+    // With normals (without, each triangle would get vertices of its own: the flat-normal test).
+    std::vector<float> up;
+    for (int k = 0; k < 6; ++k) up.insert(up.end(), {0.0f, 0.0f, 1.0f});
+    const int n6 = a.floats(up, "VEC3");
+    const int n5 = a.floats(std::vector<float>(up.begin(), up.begin() + 15), "VEC3");
+    const auto attr = [](int acc, int nrm) {
+        return "{\"POSITION\":" + std::to_string(acc) + ",\"NORMAL\":" + std::to_string(nrm) + "}";
+    };
+    a.meshes = "[{\"primitives\":[{\"attributes\":" + attr(six, n6) + "},"                                     // triangles, no indices
+               "{\"attributes\":" + attr(five, n5) + ",\"indices\":" + std::to_string(u8) + ",\"mode\":5}," // strip
+               "{\"attributes\":" + attr(five, n5) + ",\"indices\":" + std::to_string(u32) + ",\"mode\":6}]}]"; // fan
     a.nodes = "[{\"mesh\":0}]";
     auto r = load(dir, "modes.gltf", a.embedded());
     REQUIRE(r.ok());
@@ -248,6 +255,87 @@ TEST_CASE("glTF materials: metallic-roughness mapped to Blinn-Phong; one range p
     for (std::size_t i = 0; i < 4; ++i) CHECK(m.ranges[i].material == order[i]);
     CHECK(m.ranges[0].indexCount == 6);
     CHECK(m.ranges[3].firstIndex + m.ranges[3].indexCount == m.mesh.indices.size());
+}
+
+TEST_CASE("glTF: a primitive without NORMAL gets flat normals, one vertex per triangle corner", "[resources][gltf]") {
+    const std::string dir = freshDir("gltf-flat");
+    // A roof: two triangles sharing the ridge (0,1,0)-(0,1,1), one sloping to -x, one to +x.
+    // Smoothed, the ridge vertices would get the average (0,1,0); flat, each triangle keeps its own.
+    Asset a;
+    const int pos = a.floats({0, 1, 0, 0, 1, 1, -1, 0, 0, 1, 0, 0}, "VEC3");
+    const int idx = a.indices({0, 1, 2, 1, 0, 3}, 5123);
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"indices\":" +
+               std::to_string(idx) + "}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    auto r = load(dir, "roof.gltf", a.embedded());
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.mesh.vertexCount() == 6);
+    CHECK(m.mesh.indices == std::vector<std::uint32_t>{0, 1, 2, 3, 4, 5});
+    checkVec(m.mesh.positions[0], 0, 1, 0);
+    checkVec(m.mesh.positions[3], 0, 1, 1);
+    checkVec(m.mesh.positions[5], 1, 0, 0);
+    // (p1 - p0) x (p2 - p0): (0,0,1) x (-1,-1,0) = (1,-1,0) -> normalised; the other (0,0,-1) x (1,-1,-1).
+    const float h = 0.70710678f;
+    for (int k = 0; k < 3; ++k) checkVec(m.mesh.normals[std::size_t(k)], h, -h, 0);
+    for (int k = 3; k < 6; ++k) checkVec(m.mesh.normals[std::size_t(k)], -h, -h, 0);
+    CHECK_FALSE(m.normalsFromFile);
+}
+
+TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and the maps' slots",
+          "[resources][gltf][materials][pbr]") {
+    const std::string dir = freshDir("gltf-pbr");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {10, 20, 30, 255};
+    for (const char* name : {"base.png", "mr.png", "em.png", "nrm.png", "occ.png"})
+        REQUIRE(writeImage(dir + "/" + name, one).ok());
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" +
+               std::to_string(uv) + "},\"material\":0},{\"attributes\":{\"POSITION\":" + std::to_string(pos) +
+               ",\"TEXCOORD_0\":" + std::to_string(uv) + "},\"material\":1}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    a.materials = "[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.25,0.125,0.75],\"metallicFactor\":0.3,"
+                  "\"roughnessFactor\":0.6,\"baseColorTexture\":{\"index\":0},\"metallicRoughnessTexture\":{\"index\":1}},"
+                  "\"emissiveFactor\":[1,0.5,0],\"emissiveTexture\":{\"index\":2},"
+                  "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4}},"
+                  "\"normalTexture\":{\"index\":3,\"scale\":0.5},\"occlusionTexture\":{\"index\":4,\"strength\":0.25}},"
+                  "{\"name\":\"plain\"}]";
+    a.extra = ",\"extensionsUsed\":[\"KHR_materials_emissive_strength\"],"
+              "\"images\":[{\"uri\":\"base.png\"},{\"uri\":\"mr.png\"},{\"uri\":\"em.png\"},{\"uri\":\"nrm.png\"},{\"uri\":\"occ.png\"}],"
+              "\"textures\":[{\"source\":0},{\"source\":1},{\"source\":2},{\"source\":3},{\"source\":4}]";
+    auto r = load(dir, "pbr.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.materials.size() == 2);
+    const Material& k = m.materials[0];
+    REQUIRE(k.pbr.has_value());
+    CHECK(k.pbr->baseColor.r == 0.5f);
+    CHECK(k.pbr->baseColor.g == 0.25f);
+    CHECK(k.pbr->baseColor.b == 0.125f);
+    CHECK(k.pbr->baseColor.a == 0.75f);
+    CHECK(k.pbr->metallic == Approx(0.3f));
+    CHECK(k.pbr->roughness == Approx(0.6f));
+    checkVec(k.pbr->emissive, 4.0f, 2.0f, 0.0f); // emissiveFactor x emissiveStrength
+    CHECK(k.pbr->normalScale == 0.5f);
+    CHECK(k.pbr->occlusionStrength == 0.25f);
+    // Five distinct images: five slots, each map in its own.
+    const std::set<int> slots{k.texture, k.metallicRoughnessTexture, k.emissiveTexture, k.normalTexture, k.occlusionTexture};
+    CHECK(slots.size() == 5);
+    CHECK(*slots.begin() >= 0);
+    CHECK(m.textures.size() == 5);
+    // The spec's defaults: base 1, metallic 1, roughness 1, no emission, no maps.
+    const Material& plain = m.materials[1];
+    REQUIRE(plain.pbr.has_value());
+    CHECK(plain.pbr->baseColor.g == 1.0f);
+    CHECK(plain.pbr->metallic == 1.0f);
+    CHECK(plain.pbr->roughness == 1.0f);
+    checkVec(plain.pbr->emissive, 0, 0, 0);
+    CHECK(plain.metallicRoughnessTexture == -1);
+    CHECK(plain.normalTexture == -1);
 }
 
 TEST_CASE("glTF: embedded, external .bin and .glb forms of one asset load the same model", "[resources][gltf]") {

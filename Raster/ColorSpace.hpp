@@ -1,0 +1,55 @@
+// Colour spaces: the sRGB transfer curve, the colour mode of a frame and the tone-mapping operators.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string_view>
+
+#include "Math/Color.hpp"
+
+namespace sr {
+
+// How a frame does its colour arithmetic.
+//  Gamma:  on display values, as stored (GL_RGBA8's convention and the llvmpipe reference's):
+//          texels, material colours and blends are used as they are, the result stored as it is.
+//  Linear: in linear light, as the glTF 2.0 specification asks: sRGB colour textures are decoded
+//          texel by texel before filtering, colour factors are linear, light adds linearly, and
+//          the result is tone-mapped (ToneMap) and encoded with the sRGB curve once per pixel.
+enum class ColorMode { Gamma, Linear };
+
+const char* colorModeName(ColorMode mode);
+std::optional<ColorMode> parseColorMode(std::string_view text); // "gamma" | "linear", exact
+
+// The sRGB electro-optical transfer function and its inverse, piecewise and exact (IEC 61966-2-1;
+// the glTF specification's and OpenGL's sRGB texture formats'):
+//   decode: c <= 0.04045 ? c / 12.92 : ((c + 0.055) / 1.055)^2.4
+//   encode: l <= 0.0031308 ? 12.92 l : 1.055 l^(1/2.4) - 0.055
+// Computed in double, rounded once to float. encode clamps to [0, 1] (NaN -> 0).
+float srgbToLinear(float c);
+float linearToSrgb(float l);
+
+// srgbToLinear(b / 255) for every byte b: the decode of one texel channel is a table lookup.
+const std::array<float, 256>& srgbDecodeTable();
+
+// A linear channel value as the stored sRGB byte: linearToSrgb(l) rounded to the nearest byte,
+// as a GPU's sRGB render target stores it (a value exactly on a midpoint goes down), found by a
+// binary search over the 255 linear values that encode to the midpoints between bytes (no pow
+// per pixel). encodeSrgb8(srgbDecodeTable()[b]) == b for every byte b.
+std::uint8_t encodeSrgb8(float l);
+
+// Tone mapping of a linear colour before it is encoded (none: clamp only).
+//  Aces:    the ACES filmic fit of Narkowicz (2015), x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14).
+//  Neutral: Khronos PBR Neutral (2024), hue-preserving, identity below 0.76 - 0.04.
+// Every operator first multiplies by 2^exposure.
+enum class ToneMap { None, Aces, Neutral };
+const char* toneMapName(ToneMap t);
+std::optional<ToneMap> parseToneMap(std::string_view text); // "none" | "aces" | "neutral", exact
+Color toneMap(Color linear, ToneMap op, float exposureScale);
+
+// The display pixel of a linear colour: tone-mapped, then each channel encoded (encodeSrgb8).
+std::uint32_t packLinearBgra8(Color linear, ToneMap op = ToneMap::None, float exposureScale = 1.0f);
+// The linear colour of a stored display pixel (each channel decoded; alpha 1).
+Color unpackLinearBgra8(std::uint32_t pixel);
+
+} // namespace sr

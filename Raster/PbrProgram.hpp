@@ -1,0 +1,128 @@
+// The pbr mesh program: glTF metallic-roughness per pixel, with its maps (the scalar reference).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include "Raster/Brdf.hpp"
+#include "Raster/MeshPrograms.hpp"
+#include "Raster/Shadow.hpp"
+
+namespace sr::programs {
+
+// Perturbs the unit normal n by a tangent-space normal-map texel (glTF "normalTexture"): the
+// texel's RGB in [0, 1] is the vector 2 c - 1, its x and y scaled by `scale`, expressed in the
+// frame T, B = w (n x T), n with T made orthogonal to n (Gram-Schmidt). A degenerate frame (no
+// tangent, T parallel to n) or a texel that gives no direction leaves n as it is; the result is
+// unit and finite whenever n is.
+inline Vec3 perturbNormal(Vec3 n, Vec4 tangent, Color texel, float scale) {
+    const Vec3 t0{tangent.x, tangent.y, tangent.z};
+    const Vec3 tOrtho = t0 - n * dot(n, t0);
+    const float tl = length(tOrtho);
+    if (!(tl > 1e-12f) || !std::isfinite(tl)) return n;
+    const Vec3 t = tOrtho / tl;
+    const Vec3 b = cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+    const float x = (texel.r * 2.0f - 1.0f) * scale, y = (texel.g * 2.0f - 1.0f) * scale, z = texel.b * 2.0f - 1.0f;
+    const Vec3 m = t * x + b * y + n * z;
+    const float ml = length(m);
+    if (!(ml > 1e-12f) || !std::isfinite(ml)) return n;
+    return m / ml;
+}
+
+// Phong's interpolation (world position and normal, perspective-correct), lit per pixel by the
+// glTF BRDF (pbrRadiance) plus the emissive term. With kMaps: the uv in varyings 0-1 and the
+// material's maps sampled at it (each with its own level of detail); with kTangents also the
+// tangent (xyzw) for the normal map. Colour maps (base colour, emissive) are decoded from sRGB
+// in linear mode; the others are data and read as stored. Double-sided surfaces seen from
+// behind are lit on their back (the normal flipped toward the viewer, as the specification
+// asks); single-sided ones never show their back (culled).
+template <bool kMaps, bool kTangents>
+struct PbrProgram {
+    static_assert(kMaps || !kTangents, "a normal map needs uvs");
+    static constexpr ShadingMode kMode = ShadingMode::Pbr;
+    static constexpr bool kIsTextured = kMaps;
+    static constexpr int kP = kMaps ? 2 : 0; // position kP..kP+2, normal kP+3..kP+5
+    static constexpr int kT = kP + 6;        // tangent kT..kT+3 (kTangents)
+    static constexpr int kVaryings = kT + (kTangents ? 4 : 0);
+    const DrawContext* d;
+    const TriangleSetup* setup = nullptr;
+    explicit PbrProgram(const DrawContext* dc) : d(dc) {}
+
+    void vertex(std::size_t i, ClipVertex& out) const {
+        transformVertex<kMaps>(*d, i, out);
+        const Vec3 p = d->mesh.positions[i], n = d->mesh.normals[i];
+        const float values[6] = {p.x, p.y, p.z, n.x, n.y, n.z};
+        for (int k = 0; k < 6; ++k) out.varyings[kP + k] = values[k];
+        if constexpr (kTangents) {
+            const Vec4 t = d->mesh.tangents[i];
+            out.varyings[kT] = t.x;
+            out.varyings[kT + 1] = t.y;
+            out.varyings[kT + 2] = t.z;
+            out.varyings[kT + 3] = t.w;
+        }
+    }
+    void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
+
+    // One map at this fragment: trilinear's level of detail from the map's own size.
+    template <int kV>
+    Color sampleMap(const Texture& map, bool colour, const Fragment<kV>& f) const {
+        const Vec2 uv{f.varyings[0], f.varyings[1]};
+        float lod = 0.0f;
+        if (d->settings.filter == TextureFilter::Trilinear) {
+            constexpr int kU = kPlaneVarying0, kVv = kPlaneVarying0 + 1;
+            const UvDerivatives g = d->settings.perspective == PerspectiveMode::Affine
+                                        ? UvDerivatives{float(setup->ddx[kU]), float(setup->ddx[kVv]), float(setup->ddy[kU]),
+                                                        float(setup->ddy[kVv])}
+                                        : uvDerivatives(*setup, kU, kVv, f.invW, uv.x, uv.y);
+            lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, map.width(), map.height());
+        }
+        return colour && d->linear ? map.sampleSrgb(uv, lod, d->settings.filter, d->settings.wrap)
+                                   : map.sample(uv, lod, d->settings.filter, d->settings.wrap);
+    }
+
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        const SurfaceMaterial& m = *d->material;
+        const PbrFactors& k = *m.pbr;
+        const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
+        Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
+        const Vec3 v = normalize(d->view.eye - p);
+        if (d->doubleSided && dot(n, v) < 0.0f) n = -n;
+        PbrSurface s;
+        s.baseColor = {k.baseColor.r, k.baseColor.g, k.baseColor.b};
+        s.metallic = k.metallic;
+        s.roughness = k.roughness;
+        Vec3 emissive = k.emissive;
+        if constexpr (kMaps) {
+            if (m.texture) {
+                const Color c = sampleMap(*m.texture, true, f);
+                s.baseColor = {s.baseColor.x * c.r, s.baseColor.y * c.g, s.baseColor.z * c.b};
+            }
+            if (m.metallicRoughness) {
+                const Color c = sampleMap(*m.metallicRoughness, false, f);
+                s.roughness *= c.g;
+                s.metallic *= c.b;
+            }
+            if (m.emissive && (emissive.x > 0.0f || emissive.y > 0.0f || emissive.z > 0.0f)) {
+                const Color c = sampleMap(*m.emissive, true, f);
+                emissive = {emissive.x * c.r, emissive.y * c.g, emissive.z * c.b};
+            }
+            if constexpr (kTangents) {
+                const Vec4 t{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], f.varyings[kT + 3]};
+                n = perturbNormal(n, t, sampleMap(*m.normalMap, false, f), k.normalScale);
+            }
+        }
+        const Vec3 r = d->view.shadows
+                           ? pbrRadiance(d->view.lighting, s, n, p, v,
+                                         [sh = d->view.shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) {
+                                             return sh->visibility(light, q, normal, l);
+                                         })
+                           : pbrRadiance(d->view.lighting, s, n, p, v);
+        return encode(*d, Color{r.x + emissive.x, r.y + emissive.y, r.z + emissive.z, 1.0f});
+    }
+    template <bool kM = kMaps, std::enable_if_t<kM, int> = 0> // textured programs only (HasFragmentAlpha)
+    float fragmentAlpha(const Fragment<kVaryings>& f) const {
+        return d->material->texture ? sampleMap(*d->material->texture, false, f).a : 1.0f;
+    }
+};
+
+} // namespace sr::programs
