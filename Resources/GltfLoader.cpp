@@ -452,6 +452,44 @@ std::string jsonText(const unsigned char* data, std::size_t size, bool binary) {
     return std::string(reinterpret_cast<const char*>(data + 20), length);
 }
 
+// Per-vertex tangents of vertices [base, end) from their triangles `tris` (numbered from base),
+// appended to mesh.tangents: each triangle's dp/du (Lengyel, "Computing Tangent Space Basis
+// Vectors for an Arbitrary Mesh", 2001), summed per vertex (weighted by the triangle's uv area,
+// as the unnormalised sum is), made orthogonal to the normal; w = +1 when n x t points along
+// dp/dv (our v, which grows up the image: glTF's bitangent), else -1. A vertex whose triangles
+// give no tangent (degenerate uvs) gets any unit vector orthogonal to its normal.
+void addTangents(Mesh& mesh, std::uint32_t base, const std::vector<std::uint32_t>& tris) {
+    const std::size_t count = mesh.positions.size() - base;
+    std::vector<Vec3d> tu(count, Vec3d{}), tv(count, Vec3d{});
+    for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
+        const std::uint32_t i[3] = {tris[t], tris[t + 1], tris[t + 2]};
+        const Vec3d p0(mesh.positions[base + i[0]]), p1(mesh.positions[base + i[1]]), p2(mesh.positions[base + i[2]]);
+        const Vec2 w0 = mesh.uvs[base + i[0]], w1 = mesh.uvs[base + i[1]], w2 = mesh.uvs[base + i[2]];
+        const double du1 = double(w1.x) - w0.x, dv1 = double(w1.y) - w0.y, du2 = double(w2.x) - w0.x, dv2 = double(w2.y) - w0.y;
+        const double det = du1 * dv2 - du2 * dv1;
+        if (!(std::fabs(det) > 1e-20) || !std::isfinite(det)) continue;
+        const Vec3d e1 = p1 - p0, e2 = p2 - p0;
+        const Vec3d sdir = (e1 * dv2 - e2 * dv1) / det, tdir = (e2 * du1 - e1 * du2) / det;
+        if (!std::isfinite(length(sdir)) || !std::isfinite(length(tdir))) continue;
+        for (std::uint32_t k : i) {
+            tu[k] = tu[k] + sdir;
+            tv[k] = tv[k] + tdir;
+        }
+    }
+    for (std::size_t k = 0; k < count; ++k) {
+        const Vec3d n(mesh.normals[base + k]);
+        Vec3d t = tu[k] - n * dot(n, tu[k]);
+        double l = length(t);
+        if (!(l > 1e-12) || !std::isfinite(l)) { // any vector orthogonal to n
+            t = std::fabs(n.x) < 0.9 ? cross(n, Vec3d{1, 0, 0}) : cross(n, Vec3d{0, 1, 0});
+            l = length(t);
+        }
+        t = t / l;
+        const double w = dot(cross(n, t), tv[k]) < 0.0 ? -1.0 : 1.0;
+        mesh.tangents.emplace_back(float(t.x), float(t.y), float(t.z), float(w));
+    }
+}
+
 // Everything gathered while walking the scene: vertices in world space, triangles per material.
 struct Builder {
     std::string path; // the file, for warnings
@@ -527,7 +565,14 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
     if (pos.value().componentType != kFloat || pos.value().components != 3)
         return Status::failure(what + " POSITION: must be float VEC3");
     const std::size_t count = pos.value().count;
-    std::optional<View> normals, uvs;
+    std::optional<View> normals, uvs, tangents;
+    if (const int ti = attribute("TANGENT"); ti >= 0) {
+        auto v = accessorView(g, ti, what + " TANGENT");
+        if (!v) return Status::failure(v.error());
+        if (v.value().componentType != kFloat || v.value().components != 4) return Status::failure(what + " TANGENT: must be float VEC4");
+        if (v.value().count != count) return Status::failure(what + " TANGENT: count differs from POSITION's");
+        tangents = v.value();
+    }
     if (const int ni = attribute("NORMAL"); ni >= 0) {
         auto v = accessorView(g, ni, what + " NORMAL");
         if (!v) return Status::failure(v.error());
@@ -659,6 +704,35 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
         }
     } else if (b.model.hasUvs) {
         mesh.uvs.resize(mesh.positions.size(), Vec2{});
+    }
+    // Tangents, for a material with a normal map: the file's TANGENT through the node's transform,
+    // else generated from the uvs (addTangents). Vertices without any get (1, 0, 0, 1).
+    const bool normalMapped = uvs && prim.material >= 0 && std::size_t(prim.material) < g.materials.size() &&
+                              g.materials[std::size_t(prim.material)].normalTexture.index >= 0;
+    if (normalMapped || !mesh.tangents.empty()) {
+        mesh.tangents.resize(base, Vec4{1.0f, 0.0f, 0.0f, 1.0f});
+        if (normalMapped && tangents && normals) {
+            for (std::size_t i = 0; i < vertices; ++i) {
+                const double x = readFloat(*tangents, i, 0), y = readFloat(*tangents, i, 1), z = readFloat(*tangents, i, 2);
+                const double w = readFloat(*tangents, i, 3);
+                const Vec3d t{a[0][0] * x + a[0][1] * y + a[0][2] * z, a[1][0] * x + a[1][1] * y + a[1][2] * z,
+                              a[2][0] * x + a[2][1] * y + a[2][2] * z};
+                // The bitangent w (n x t) in world space is the transformed one: a mirror flips w.
+                const double nx = readFloat(*normals, i, 0), ny = readFloat(*normals, i, 1), nz = readFloat(*normals, i, 2);
+                const Vec3d bObj = cross(Vec3d{nx, ny, nz}, Vec3d{x, y, z}) * (w < 0 ? -1.0 : 1.0);
+                const Vec3d bWorld{a[0][0] * bObj.x + a[0][1] * bObj.y + a[0][2] * bObj.z, a[1][0] * bObj.x + a[1][1] * bObj.y + a[1][2] * bObj.z,
+                                   a[2][0] * bObj.x + a[2][1] * bObj.y + a[2][2] * bObj.z};
+                const Vec3 n = mesh.normals[base + i];
+                const double l = length(t);
+                const Vec3d tn = l > 0.0 && std::isfinite(l) ? t / l : Vec3d{1, 0, 0};
+                const double sign = dot(cross(Vec3d(n), tn), bWorld) < 0.0 ? -1.0 : 1.0;
+                mesh.tangents.emplace_back(float(tn.x), float(tn.y), float(tn.z), float(sign));
+            }
+        } else if (normalMapped) {
+            addTangents(mesh, base, tris);
+        } else {
+            mesh.tangents.resize(mesh.positions.size(), Vec4{1.0f, 0.0f, 0.0f, 1.0f});
+        }
     }
     // Triangles into their material's list.
     const int material = prim.material >= 0 && std::size_t(prim.material) < g.materials.size() ? prim.material : -1;

@@ -170,6 +170,7 @@ std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex,
             part.positions.push_back(src.positions[v]);
             if (src.hasNormals()) part.normals.push_back(src.normals[v]);
             if (src.hasUvs()) part.uvs.push_back(src.uvs[v]);
+            if (src.hasTangents()) part.tangents.push_back(src.tangents[v]);
         }
         part.indices.push_back(remap[v]);
     }

@@ -338,6 +338,53 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     CHECK(plain.normalTexture == -1);
 }
 
+TEST_CASE("glTF tangents for a normal map: generated from the uvs, or the file's through the node", "[resources][gltf][pbr]") {
+    const std::string dir = freshDir("gltf-tangents");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {128, 128, 255, 255};
+    REQUIRE(writeImage(dir + "/n.png", one).ok());
+    // A quad in the z = 0 plane facing +z. Texcoords: glTF u along +x, glTF v along -y (v grows
+    // down the image, y up): dp/du = +x, and n x t = +y is "up" in the image: w = +1. The second
+    // primitive mirrors u (u along -x): t = -x, and n x t = -y, opposite our dp/dv: w = -1.
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3");
+    const int nrm = a.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+    const int uv = a.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2");
+    const int uvMirror = a.floats({1, 1, 0, 1, 0, 0, 1, 0}, "VEC2");
+    const int tan = a.floats({0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1, 0, 1}, "VEC4");
+    const int idx = a.indices({0, 1, 2, 0, 2, 3}, 5123);
+    const auto prim = [&](int uvs, int tangents) {
+        return "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"NORMAL\":" + std::to_string(nrm) +
+               ",\"TEXCOORD_0\":" + std::to_string(uvs) + (tangents >= 0 ? ",\"TANGENT\":" + std::to_string(tangents) : "") +
+               "},\"indices\":" + std::to_string(idx) + ",\"material\":0}";
+    };
+    a.meshes = "[{\"primitives\":[" + prim(uv, -1) + "," + prim(uvMirror, -1) + "]},{\"primitives\":[" + prim(uv, tan) + "]}]";
+    // Mesh 1 under a node rotated 90 degrees about z: the file's tangent (0, 1, 0) becomes (-1, 0, 0).
+    a.nodes = "[{\"mesh\":0},{\"mesh\":1,\"rotation\":[0,0,0.7071067811865476,0.7071067811865476]}]";
+    a.scenes = "[{\"nodes\":[0,1]}]";
+    a.materials = "[{\"normalTexture\":{\"index\":0}}]";
+    a.extra = ",\"images\":[{\"uri\":\"n.png\"}],\"textures\":[{\"source\":0}]";
+    auto r = load(dir, "tangents.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.mesh.tangents.size() == m.mesh.positions.size());
+    REQUIRE(m.mesh.positions.size() == 12);
+    for (std::size_t k = 0; k < 4; ++k) {
+        checkVec(Vec3{m.mesh.tangents[k].x, m.mesh.tangents[k].y, m.mesh.tangents[k].z}, 1, 0, 0);
+        CHECK(m.mesh.tangents[k].w == 1.0f);
+    }
+    for (std::size_t k = 4; k < 8; ++k) {
+        checkVec(Vec3{m.mesh.tangents[k].x, m.mesh.tangents[k].y, m.mesh.tangents[k].z}, -1, 0, 0);
+        CHECK(m.mesh.tangents[k].w == -1.0f);
+    }
+    for (std::size_t k = 8; k < 12; ++k) {
+        checkVec(Vec3{m.mesh.tangents[k].x, m.mesh.tangents[k].y, m.mesh.tangents[k].z}, -1, 0, 0);
+        CHECK(m.mesh.tangents[k].w == 1.0f);
+    }
+}
+
 TEST_CASE("glTF: embedded, external .bin and .glb forms of one asset load the same model", "[resources][gltf]") {
     const std::string dir = freshDir("gltf-forms");
     const Asset a = triangleAsset("[{\"translation\":[1,2,3],\"mesh\":0}]");

@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Renders glTF models with softraster and with the three.js reference (../shared/tools/threejs-ref,
+# built by its build.sh) under the same camera, and prints the PSNR over the pixels lit in both,
+# for the default (pbr, linear) and the former model (phong on display values).
+# Usage: scripts/compare-threejs.sh [OUT_DIR] [MODEL...]   (a development aid: not in the test command)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+out=${1:-/tmp/threejs-compare}; shift || true
+ref=${THREEJS_REF:-../shared/tools/threejs-ref}
+sr=${SOFTRASTER:-build/native/bin/softraster}
+M=/usr/share/assimp/models/glTF2
+models=("$@")
+[[ ${#models[@]} -gt 0 ]] || models=("$M/ClearCoat-glTF/ClearCoatTest.gltf" "$M/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf"
+  "$M/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" "$M/BoxTextured-glTF/BoxTextured.gltf")
+mkdir -p "$out"
+W=${WIDTH:-400} H=${HEIGHT:-300}
+printf '%-22s %14s %14s\n' model "pbr+linear dB" "phong+gamma dB"
+for m in "${models[@]}"; do
+  n=$(basename "${m%.*}")
+  cam=$("$sr" render --model "$m" --width "$W" --height "$H" --out "$out/$n.png" --ssaa 16 2>&1 | sed -n 's/^softraster: camera: //p')
+  "$sr" render --model "$m" --width "$W" --height "$H" --ssaa 16 --shading phong --color gamma --out "$out/${n}_phong.png" >/dev/null 2>&1
+  # shellcheck disable=SC2086
+  "$ref/render.sh" "$m" --out "$out/${n}_three.png" --width "$W" --height "$H" $cam --quiet >/dev/null
+  p1=$(/usr/bin/python3 "$ref/compare.py" "$out/${n}_three.png" "$out/$n.png" --json | python3 -c 'import json,sys; print("%.1f" % json.load(sys.stdin)["psnr_both_nonblack"])')
+  p0=$(/usr/bin/python3 "$ref/compare.py" "$out/${n}_three.png" "$out/${n}_phong.png" --json | python3 -c 'import json,sys; print("%.1f" % json.load(sys.stdin)["psnr_both_nonblack"])')
+  printf '%-22s %14s %14s\n' "$n" "$p1" "$p0"
+done
