@@ -37,11 +37,14 @@ struct Row {
 // or SSAA 4) x texture filter x shading frequency x perspective mode, and MSAA 8 with the truth's
 // other settings. A scene without textures skips the filter (it changes nothing there); unlit is
 // left out (it drops the lighting: another picture, not an approximation of this one).
-std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured) {
+// A physical (glTF) scene's truth is its own material model, pbr in linear light; Phong is then
+// one more rung of the shading sweep, and pbr on display values (gamma) one more setting.
+std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool physical) {
     base.perspective = PerspectiveMode::Exact;
     base.filter = TextureFilter::Trilinear;
     base.filterFromFile = false; // the report measures each filter itself
-    base.shading = ShadingMode::Phong;
+    base.shading = physical ? ShadingMode::Pbr : ShadingMode::Phong;
+    base.colour = physical ? ColorMode::Linear : ColorMode::Gamma;
     base.ssaa = 16;
     std::vector<Setting> out{{base, true, {}}};
     std::vector<TextureFilter> filters{TextureFilter::Trilinear};
@@ -51,8 +54,9 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured) {
     };
     for (Aa aa : {Aa{1, 1}, Aa{1, 4}, Aa{4, 1}})
         for (TextureFilter f : filters)
-            for (ShadingMode m : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
+            for (ShadingMode m : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong, ShadingMode::Pbr})
                 for (PerspectiveMode p : {PerspectiveMode::Affine, PerspectiveMode::Exact}) {
+                    if (m == ShadingMode::Pbr && !physical) continue;
                     Setting s{base, false, {}};
                     s.settings.ssaa = aa.ssaa;
                     s.settings.msaa = aa.msaa;
@@ -65,11 +69,20 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured) {
     msaa8.settings.ssaa = 1;
     msaa8.settings.msaa = 8;
     out.push_back(msaa8);
+    if (physical) { // the truth's model on display values, one sample
+        Setting gamma{base, false, {}};
+        gamma.settings.ssaa = 1;
+        gamma.settings.colour = ColorMode::Gamma;
+        out.push_back(gamma);
+    }
     // Mark the presets (untextured scenes: the filter does not count).
     for (demo::Quality q : {demo::Quality::Fast, demo::Quality::Balanced, demo::Quality::Accurate}) {
         const demo::QualitySettings qs = demo::qualitySettings(q);
+        // A physical scene is shaded pbr where a preset says Phong (applySceneDefaults).
+        const ShadingMode presetShading = physical && qs.shading == ShadingMode::Phong ? ShadingMode::Pbr : qs.shading;
         for (Setting& s : out)
-            if (s.settings.ssaa == qs.ssaa && s.settings.msaa == qs.msaa && s.settings.shading == qs.shading &&
+            if (s.settings.ssaa == qs.ssaa && s.settings.msaa == qs.msaa && s.settings.shading == presetShading &&
+                s.settings.colour == base.colour &&
                 s.settings.perspective == qs.perspective && (!textured || s.settings.filter == qs.filter)) {
                 s.preset = q;
                 break;
@@ -85,11 +98,16 @@ std::string fmt(double v, int decimals = 3) {
     return buf;
 }
 
+// The shading model, and "gamma" after pbr on display values (its truth is in linear light).
+std::string shadingLabel(const RenderSettings& r) {
+    return std::string(shadingModeName(r.shading)) + (r.shading == ShadingMode::Pbr && r.colour == ColorMode::Gamma ? " gamma" : "");
+}
+
 std::string label(const Setting& s, bool textured) {
     const RenderSettings& r = s.settings;
     std::string l = r.msaa > 1 ? "msaa" + std::to_string(r.msaa) : "ssaa" + std::to_string(r.ssaa);
     if (textured) l += " " + std::string(filterName(r.filter));
-    l += " " + std::string(shadingModeName(r.shading)) + " " + perspectiveModeName(r.perspective);
+    l += " " + shadingLabel(r) + " " + perspectiveModeName(r.perspective);
     return l;
 }
 
@@ -203,7 +221,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
     PreparedScene& p = *prepared;
     const bool textured = p.textured;
 
-    const std::vector<Setting> settings = settingsToMeasure(p.settings, textured);
+    const std::vector<Setting> settings = settingsToMeasure(p.settings, textured, p.scene.physical);
     // Images first (the error does not depend on timing), the ground truth first of all.
     std::vector<ImageError> errors(settings.size());
     FrameBuffer truth;
@@ -251,8 +269,10 @@ int runReport(const std::vector<std::string>& args, Streams io) {
        << " frames after " << a.warmup << " warm-up frames per setting; the table gives the median of the rounds "
        << "and their min and max.\n\n"
        << "**Error is measured against the ground truth**: the image with 16 samples per pixel (4x4 supersampling, "
-          "each sample shaded) and the most accurate other settings (trilinear filtering, Phong shading, exact "
-          "perspective). Mean abs error is per colour channel in levels (0-255); PSNR over R, G, B. Every "
+          "each sample shaded) and the most accurate other settings (trilinear filtering, exact perspective, and the "
+          "scene's own material model: "
+       << (p.scene.physical ? "the glTF metallic-roughness BRDF in linear light" : "Phong shading on display values")
+       << "). Mean abs error is per colour channel in levels (0-255); PSNR over R, G, B. Every "
           "combination of anti-aliasing (1 sample, MSAA 4: coverage and depth per sample, shaded once per pixel; "
           "SSAA 4: 2x2 samples, each shaded) x texture filter x shading x perspective is measured, and MSAA 8 with "
           "the ground truth's other settings; the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
@@ -265,12 +285,12 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         const RenderSettings& st = r.setting.settings;
         const std::string filter = textured ? filterName(st.filter) : "-";
         const std::string preset = r.setting.preset ? demo::qualityName(*r.setting.preset) : "";
-        csv << st.ssaa << "," << st.msaa << "," << filter << "," << shadingModeName(st.shading) << "," << perspectiveModeName(st.perspective)
+        csv << st.ssaa << "," << st.msaa << "," << filter << "," << shadingLabel(st) << "," << perspectiveModeName(st.perspective)
             << "," << fmt(r.time.median) << "," << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
             << "," << fmt(r.error.psnrDb, 2) << "," << r.error.maxAbs << "," << fmt(r.error.differingShare, 5) << ","
             << (front[i] ? 1 : 0) << "," << preset << "," << (r.setting.truth ? 1 : 0) << "\n";
         md << "| " << st.ssaa << (r.setting.truth ? " (ground truth)" : "") << " | " << st.msaa << " | " << filter << " | "
-           << shadingModeName(st.shading) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
+           << shadingLabel(st) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
            << " [" << fmt(r.time.min) << ", " << fmt(r.maxMs) << "] | " << fmt(r.error.meanAbs, 4) << " | "
            << fmt(r.error.psnrDb, 2) << " | " << r.error.maxAbs << " | " << fmt(100.0 * r.error.differingShare, 2)
            << "% | " << (front[i] ? "yes" : "") << " | " << preset << " |\n";
