@@ -99,7 +99,10 @@ Action DemoController::keyDown(Key key, bool repeat) {
     const Action action = actionForKey(key);
     switch (action) {
     case Action::CycleCull: settings_.cull = next(settings_.cull, 3); break;
-    case Action::CycleShading: settings_.shading = next(settings_.shading, 4); break;
+    case Action::CycleShading: settings_.shading = next(settings_.shading, physical_ ? 5 : 4); break; // pbr: glTF only
+    case Action::ToggleColour:
+        settings_.colour = settings_.colour == ColorMode::Linear ? ColorMode::Gamma : ColorMode::Linear;
+        break;
     case Action::CycleFilter:
         settings_.filter = next(settings_.filter, 3);
         settings_.filterFromFile = false; // the user's choice from now on, over any glTF sampler
@@ -173,7 +176,7 @@ std::string DemoController::modeSummary() const {
     std::string s = cullLabel(settings_.cull);
     s += " | ";
     s += shadingModeName(settings_.shading);
-    s += " | ";
+    s += settings_.colour == ColorMode::Linear ? " linear | " : " | ";
     s += filterName(settings_.filter);
     s += " | ";
     s += perspectiveModeName(settings_.perspective);

@@ -13,7 +13,7 @@ enum class Key {
     W, A, S, D, Q, E,          // fly: forward / strafe left / back / strafe right / down / up
     Up, Down, Left, Right,     // turn
     Shift,                     // held: move faster
-    C, M, T, P, N, L, O, H, Z, R, V, // toggles, reset and camera (see actionForKey)
+    C, M, T, P, N, L, O, H, Z, R, V, G, // toggles, reset and camera (see actionForKey)
     F1, F12,
     Count
 };
@@ -25,7 +25,8 @@ enum class Action {
     None,
     Quit,
     CycleCull,        // none -> cull CW -> cull CCW -> none
-    CycleShading,     // unlit -> flat -> gouraud -> phong
+    CycleShading,     // unlit -> flat -> gouraud -> phong (-> pbr in a glTF scene)
+    ToggleColour,     // linear light <-> display values (ColorMode)
     CycleFilter,      // nearest -> bilinear -> trilinear
     CyclePerspective, // exact <-> affine
     CycleAntialiasing, // off -> MSAA 2 -> 4 -> 8 -> SSAA 4 -> 16 -> off
@@ -50,6 +51,7 @@ constexpr Action actionForKey(Key key) {
     case Key::L: return Action::ToggleWireframe;
     case Key::O: return Action::ToggleOutline;
     case Key::H: return Action::ToggleShadows;
+    case Key::G: return Action::ToggleColour;
     case Key::Z: return Action::ToggleDepthView;
     case Key::R: return Action::ResetView;
     case Key::V: return Action::CycleCamera;
@@ -66,7 +68,7 @@ struct KeyHelp {
     const char* what;
 };
 
-inline constexpr std::array<KeyHelp, 19> kKeyHelp{{
+inline constexpr std::array<KeyHelp, 20> kKeyHelp{{
     {"W / S", "fly forward / back"},
     {"A / D", "strafe left / right"},
     {"Q / E", "fly down / up"},
@@ -75,7 +77,8 @@ inline constexpr std::array<KeyHelp, 19> kKeyHelp{{
     {"R", "reset the view"},
     {"V", "next camera of the model (glTF), then back to the start"},
     {"C", "cull mode: none -> CW -> CCW"},
-    {"M", "shading: unlit -> flat -> gouraud -> phong"},
+    {"M", "shading: unlit -> flat -> gouraud -> phong (-> pbr, glTF)"},
+    {"G", "colour: linear light <-> display values"},
     {"T", "texture filter: nearest -> bilinear -> trilinear"},
     {"P", "perspective: exact <-> affine"},
     {"N", "anti-aliasing: off -> MSAA 2, 4, 8 -> SSAA 4, 16"},

@@ -196,6 +196,7 @@ demo::Key MainWindow::translateKey(WPARAM vk) {
     case 'L': return Key::L;
     case 'O': return Key::O;
     case 'H': return Key::H;
+    case 'G': return Key::G;
     case 'Z': return Key::Z;
     case 'R': return Key::R;
     case 'V': return Key::V;

@@ -34,6 +34,24 @@ TEST_CASE("C cycles the cull mode none -> CW -> CCW -> none and the summary show
     CHECK(c.settings().cull == CullMode::None);
 }
 
+TEST_CASE("a glTF scene's shading cycle includes pbr; G toggles linear light", "[platform][pbr]") {
+    DemoController c = makeController();
+    c.setPhysicalLights(true);
+    // From phong, the controller's start.
+    const ShadingMode shading[] = {ShadingMode::Pbr, ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud,
+                                   ShadingMode::Phong, ShadingMode::Pbr};
+    for (const ShadingMode m : shading) {
+        c.keyDown(Key::M);
+        CHECK(c.settings().shading == m);
+    }
+    const ColorMode start = c.settings().colour;
+    c.keyDown(Key::G);
+    CHECK(c.settings().colour != start);
+    CHECK((c.modeSummary().find(" linear |") != std::string::npos) == (c.settings().colour == ColorMode::Linear));
+    c.keyDown(Key::G);
+    CHECK(c.settings().colour == start);
+}
+
 TEST_CASE("auto-repeat does not flip a toggle again", "[platform]") {
     DemoController c = makeController();
     c.keyDown(Key::C);
