@@ -26,34 +26,50 @@ float linearToSrgb(float l) {
     return float(x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055);
 }
 
-const std::array<float, 256>& srgbDecodeTable() {
-    static const std::array<float, 256> table = [] {
-        std::array<float, 256> t{};
-        for (int b = 0; b < 256; ++b) t[std::size_t(b)] = srgbToLinear(float(b) / 255.0f);
-        return t;
-    }();
-    return table;
-}
-
 namespace {
-// midpoints[k] = decode((k + 0.5) / 255): the linear value whose encoding lies halfway between
+
+// The tables are built once, at static initialisation (namespace scope: no guard per call).
+const std::array<float, 256> kDecode = [] {
+    std::array<float, 256> t{};
+    for (int b = 0; b < 256; ++b) t[std::size_t(b)] = srgbToLinear(float(b) / 255.0f);
+    return t;
+}();
+
+// kMidpoints[k] = decode((k + 0.5) / 255): the linear value whose encoding lies halfway between
 // bytes k and k + 1, so l above it encodes, rounded to the nearest byte, to k + 1 or more.
-const std::array<float, 255>& srgbMidpoints() {
-    static const std::array<float, 255> mids = [] {
-        std::array<float, 255> m{};
-        for (std::size_t k = 0; k < 255; ++k) m[k] = srgbToLinear(float((double(k) + 0.5) / 255.0));
-        return m;
-    }();
-    return mids;
-}
+const std::array<float, 255> kMidpoints = [] {
+    std::array<float, 255> m{};
+    for (std::size_t k = 0; k < 255; ++k) m[k] = srgbToLinear(float((double(k) + 0.5) / 255.0));
+    return m;
+}();
+
+// kBucketStart[i] = the number of midpoints below i / kBuckets: where the search for any l in
+// [i / kBuckets, (i + 1) / kBuckets) starts. The midpoints are at least 1 / (12.92 x 255) apart
+// (the curve's linear segment; wider above), more than a bucket, so a bucket holds at most one
+// and the search takes one step at most.
+constexpr int kBuckets = 4096;
+const std::array<std::uint8_t, kBuckets> kBucketStart = [] {
+    std::array<std::uint8_t, kBuckets> b{};
+    std::size_t k = 0;
+    for (int i = 0; i < kBuckets; ++i) {
+        const float edge = float(i) / float(kBuckets);
+        while (k < kMidpoints.size() && kMidpoints[k] < edge) ++k;
+        b[std::size_t(i)] = std::uint8_t(k);
+    }
+    return b;
+}();
+
 } // namespace
+
+const std::array<float, 256>& srgbDecodeTable() { return kDecode; }
 
 std::uint8_t encodeSrgb8(float l) {
     if (!(l > 0.0f)) return 0; // NaN, negatives
     if (l >= 1.0f) return 255;
-    const auto& mids = srgbMidpoints();
     // The number of midpoints below l is the nearest byte (ties, l == a midpoint, go down).
-    return std::uint8_t(std::lower_bound(mids.begin(), mids.end(), l) - mids.begin());
+    unsigned k = kBucketStart[std::size_t(l * float(kBuckets))];
+    while (k < kMidpoints.size() && kMidpoints[k] < l) ++k;
+    return std::uint8_t(k);
 }
 
 const char* toneMapName(ToneMap t) {

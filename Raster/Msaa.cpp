@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cassert>
 
+#include "Raster/ColorSpace.hpp"
+
 #if defined(__SSE2__) || defined(_M_X64)
 #include <emmintrin.h>
 #define SR_RESOLVE_SSE2 1
@@ -66,9 +68,29 @@ void resolvePixels(const Pixel* src, const float* depthSrc, Pixel* dst, float* d
     }
 }
 
+// The resolve in linear light (Resolve.hpp's rule with `linear`): n samples per pixel decoded,
+// their mean encoded once.
+void resolvePixelsLinear(const Pixel* src, const float* depthSrc, Pixel* dst, float* depthDst, int x0, int x1, int n) {
+    const auto& decode = srgbDecodeTable();
+    const float inv = 1.0f / float(n);
+    for (int x = x0; x < x1; ++x) {
+        const Pixel* s = src + std::size_t(x) * std::size_t(n);
+        const float* d = depthSrc + std::size_t(x) * std::size_t(n);
+        float r = 0.0f, g = 0.0f, b = 0.0f, nearest = d[0];
+        for (int k = 0; k < n; ++k) {
+            r += decode[pixelR(s[k])];
+            g += decode[pixelG(s[k])];
+            b += decode[pixelB(s[k])];
+            nearest = std::max(nearest, d[k]);
+        }
+        dst[x] = packBgra(encodeSrgb8(r * inv), encodeSrgb8(g * inv), encodeSrgb8(b * inv));
+        depthDst[x] = nearest;
+    }
+}
+
 // Row y, block by block: a pending block (fast clear) is its row's clear, as the resolve of N
 // equal samples would give (the colour with X = 0xFF, the depth itself), without reading it.
-void resolveRow(const MsaaBuffer& samples, FrameBuffer& out, int y) {
+void resolveRow(const MsaaBuffer& samples, FrameBuffer& out, int y, bool linear) {
     const Pixel* src = samples.colourRow(y);
     const float* depthSrc = samples.depthRow(y);
     Pixel* dst = out.colorRow(y);
@@ -84,6 +106,10 @@ void resolveRow(const MsaaBuffer& samples, FrameBuffer& out, int y) {
             fillWords(dst + x0, std::size_t(x1 - x0), samples.rowClearColour(y) | 0xFF000000u);
             fillWords(depthDst + x0, std::size_t(x1 - x0), samples.rowClearDepth(y));
             x0 = x1 - kMsaaClearBlock; // the loop's step lands on x1
+            continue;
+        }
+        if (linear && samples.samples() > 1) {
+            resolvePixelsLinear(src, depthSrc, dst, depthDst, x0, x1, samples.samples());
             continue;
         }
         switch (samples.samples()) {
@@ -168,18 +194,18 @@ void MsaaBuffer::materialise(int y, int block) {
     pending_[std::size_t(y) * std::size_t(blocksPerRow_) + std::size_t(block)] = 0;
 }
 
-void resolveMsaaRows(const MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd) {
+void resolveMsaaRows(const MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd, bool linear) {
     assert(samples.width() == out.width() && samples.height() == out.height());
     rowBegin = std::max(rowBegin, 0);
     rowEnd = std::min(rowEnd, out.height());
-    for (int y = rowBegin; y < rowEnd; ++y) resolveRow(samples, out, y);
+    for (int y = rowBegin; y < rowEnd; ++y) resolveRow(samples, out, y, linear);
 }
 
 void resolveAndClearMsaaRows(MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd, Pixel colour,
-                             float depth) {
+                             float depth, bool linear) {
     rowBegin = std::max(rowBegin, 0);
     rowEnd = std::min(rowEnd, out.height());
-    resolveMsaaRows(samples, out, rowBegin, rowEnd);
+    resolveMsaaRows(samples, out, rowBegin, rowEnd, linear);
     samples.clearRowsLazily(rowBegin, rowEnd, colour, depth);
 }
 

@@ -112,13 +112,14 @@ private:
 
 // Box-filters rows [rowBegin, rowEnd) of `out` (the same size as `samples`, asserted) from the
 // sample target, with the SSAA resolve's rule (Resolve.hpp): per channel the rounded mean
-// (sum + n/2) / n of the stored 8-bit values, depth = the nearest (largest) sample.
-void resolveMsaaRows(const MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd);
+// (sum + n/2) / n of the stored 8-bit values (with `linear`: of the decoded values, encoded once),
+// depth = the nearest (largest) sample.
+void resolveMsaaRows(const MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd, bool linear = false);
 
 // The same, then clearing each row of samples to (colour, depth) lazily (clearRowsLazily): the
 // next frame's clear costs no pass over the memory (the caller marks the buffer cleared once
 // every row is done). A pending block resolves to its clear without being read.
 void resolveAndClearMsaaRows(MsaaBuffer& samples, FrameBuffer& out, int rowBegin, int rowEnd, Pixel colour,
-                             float depth);
+                             float depth, bool linear = false);
 
 } // namespace sr

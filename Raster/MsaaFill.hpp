@@ -121,7 +121,7 @@ namespace detail {
 template <int kN, DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
                          ShadeRow& shadeRow, ShadeRuns& shadeRuns, std::uint64_t& shaded, float alpha,
-                         AlphaMode texelAlpha) {
+                         AlphaMode texelAlpha, bool linear) {
     constexpr int n = kN;
     const SampleOffset* pattern = msaaPattern(n);
     const double ddx = t.ddx[kPlaneZ];
@@ -157,7 +157,7 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
             if (texelAlpha == AlphaMode::Blend) { // per pixel: the opacity in c's X byte
                 const float a = float(c >> 24) / 255.0f;
                 for (int k = 0; k < n; ++k)
-                    if (pass & (1u << k)) samples[k] = blendOver(c, samples[k], a);
+                    if (pass & (1u << k)) samples[k] = blendOver(c, samples[k], a, linear);
                 continue;
             }
             if (texelAlpha == AlphaMode::Mask) { // kept (X 0xFF) or discarded (X 0)
@@ -173,7 +173,7 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
             }
             if (alpha < 1.0f) { // a transparent draw: over each passing sample's own colour
                 for (int k = 0; k < n; ++k)
-                    if (pass & (1u << k)) samples[k] = blendOver(c, samples[k], alpha);
+                    if (pass & (1u << k)) samples[k] = blendOver(c, samples[k], alpha, linear);
                 continue;
             }
             for (int k = 0; k < n; ++k)
@@ -194,7 +194,8 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
 //    when the centre is inside the triangle, otherwise at the centroid of the covered samples (no
 //    attribute is extrapolated outside the triangle), by one call shadeRuns(runs, count) per
 //    triangle (SpanRun), which writes the colours to shadeRow(y)[x] (pixel-sized scratch rows);
-//  - the colour goes to every covered sample that passed (alpha < 1: blended over each, Blend.hpp);
+//  - the colour goes to every covered sample that passed (alpha < 1: blended over each, Blend.hpp,
+//    in linear light when `linear`);
 //  - texelAlpha (Mask or Blend; kDepth is then Test): the shaded colour carries its alpha in the
 //    X byte (withMsaaAlpha): Blend blends it over each passing sample, Mask writes a kept pixel's
 //    colour and depth to its passing samples and leaves a discarded pixel's samples alone.
@@ -202,13 +203,13 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
 template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleMsaa(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
                       ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded, float alpha = 1.0f,
-                      AlphaMode texelAlpha = AlphaMode::Off) {
+                      AlphaMode texelAlpha = AlphaMode::Off, bool linear = false) {
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
     switch (target.samples()) {
-    case 2: detail::fillTriangleSamples<2, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha); break;
-    case 4: detail::fillTriangleSamples<4, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha); break;
-    case 8: detail::fillTriangleSamples<8, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha); break;
-    default: detail::fillTriangleSamples<1, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha); break;
+    case 2: detail::fillTriangleSamples<2, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear); break;
+    case 4: detail::fillTriangleSamples<4, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear); break;
+    case 8: detail::fillTriangleSamples<8, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear); break;
+    default: detail::fillTriangleSamples<1, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear); break;
     }
 }
 

@@ -46,8 +46,8 @@ struct DrawState {
     // (Blend.hpp), per pixel or, multisampled, per sample; the span kernels blend as the scalar
     // loop does (their colours go through blendOver). Such a draw is drawn with DepthMode::Test.
     float blendAlpha = 1.0f;
-    // Blends in linear light (blendOverLinear: ColorMode::Linear); the scalar loop's blends only
-    // (linear draws have no kernels), and not per sample under MSAA.
+    // Blends in linear light (blendOverLinear: ColorMode::Linear), per pixel or per sample; linear
+    // draws have no span kernels.
     bool linearBlend = false;
     // On: per-fragment alpha from the program's fragmentAlpha (Blend.hpp's TexelAlpha: Mask keeps
     // or discards, Blend blends with it); the draw is then filled by the scalar loop with
@@ -338,7 +338,8 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
                 fillSpan<DepthMode::Off, kVaryings, kPersp>(moved, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
             }
         };
-        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha, texelAlpha.mode);
+        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha, texelAlpha.mode,
+                                 state.linearBlend);
     };
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;

@@ -20,13 +20,16 @@ constexpr int ssaaFactor(int samples) {
 // Box-filters rows [rowBegin, rowEnd) of `out` from `samples` (asserted: samples is exactly
 // factor times out's size in each dimension). Colour: each channel is the mean of the factor^2
 // stored 8-bit values, rounded to nearest (ties up): (sum + n/2) / n, in the stored (display)
-// encoding as a UNORM8 multisample resolve does. Depth (reversed-Z): the nearest sample, the
-// largest value, so a pixel counts as covered when any of its samples is.
-void resolveBoxRows(const FrameBuffer& samples, int factor, FrameBuffer& out, int rowBegin, int rowEnd);
+// encoding as a UNORM8 multisample resolve does. With `linear` (ColorMode::Linear), as an sRGB
+// multisample resolve does: each sample decoded, the mean in linear light encoded once
+// (encodeSrgb8). Depth (reversed-Z): the nearest sample, the largest value, so a pixel counts as
+// covered when any of its samples is.
+void resolveBoxRows(const FrameBuffer& samples, int factor, FrameBuffer& out, int rowBegin, int rowEnd,
+                    bool linear = false);
 
 // The whole image.
-inline void resolveBox(const FrameBuffer& samples, int factor, FrameBuffer& out) {
-    resolveBoxRows(samples, factor, out, 0, out.height());
+inline void resolveBox(const FrameBuffer& samples, int factor, FrameBuffer& out, bool linear = false) {
+    resolveBoxRows(samples, factor, out, 0, out.height(), linear);
 }
 
 } // namespace sr

@@ -268,6 +268,7 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
     assert(validMsaa(settings.msaa) && "RenderSettings::msaa must be 1, 2, 4 or 8");
     FrameBuffer& out = ctx.target();
     const bool supersample = factor > 1 && !out.empty();
+    const bool linear = settings.colour == ColorMode::Linear; // resolved in linear light
     const bool multisample = !supersample && settings.msaa > 1 && !out.empty();
     if (!multisample && !ctx.msaa.empty()) ctx.msaa.release(); // memory only while multisampling
     if (multisample && ctx.msaa.resize(out.width(), out.height(), settings.msaa)) {
@@ -278,7 +279,7 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
         ctx.multisampling = false;
         // Resolved and cleared for the next frame in one pass over the samples.
         ctx.forRows(out.height(), [&](int y0, int y1) {
-            resolveAndClearMsaaRows(ctx.msaa, out, y0, y1, clearColour, FrameBuffer::kFarDepth);
+            resolveAndClearMsaaRows(ctx.msaa, out, y0, y1, clearColour, FrameBuffer::kFarDepth, linear);
         });
         ctx.msaa.markCleared(clearColour, FrameBuffer::kFarDepth);
         return true;
@@ -298,7 +299,7 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
     ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
     renderScene(ctx, scene, view, settings, textureOverride);
     ctx.setTarget(out);
-    ctx.forRows(out.height(), [&](int y0, int y1) { resolveBoxRows(ctx.samples, factor, out, y0, y1); });
+    ctx.forRows(out.height(), [&](int y0, int y1) { resolveBoxRows(ctx.samples, factor, out, y0, y1, linear); });
     return true;
 }
 

@@ -209,8 +209,7 @@ struct TextureSampling {
     }
 
     // The decoded twins (sampleSrgb): the same taps and weights, each texel decoded first.
-    static Color decoded(std::uint32_t t) {
-        const auto& d = srgbDecodeTable();
+    static Color decoded(std::uint32_t t, const std::array<float, 256>& d) {
         return {d[t & 0xFFu], d[(t >> 8) & 0xFFu], d[(t >> 16) & 0xFFu], kUnorm8[t >> 24]};
     }
     template <WrapMode kWrap, class Level>
@@ -220,8 +219,9 @@ struct TextureSampling {
         int x0, x1, y0, y1;
         Wrap<kWrap>::pair(tx.i0, l.width, l.maskX, x0, x1);
         Wrap<kWrap>::pair(ty.i0, l.height, l.maskY, y0, y1);
-        const Color c00 = decoded(l.row(y0)[x0]), c10 = decoded(l.row(y0)[x1]);
-        const Color c01 = decoded(l.row(y1)[x0]), c11 = decoded(l.row(y1)[x1]);
+        const auto& d = srgbDecodeTable();
+        const Color c00 = decoded(l.row(y0)[x0], d), c10 = decoded(l.row(y0)[x1], d);
+        const Color c01 = decoded(l.row(y1)[x0], d), c11 = decoded(l.row(y1)[x1], d);
         const float wx = float(tx.w) / 256.0f, wy = float(ty.w) / 256.0f;
         const auto mix = [](Color a, Color b, float w) {
             return Color{a.r + (b.r - a.r) * w, a.g + (b.g - a.g) * w, a.b + (b.b - a.b) * w, a.a + (b.a - a.a) * w};
@@ -234,7 +234,7 @@ struct TextureSampling {
         if (filter == TextureFilter::Nearest) {
             const int x = Wrap<kWrap>::one(nearestTap(uv.x, base.width, kWrap), base.width, base.maskX);
             const int y = Wrap<kWrap>::one(nearestTap(uv.y, base.height, kWrap), base.height, base.maskY);
-            return decoded(base.row(y)[x]);
+            return decoded(base.row(y)[x], srgbDecodeTable());
         }
         if (filter == TextureFilter::Bilinear) return bilinearDecoded<kWrap>(base, uv);
         const int last = int(levels.size()) - 1;
