@@ -1,5 +1,5 @@
 // Double-precision Vec3d and Mat4d for the few computations kept in double (lookAt, rotate, the
-// reference-precision view builder, OBJ normals, analytic test references).
+// double view and projection lookAtD / perspectiveD, OBJ normals, analytic test references).
 #pragma once
 
 #include <cmath>

@@ -173,6 +173,29 @@ Mat4 lookAt(Vec3 eye, Vec3 target, Vec3 up) {
     return m;
 }
 
+Mat4d lookAtD(Vec3 eye, Vec3 target, Vec3 up) {
+    auto unit = [](Vec3d v) {
+        const double l = length(v);
+        return l > 0 ? v / l : v;
+    };
+    const Vec3d e(eye);
+    const Vec3d f = unit(Vec3d(target) - e);
+    const Vec3d s = unit(cross(f, Vec3d(up)));
+    const Vec3d u = cross(s, f);
+    Mat4d v;
+    const Vec3d rows[3] = {s, u, f * -1.0};
+    for (int r = 0; r < 3; ++r) {
+        v.m[r][0] = rows[r].x;
+        v.m[r][1] = rows[r].y;
+        v.m[r][2] = rows[r].z;
+    }
+    v.m[0][3] = -dot(s, e);
+    v.m[1][3] = -dot(u, e);
+    v.m[2][3] = dot(f, e);
+    v.m[3][3] = 1.0;
+    return v;
+}
+
 // --- Projections ------------------------------------------------------------------------------
 Mat4 perspective(float fovYRadians, float aspect, float nearZ, float farZ) {
     assertPerspectiveArgs(fovYRadians, aspect, nearZ);
@@ -183,6 +206,18 @@ Mat4 perspective(float fovYRadians, float aspect, float nearZ, float farZ) {
 Mat4 perspectiveInfinite(float fovYRadians, float aspect, float nearZ) {
     assertPerspectiveArgs(fovYRadians, aspect, nearZ);
     return perspectiveMatrix(sanitizePerspective(fovYRadians, aspect, nearZ, HUGE_VALF));
+}
+
+Mat4d perspectiveD(double fovYRadians, double aspect, double nearZ, double farZ) {
+    const double cot = 1.0 / std::tan(fovYRadians / 2.0);
+    const bool infinite = std::isinf(farZ);
+    Mat4d p;
+    p.m[0][0] = cot / aspect;
+    p.m[1][1] = cot;
+    p.m[2][2] = infinite ? 0.0 : nearZ / (farZ - nearZ);
+    p.m[2][3] = infinite ? nearZ : farZ * nearZ / (farZ - nearZ);
+    p.m[3][2] = -1.0;
+    return p;
 }
 
 Mat4 orthographic(float left, float right, float bottom, float top, float nearZ, float farZ) {

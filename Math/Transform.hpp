@@ -1,6 +1,8 @@
 // Transform builders: translate/scale/rotate, the lookAt view matrix, reversed-Z projections, viewport.
+// The view matrix and the perspective projection also come in double (lookAtD, perspectiveD).
 #pragma once
 
+#include "DoubleMath.hpp"
 #include "Mat4.hpp"
 
 namespace sr {
@@ -32,6 +34,12 @@ Mat4 rotate(float radians, Vec3 axis);
 //    isFinite() of the result reports it).
 Mat4 lookAt(Vec3 eye, Vec3 target, Vec3 up);
 
+// The same view matrix kept in double (not rounded to float), for a view-projection that is
+// multiplied in double and rounded once (the front end's frame view, as the reference renderer
+// builds it). Each direction is divided by its length. No fallbacks: for eye == target or an up
+// parallel to the view direction, the rows that have no direction are zero.
+Mat4d lookAtD(Vec3 eye, Vec3 target, Vec3 up);
+
 // --- Projections (reversed-Z, D3D clip range 0 <= z <= w; see Conventions.hpp) ----------------
 // Perspective projection with clip w = -z_view and z_clip = A z_view + B, where
 //   A = n / (f - n), B = f n / (f - n)  so view z = -n -> z_ndc = 1 and z = -f -> z_ndc = 0,
@@ -49,6 +57,10 @@ Mat4 perspective(float fovYRadians, float aspect, float nearZ, float farZ);
 // The limit far -> infinity: A = 0, B = n, so z_ndc = n / distance: exactly 1 at the near plane,
 // positive and strictly decreasing towards 0 for any finite distance. Same argument policy.
 Mat4 perspectiveInfinite(float fovYRadians, float aspect, float nearZ);
+
+// perspective()'s matrix in double, not rounded; far = +infinity gives perspectiveInfinite's.
+// No argument substitutions: the caller passes fovY in (0, pi), aspect > 0 and 0 < near < far.
+Mat4d perspectiveD(double fovYRadians, double aspect, double nearZ, double farZ);
 
 // Orthographic projection, reversed-Z: x in [l, r] -> [-1, 1], y in [b, t] -> [-1, 1], view
 // z = -near -> z_ndc 1 and z = -far -> 0: z_ndc = (z_view + far) / (far - near); w = 1.

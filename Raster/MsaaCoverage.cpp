@@ -46,11 +46,10 @@ const Centroid* centroidTable() {
 constexpr std::size_t kLine = 64 / sizeof(float);
 static_assert(sizeof(Pixel) == sizeof(float), "a colour and a depth sample are the same size");
 
-// Append a row or run record by storing its fields in place. (A braced `push_back({...})` builds
-// the record on the stack with narrow stores and copies it with one wide load, which cannot be
-// forwarded from them: it waits until they reach the cache, behind every older store, the sample
-// writes and their cache misses included: 12-16% of the time of each function that appended
-// records, on the instruction after that load, in perf.)
+// Append a row or run record by storing its fields in place: a braced `push_back({...})` would
+// build the record on the stack with narrow stores and copy it with one wide load, which cannot
+// be forwarded from them and so waits behind every older store (the sample writes and their
+// cache misses included).
 void addRow(MsaaScratch& scratch, int y, int lo, int hi, std::size_t offset) {
     MsaaScratch::Row& row = scratch.rows.emplace_back();
     row.y = y;

@@ -236,17 +236,17 @@ SR_SIMD_NOINLINE Pixel stencilFragment(Program& program, FrameBuffer& fb, const 
 }
 
 // Rows [begin, end) of a triangle with snapped y extent [minY, maxY]: those whose centres it can
-// cover (the rows setupTriangle computes), or with `samples` (a multisampled draw) every row the
+// cover (the rows setupTriangle computes), or with `multisampled` (a multisampled draw) every row the
 // extent touches (msaaRowRange).
-inline void rowsOfSnappedExtent(Fixed minY, Fixed maxY, bool samples, int& begin, int& end) {
-    begin = samples ? int(floorDiv(minY, kSubPixelScale)) : int(firstCentreAtOrAfter(minY, 1));
-    end = samples ? int(floorDiv(maxY, kSubPixelScale)) + 1 : int(firstCentreAtOrAfter(maxY, 1));
+inline void rowsOfSnappedExtent(Fixed minY, Fixed maxY, bool multisampled, int& begin, int& end) {
+    begin = multisampled ? int(floorDiv(minY, kSubPixelScale)) : int(firstCentreAtOrAfter(minY, 1));
+    end = multisampled ? int(floorDiv(maxY, kSubPixelScale)) + 1 : int(firstCentreAtOrAfter(maxY, 1));
 }
 // The same from the screen vertices' y coordinates only: a cheap band test before the setup.
-inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, bool samples,
+inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, bool multisampled,
                             int& begin, int& end) {
     const Fixed y0 = snapToFixed(v0.y), y1 = snapToFixed(v1.y), y2 = snapToFixed(v2.y);
-    rowsOfSnappedExtent(std::min({y0, y1, y2}), std::max({y0, y1, y2}), samples, begin, end);
+    rowsOfSnappedExtent(std::min({y0, y1, y2}), std::max({y0, y1, y2}), multisampled, begin, end);
 }
 
 // A lane's part in a triangle when the caller already knows it (binned draws: binTriangles):
@@ -511,7 +511,7 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
                          std::size_t triangleEnd, RenderStats& stats) {
     const unsigned* codes = ctx.clipCodes.data();
     const int height = ctx.target().height();
-    const bool samples = ctx.multisampleTarget() != nullptr;
+    const bool multisampled = ctx.multisampleTarget() != nullptr;
     std::vector<std::uint32_t>* bins = ctx.bins.data() + std::size_t(chunk) * std::size_t(lanes);
     for (std::size_t tri = triangleBegin; tri < triangleEnd; ++tri) {
         const std::uint32_t i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
@@ -533,13 +533,13 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
             break;
         case ClipClass::Accept: {
             const TriangleScreening screened = screenTriangle(ctx.screenVertices[i0], ctx.screenVertices[i1],
-                                                              ctx.screenVertices[i2], state.cull, samples);
+                                                              ctx.screenVertices[i2], state.cull, multisampled);
             if (screened.outcome == SetupOutcome::Culled) ++stats.culled; // isCulled's decision too
             if (screened.outcome != SetupOutcome::Ready || state.stopAfter == PipelineStop::Geometry) break;
             // rasterizeTriangle's decision: the owner of the first row counts it, every other lane
             // whose bands meet its rows fills them.
             int rowBegin = 0, rowEnd = 0;
-            rowsOfSnappedExtent(screened.minY, screened.maxY, samples, rowBegin, rowEnd);
+            rowsOfSnappedExtent(screened.minY, screened.maxY, multisampled, rowBegin, rowEnd);
             const int owner = LaneBands{0, lanes, height, pattern}.ownerOfRow(rowBegin);
             for (int l = 0; l < lanes; ++l) {
                 if (l == owner) bins[l].push_back(std::uint32_t(tri) | kBinOwner);
@@ -634,7 +634,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
 #ifndef NDEBUG
     for (std::size_t t = 0; t < indexCount; ++t) assert(indices[t] < vertexCount);
 #endif
-    if (MsaaBuffer* samples = ctx.multisampleTarget()) samples->markDrawn();
+    if (MsaaBuffer* msaaTarget = ctx.multisampleTarget()) msaaTarget->markDrawn();
     ctx.clipVertices.resize(vertexCount);
     ctx.screenVertices.resize(vertexCount);
     ctx.usable.resize(vertexCount);

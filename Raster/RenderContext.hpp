@@ -130,14 +130,14 @@ public:
     // they are known to be clear already (a resolve that cleared them: MsaaBuffer::isCleared).
     void clearTarget(Pixel colour, float depth) {
         FrameBuffer& fb = *target_;
-        MsaaBuffer* samples = multisampleTarget();
-        if (samples && samples->isCleared(colour, depth)) return;
+        MsaaBuffer* msaaTarget = multisampleTarget();
+        if (msaaTarget && msaaTarget->isCleared(colour, depth)) return;
         const int lanes = threads(), height = fb.height(), width = fb.width();
         auto job = [&](int lane) {
             const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
             if (y0 >= y1) return;
-            if (samples) {
-                samples->clearRowsLazily(y0, y1, colour, depth);
+            if (msaaTarget) {
+                msaaTarget->clearRowsLazily(y0, y1, colour, depth);
                 return;
             }
             fillWords(fb.colorRow(y0), std::size_t(y1 - y0) * std::size_t(width), colour);
@@ -145,13 +145,13 @@ public:
         };
         if (pool_) pool_->run(job);
         else job(0);
-        if (samples) samples->markCleared(colour, depth);
+        if (msaaTarget) msaaTarget->markCleared(colour, depth);
     }
 
     // Supersampling's sample target (renderSceneFrame with ssaa > 1): factor x factor times the
     // output's size while a supersampled frame is drawn, released by the next frame without SSAA
     // (memory only while supersampling).
-    FrameBuffer samples;
+    FrameBuffer supersampleTarget;
 
     // The shadow maps of the last frame drawn with shadows (renderSceneFrame; Raster/Shadow.hpp),
     // kept for their memory; reset by a frame without them.

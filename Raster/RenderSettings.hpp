@@ -19,7 +19,7 @@ namespace sr {
 
 struct PbrFactors; // Brdf.hpp
 
-// A selection outline (issue 17, the stencil buffer's use): after the opaque draws, scene draw
+// A selection outline (what the stencil buffer serves): after the opaque draws, scene draw
 // `draw` (an opaque one) is drawn again without colour and with the GEQUAL depth test, marking 1
 // in the stencil buffer (the Replace operation) the pixels where it is what is visible; after
 // everything else, every pixel not marked within `width` output pixels (horizontally and
@@ -30,7 +30,7 @@ struct Outline {
     int draw = -1;
     Color colour{1.0f, 0.78f, 0.1f, 1.0f};
     float width = 3.0f;
-    // The demo's and the headless command's --outline: demo::renderFrame sets `draw` each frame to
+    // The demo's and the headless command's --outline: app::renderFrame sets `draw` each frame to
     // the draw at the image centre (pickDraw, Scene.hpp); renderScene reads only `draw`.
     bool pickCentre = false;
     bool on() const { return draw >= 0; }

@@ -187,7 +187,7 @@ int pickDraw(const Scene& scene, Vec3 origin, Vec3 dir) {
 void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                  const Texture* textureOverride) {
     // The meshes and the view are constant during the loop: draws of one mesh with the same
-    // shading program transform its vertices once (issue 14: cost linear in material switches).
+    // shading program transform its vertices once (so material switches cost no vertex work).
     const VertexReuseScope reuse(ctx);
     // The selection outline: a stencil buffer for this frame's target (its mark and band below).
     const Outline& outline = settings.outline;
@@ -272,7 +272,7 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
     const bool multisample = !supersample && settings.msaa > 1 && !out.empty();
     if (!multisample && !ctx.msaa.empty()) ctx.msaa.release(); // memory only while multisampling
     if (multisample && ctx.msaa.resize(out.width(), out.height(), settings.msaa)) {
-        if (!ctx.samples.empty()) ctx.samples = FrameBuffer{};
+        if (!ctx.supersampleTarget.empty()) ctx.supersampleTarget = FrameBuffer{};
         ctx.multisampling = true;
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, settings, textureOverride);
@@ -284,8 +284,8 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
         ctx.msaa.markCleared(clearColour, FrameBuffer::kFarDepth);
         return true;
     }
-    if (!supersample || !ctx.samples.resize(out.width() * factor, out.height() * factor)) {
-        if (!ctx.samples.empty()) ctx.samples = FrameBuffer{}; // no SSAA: give the sample memory back
+    if (!supersample || !ctx.supersampleTarget.resize(out.width() * factor, out.height() * factor)) {
+        if (!ctx.supersampleTarget.empty()) ctx.supersampleTarget = FrameBuffer{}; // no SSAA: give the sample memory back
         if (!ctx.msaa.empty()) ctx.msaa.release();
         RenderSettings plain = settings;
         plain.ssaa = 1; // drawn at the output size (also what the wireframe width follows)
@@ -295,11 +295,11 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
         return (factor <= 1 && !multisample) || out.empty();
     }
     // The same view: clip space does not depend on the target size, only the viewport does.
-    ctx.setTarget(ctx.samples);
+    ctx.setTarget(ctx.supersampleTarget);
     ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
     renderScene(ctx, scene, view, settings, textureOverride);
     ctx.setTarget(out);
-    ctx.forRows(out.height(), [&](int y0, int y1) { resolveBoxRows(ctx.samples, factor, out, y0, y1, linear); });
+    ctx.forRows(out.height(), [&](int y0, int y1) { resolveBoxRows(ctx.supersampleTarget, factor, out, y0, y1, linear); });
     return true;
 }
 

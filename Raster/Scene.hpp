@@ -68,7 +68,7 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
 int pickDraw(const Scene& scene, Vec3 origin, Vec3 dir);
 
 // One whole frame into ctx's target: clear (clearColour, far depth), then renderScene. With
-// settings.ssaa = 4 or 16 the frame is drawn into ctx.samples at 2x2 or 4x4 the target's size and
+// settings.ssaa = 4 or 16 the frame is drawn into ctx.supersampleTarget at 2x2 or 4x4 the target's size and
 // box-filtered into the target (Raster/Resolve.hpp): the target ends with the resolved colour and,
 // per pixel, its nearest sample's depth. A sample target above FrameBuffer::kMaxDimension cannot
 // be made: the frame is then drawn without supersampling and false is returned (true otherwise).

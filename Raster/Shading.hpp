@@ -65,7 +65,7 @@ struct Lighting {
     // Lambertian surface looks the same in both.
     bool physical = false;
     // Every light white and directional: the terms are one number each (LightTerms, blinnPhong),
-    // the path every scene took before coloured lights; otherwise RGB terms (lightTerms).
+    // the cheaper path; otherwise RGB terms (lightTerms).
     bool whiteDirectional() const {
         for (const Light& l : lights)
             if (!l.whiteDirectional()) return false;

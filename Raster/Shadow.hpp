@@ -1,4 +1,4 @@
-// Shadow maps (issue 17, item 1): a depth-only pass from each directional and spot light through
+// Shadow maps: a depth-only pass from each directional and spot light through
 // our own rasterizer, and the receiver test with percentage-closer filtering and slope-scaled bias.
 #pragma once
 

@@ -56,7 +56,7 @@ int componentCount(int type) {
 
 // What the file callbacks and the image loader share: the limits and the bytes read so far.
 struct LoadState {
-    const ObjLimits* limits = nullptr;
+    const LoadLimits* limits = nullptr;
     std::size_t bufferBytes = 0;  // external buffers read
     std::size_t textureBytes = 0; // decoded RGBA of embedded images
     std::string problem;          // the first problem a callback met (reported as the error)
@@ -519,7 +519,7 @@ Result<Vec3> worldPosition(const View& pos, std::size_t i, const Mat4d& world, c
 // closes last -> first, a strip joins consecutive vertices).
 Status addLines(Builder& b, const tinygltf::Model& g, const tinygltf::Primitive& prim, const View& pos,
                 const std::vector<std::uint32_t>& order, const Mat4d& world, const std::string& what,
-                const ObjLimits& limits) {
+                const LoadLimits& limits) {
     LineSet set;
     set.points = prim.mode == kModePoints;
     set.material = prim.material >= 0 && std::size_t(prim.material) < g.materials.size() ? prim.material : -1;
@@ -550,7 +550,7 @@ Status addLines(Builder& b, const tinygltf::Model& g, const tinygltf::Primitive&
 }
 
 Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primitive& prim, const Mat4d& world,
-                    const std::string& what, const ObjLimits& limits) {
+                    const std::string& what, const LoadLimits& limits) {
     if (prim.extensions.count("KHR_draco_mesh_compression"))
         return Status::failure(what + ": uses KHR_draco_mesh_compression (Draco-compressed meshes), which SoftRaster does not support");
     if (prim.mode < kModePoints || prim.mode > kModeFan) return Status::failure(what + ": unknown mode " + std::to_string(prim.mode));
@@ -842,19 +842,19 @@ bool isGltfPath(const std::string& path) {
     return ext == ".gltf" || ext == ".glb";
 }
 
-Result<Model> loadModel(const std::string& utf8Path, const ObjOptions& options) {
+Result<Model> loadModel(const std::string& utf8Path, const LoadOptions& options) {
     return isGltfPath(utf8Path) ? loadGltf(utf8Path, options) : loadObj(utf8Path, options);
 }
 
-Result<Model> loadGltf(const std::string& path, const ObjOptions& options) {
+Result<Model> loadGltf(const std::string& path, const LoadOptions& options) {
     auto bytes = readFileBytes(path, options.limits.maxFileBytes);
     if (!bytes) return R::failure(bytes.error());
     return loadGltfFromMemory(bytes.value().data(), bytes.value().size(), path, options);
 }
 
 Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& path,
-                                 const ObjOptions& options) {
-    const ObjLimits& limits = options.limits;
+                                 const LoadOptions& options) {
+    const LoadLimits& limits = options.limits;
     if (size > limits.maxFileBytes)
         return R::failure(path + ": " + std::to_string(size) + " bytes, above the limit of " + std::to_string(limits.maxFileBytes));
     LoadState state;

@@ -31,19 +31,19 @@ namespace sr {
 // scene, accessors or buffer views out of their buffers, indices out of range, a missing .bin,
 // node graphs that are not trees (recursive or shared nodes), a hierarchy deeper than
 // limits.maxNodeDepth, positions that are not finite, a required extension we do not support
-// (Draco named as such), and the limits of ObjLimits (file, buffer, triangle, vertex, node,
+// (Draco named as such), and the limits of LoadLimits (file, buffer, triangle, vertex, node,
 // texture sizes). A texture that cannot be loaded is a warning and the checkerboard.
-Result<Model> loadGltf(const std::string& utf8Path, const ObjOptions& options = {});
+Result<Model> loadGltf(const std::string& utf8Path, const LoadOptions& options = {});
 
 // The same from the file's bytes already in memory (.glb when they start with "glTF", else
 // .gltf JSON); external buffers and images are still read relative to utf8Path's directory.
 Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& utf8Path,
-                                 const ObjOptions& options = {});
+                                 const LoadOptions& options = {});
 
 // True when the path ends in .gltf or .glb (ASCII case-insensitive).
 bool isGltfPath(const std::string& path);
 
 // loadGltf for .gltf / .glb, loadObj otherwise.
-Result<Model> loadModel(const std::string& utf8Path, const ObjOptions& options = {});
+Result<Model> loadModel(const std::string& utf8Path, const LoadOptions& options = {});
 
 } // namespace sr

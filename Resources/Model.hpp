@@ -22,7 +22,7 @@ namespace sr {
 // an MTL: Kd, Ks, Ns (Ka, Ke, d, illum and the rest are ignored, as in the llvmpipe reference),
 // tinyobjloader's values with its defaults where a line is missing (Kd = Ks = 0, Ns = 1; a
 // material with map_Kd and no Kd line gets Kd 0.6). From glTF: metallic-roughness mapped to
-// these (GltfLoader.hpp). How they are used: sceneFromModel (Platform/Demo/SceneSetup.cpp) and
+// these (GltfLoader.hpp). How they are used: sceneFromModel (Platform/App/SceneSetup.cpp) and
 // README "Materials".
 struct Material {
     std::string name;
@@ -90,13 +90,14 @@ struct Model {
     std::vector<std::string> warnings; // one line each, naming the file
 };
 
-// Resource limits for files from untrusted sources: exceeding one is a clear error, never an
-// exhausted machine. The memory estimate covers tinyobjloader's temporary arrays plus ours.
-struct ObjLimits {
-    std::size_t maxFileBytes = std::size_t(256) << 20;     // the .obj itself
+// Resource limits of both loaders (OBJ/MTL and glTF) for files from untrusted sources: exceeding
+// one is a clear error, never an exhausted machine. The memory estimate covers tinyobjloader's
+// temporary arrays plus ours.
+struct LoadLimits {
+    std::size_t maxFileBytes = std::size_t(256) << 20;     // the .obj, .gltf or .glb, and each file a glTF reads
     std::size_t maxMtlBytes = std::size_t(16) << 20;       // each .mtl
-    std::size_t maxMaterials = 65536;                      // over all .mtl files
-    std::size_t maxVertices = std::size_t(1) << 24;        // each of v / vn / vt entries
+    std::size_t maxMaterials = 65536;                      // over all .mtl files, or in the glTF file
+    std::size_t maxVertices = std::size_t(1) << 24;        // each of v / vn / vt entries; glTF: vertices
     std::size_t maxTriangles = std::size_t(1) << 24;       // after triangulation
     std::size_t maxFaceVertices = 1024;                    // per polygon (ear clipping is O(n^2+))
     std::size_t maxPolygonWork = std::size_t(1) << 28;     // sum of n^2 over polygons with n > 4
@@ -107,10 +108,12 @@ struct ObjLimits {
     std::size_t maxLights = 64;                            // glTF: lights placed in the scene (each costs per pixel)
 };
 
-struct ObjOptions {
+// What loadModel, loadObj and loadGltf are asked to do: the texture override, whether to decode
+// textures, and the limits.
+struct LoadOptions {
     std::string textureOverride; // --texture PATH: replaces every material's map (error if unloadable)
     bool loadTextures = true;    // false: textures keep their slots and paths but stay 0x0, no decode
-    ObjLimits limits;
+    LoadLimits limits;
 };
 
 // The default texture given to a material whose map is missing or cannot be decoded: an 8x8

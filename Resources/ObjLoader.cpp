@@ -71,7 +71,7 @@ Status checkFinite(const std::vector<tinyobj::real_t>& values, int perEntry, Obj
 
 } // namespace
 
-Result<Model> loadObj(const std::string& path, const ObjOptions& options) {
+Result<Model> loadObj(const std::string& path, const LoadOptions& options) {
     // 1. Read the file (refusing directories and files above the limit).
     auto bytes = readFileBytes(path, options.limits.maxFileBytes);
     if (!bytes) return Result<Model>::failure(bytes.error());
@@ -79,9 +79,9 @@ Result<Model> loadObj(const std::string& path, const ObjOptions& options) {
 }
 
 Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, const std::string& path,
-                                const ObjOptions& options) {
+                                const LoadOptions& options) {
     using R = Result<Model>;
-    const ObjLimits& limits = options.limits;
+    const LoadLimits& limits = options.limits;
 
     // 1b. Validate the text before any parser sees it.
     if (size > limits.maxFileBytes)
@@ -185,8 +185,8 @@ Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, con
     // 7a. Draw ranges: one per material (faces without one form the material -1 range), ordered
     //     by the material's first face in the file (ObjLoader.hpp: "Draw order"). A counting pass
     //     sizes the ranges, so every face is written straight into its range below: O(faces)
-    //     whatever the material order (issue 14, item 6: a range per material SWITCH made a
-    //     checkerboard of two materials one draw per quad).
+    //     whatever the material order, and a checkerboard of two materials is two draws, not one
+    //     per quad (as a range per material switch would make it).
     const auto materialOfFace = [&](const tinyobj::shape_t& sh, std::size_t f) {
         const int mid = f < sh.mesh.material_ids.size() ? sh.mesh.material_ids[f] : -1;
         return mid < 0 || std::size_t(mid) >= materials.size() ? overrideMaterial.value() : mid;

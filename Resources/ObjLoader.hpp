@@ -27,19 +27,19 @@ namespace sr {
 // (reversed-Z, GREATER) keeps the first drawn, i.e. the face whose material appears first in the
 // file (faces of one material tie in file order). A model whose faces of each material already
 // form one run of the file draws exactly in file order (the bunny); the spider's runs are one
-// range per material, and its images did not change (scripts/perf-identity.sh).
+// range per material, so it draws in file order too (its images are among scripts/perf-identity.sh's).
 // Deliberate differences from glref: a texture that cannot be loaded gets defaultCheckerTexture()
 // (glref draws those faces grey), a UTF-8 BOM is skipped (glref would lose the first line), what
 // glref would read out of bounds or silently misread (bad indices, "nan" coordinates) is an
 // error, and the draw order above. Every failure is one line naming the file (and "path:LINE:"
 // where a line is known).
-Result<Model> loadObj(const std::string& utf8Path, const ObjOptions& options = {});
+Result<Model> loadObj(const std::string& utf8Path, const LoadOptions& options = {});
 
 // The same from OBJ text already in memory (`size` bytes at `data`; the size limit of `options`
 // applies). `utf8Path` names the text in messages and locates "mtllib" files and textures, which
 // are still read from disk relative to its directory. For fuzzing and for callers that hold the
 // file already.
 Result<Model> loadObjFromMemory(const unsigned char* data, std::size_t size, const std::string& utf8Path,
-                                const ObjOptions& options = {});
+                                const LoadOptions& options = {});
 
 } // namespace sr

@@ -88,7 +88,7 @@ bool MtlFileReader::operator()(const std::string& matId, std::vector<tinyobj::ma
 }
 
 Result<int> assignMaterials(Model& model, const std::vector<tinyobj::material_t>& materials,
-                            const std::string& objPath, const ObjOptions& options, bool anyFaceWithoutMaterial) {
+                            const std::string& objPath, const LoadOptions& options, bool anyFaceWithoutMaterial) {
     const std::string objDir = objDirectory(objPath);
     model.materials.clear();
     for (const auto& m : materials) {

@@ -25,14 +25,14 @@ std::string resolveTexturePath(const std::string& objDir, std::string name);
 // (the materials it would define stay unknown: faces using them are untextured), never an error.
 class MtlFileReader : public tinyobj::MaterialReader {
 public:
-    MtlFileReader(std::string objDir, const ObjLimits& limits, std::vector<std::string>& warnings)
+    MtlFileReader(std::string objDir, const LoadLimits& limits, std::vector<std::string>& warnings)
         : objDir_(std::move(objDir)), limits_(limits), warnings_(warnings) {}
     bool operator()(const std::string& matId, std::vector<tinyobj::material_t>* materials,
                     std::map<std::string, int>* matMap, std::string* warn, std::string* err) override;
 
 private:
     std::string objDir_;
-    const ObjLimits& limits_;
+    const LoadLimits& limits_;
     std::vector<std::string>& warnings_;
     std::size_t attempts_ = 0; // .mtl files tried; a file naming thousands is not read thousands of times
 };
@@ -43,6 +43,6 @@ private:
 // A map that cannot be loaded becomes defaultCheckerTexture() plus a warning; an override that
 // cannot be loaded is an error.
 Result<int> assignMaterials(Model& model, const std::vector<tinyobj::material_t>& materials,
-                            const std::string& objPath, const ObjOptions& options, bool anyFaceWithoutMaterial);
+                            const std::string& objPath, const LoadOptions& options, bool anyFaceWithoutMaterial);
 
 } // namespace sr

@@ -207,7 +207,7 @@ Result<TextSpan> checkText(const unsigned char* data, std::size_t size, const st
     return R(TextSpan{text + offset, text + size});
 }
 
-Result<ObjScanStats> scanObj(TextSpan text, const std::string& name, const ObjLimits& limits) {
+Result<ObjScanStats> scanObj(TextSpan text, const std::string& name, const LoadLimits& limits) {
     using R = Result<ObjScanStats>;
     ObjScanStats s;
     std::size_t faceVertices = 0, otherIndices = 0, weightTokens = 0, groups = 0, warnBytes = 0;

@@ -46,7 +46,7 @@ struct ObjScanStats {
 //    (positive: <= count so far; negative: count + index >= 0);
 //  - counts against `limits` (vertices, triangles, polygon size, estimated memory).
 // Errors are one line: "name:LINE: message".
-Result<ObjScanStats> scanObj(TextSpan text, const std::string& name, const ObjLimits& limits);
+Result<ObjScanStats> scanObj(TextSpan text, const std::string& name, const LoadLimits& limits);
 
 // Kinds of numbered OBJ entries, for messages about the n-th one.
 enum class ObjEntry { Position, Normal, TexCoord };

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-# Material-switch cost (issue 14, item 6): load, first frame, frame time and peak RSS of the alternating vs one-material quad grid.
+# Material-switch cost: load, first frame, frame time and peak RSS of the alternating vs one-material quad grid.
 """Usage: scripts/bench-grid.py [options] LABEL=SOFTRASTER [LABEL=SOFTRASTER ...]
 
 For each size (--sizes, triangles) and each grid (alternating two textured materials, one

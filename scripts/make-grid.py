@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-# Writes a flat N x N quad grid as OBJ + MTL + two tiny PPM textures: the material-switch stress model (issue 14, item 6).
+# Writes a flat N x N quad grid as OBJ + MTL + two tiny PPM textures: the material-switch stress model.
 """Usage: scripts/make-grid.py OUTDIR [--quads N | --triangles T] [--materials alternate|one] [--name NAME]
 
 OUTDIR/NAME.obj   (N+1)^2 vertices in the z = 0 plane (x, y = column, row), one 'vt' per vertex

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-# Writes a glTF 2.0 scene with N punctual lights (KHR_lights_punctual): the lights benchmark (issue 16).
+# Writes a glTF 2.0 scene with N punctual lights (KHR_lights_punctual): the lights benchmark.
 """Usage: scripts/make-lights-scene.py OUT.gltf [--lights N] [--kind white|mixed] [--transparent]
                                     [--texel-alpha opaque|mask|blend]
 

@@ -45,7 +45,7 @@ std::string usage(Subcommand c) {
                "  --depth-out FILE.pfm  depth as window-space [0,1] (0 = near, 1 = far/background, the\n"
                "                        OpenGL convention of the llvmpipe reference), rows bottom-up\n"
                "  --quiet               no diagnostics on stderr\n" +
-               demo::sceneFlagsHelp();
+               app::sceneFlagsHelp();
     case Subcommand::Bench:
         return "usage: softraster bench [scene flags] [--frames N] [--warmup N] [--flight SEED] [--out FILE] [--depth-out FILE] [--quiet]\n"
                "  --frames N            timed frames (default 100)\n"
@@ -61,7 +61,7 @@ std::string usage(Subcommand c) {
                "mpix_per_s, stages_ms (clear, transform_clip_cull, setup, fill_shade: from timing\n"
                "partial pipelines) and counters (triangles in/rejected/clipped/culled/rasterized, pixels\n"
                "shaded/covered, overdraw). Vertex data is prepared once, before the timed frames.\n" +
-               demo::sceneFlagsHelp();
+               app::sceneFlagsHelp();
     case Subcommand::Report:
         return "usage: softraster report --out-dir DIR [scene flags] [--frames N] [--warmup N] [--rounds N] [--quiet]\n"
                "  --out-dir DIR         where report.csv, report.md and report.svg go (created)\n"
@@ -74,7 +74,7 @@ std::string usage(Subcommand c) {
                "the ground truth (mean abs error, PSNR, max abs error, share of differing pixels), the\n"
                "Pareto front and the --quality presets. The scene flags fix everything else; width and\n"
                "height at most 2048 (the ground truth renders 4x4 the size).\n" +
-               demo::sceneFlagsHelp();
+               app::sceneFlagsHelp();
     }
     return "";
 }
@@ -91,10 +91,10 @@ ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& 
     };
     for (std::size_t i = 0; i < args.size(); ++i) {
         std::string error;
-        switch (demo::parseSceneFlag(args, i, a.scene, error)) {
-        case demo::FlagResult::Consumed: continue;
-        case demo::FlagResult::Error: return fail(error);
-        case demo::FlagResult::NotMine: break;
+        switch (app::parseSceneFlag(args, i, a.scene, error)) {
+        case app::FlagResult::Consumed: continue;
+        case app::FlagResult::Error: return fail(error);
+        case app::FlagResult::NotMine: break;
         }
         std::string flag = args[i];
         std::optional<std::string> value;
@@ -153,14 +153,14 @@ ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& 
     }
     if (!a.help) {
         if (command == Subcommand::Report && a.outDir.empty()) return fail("--out-dir DIR is required");
-        if (const auto problem = demo::validateSceneOptions(a.scene)) return fail(*problem);
+        if (const auto problem = app::validateSceneOptions(a.scene)) return fail(*problem);
     }
     result.args = std::move(a);
     return result;
 }
 
 std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& err) {
-    auto loaded = demo::loadScene(a.scene);
+    auto loaded = app::loadScene(a.scene);
     if (!loaded) {
         err << "softraster: " << loaded.error() << "\n";
         return nullptr;
@@ -172,14 +172,14 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
         err << "softraster: " << p->scene.description << "\n";
     }
     p->options = a.scene;
-    if (const auto problem = demo::applySceneDefaults(p->options, p->scene)) {
+    if (const auto problem = app::applySceneDefaults(p->options, p->scene)) {
         err << "softraster: " << *problem << "\n";
         return nullptr;
     }
-    p->camera = demo::resolveCamera(p->options, p->scene);
-    if (!a.quiet) err << "softraster: camera: " << demo::cameraFlags(p->camera) << "\n";
-    p->view = demo::makeFrameView(p->camera, a.scene.width, a.scene.height, a.scene.light, p->scene.lights, p->scene.physical);
-    p->settings = demo::makeRenderSettings(p->options);
+    p->camera = app::resolveCamera(p->options, p->scene);
+    if (!a.quiet) err << "softraster: camera: " << app::cameraFlags(p->camera) << "\n";
+    p->view = app::makeFrameView(p->camera, a.scene.width, a.scene.height, a.scene.light, p->scene.lights, p->scene.physical);
+    p->settings = app::makeRenderSettings(p->options);
     if (!p->framebuffer.resize(a.scene.width, a.scene.height)) {
         err << "softraster: cannot allocate a " << a.scene.width << "x" << a.scene.height << " framebuffer\n";
         return nullptr;

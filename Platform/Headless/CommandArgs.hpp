@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/FrameBuffer.hpp"
 #include "Raster/RenderContext.hpp"
 
@@ -17,7 +17,7 @@ namespace sr::headless {
 enum class Subcommand { None, Render, Bench, Report };
 
 struct CommandArgs {
-    demo::SceneOptions scene;
+    app::SceneOptions scene;
     std::string out;      // render/bench: colour image (.ppm/.png/.bmp)
     std::string depthOut; // render/bench: depth PFM
     std::string outDir;   // report
@@ -47,9 +47,9 @@ std::string usage(Subcommand command);
 
 // A loaded scene with its framebuffer, context, view and settings, ready to render.
 struct PreparedScene {
-    demo::LoadedScene scene;
-    demo::SceneOptions options; // the flags with the scene's own defaults applied (applySceneDefaults)
-    demo::CameraSetup camera;
+    app::LoadedScene scene;
+    app::SceneOptions options; // the flags with the scene's own defaults applied (applySceneDefaults)
+    app::CameraSetup camera;
     FrameView view;
     RenderSettings settings;
     FrameBuffer framebuffer;

@@ -2,13 +2,13 @@
 #include "Platform/Headless/Commands.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <ostream>
 #include <sstream>
 #include <thread>
 
 #include "Platform/Headless/CommandArgs.hpp"
 #include "Platform/Headless/Flight.hpp"
+#include "Platform/Headless/Json.hpp"
 #include "Platform/Headless/Timing.hpp"
 #include "Raster/Shadow.hpp"
 #include "Resources/Image.hpp"
@@ -46,12 +46,6 @@ int writeOutputs(const CommandArgs& a, const FrameBuffer& fb, Streams io) {
     return kExitOk;
 }
 
-std::string jsonNumber(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4f", v);
-    return buf;
-}
-
 } // namespace
 
 int runRender(const std::vector<std::string>& args, Streams io) {
@@ -66,7 +60,7 @@ int runRender(const std::vector<std::string>& args, Streams io) {
     auto prepared = prepareScene(a, io.err);
     if (!prepared) return kExitFailure;
     PreparedScene& p = *prepared;
-    demo::renderFrame(p.context, p.scene, p.view, p.settings);
+    app::renderFrame(p.context, p.scene, p.view, p.settings);
     return writeOutputs(a, p.framebuffer, io);
 }
 
@@ -92,7 +86,7 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     RenderSettings settings = p.settings;
 
     // Whole frames: clear + every draw, as a real program renders them.
-    auto frame = [&] { demo::renderFrame(p.context, p.scene, p.view, settings); };
+    auto frame = [&] { app::renderFrame(p.context, p.scene, p.view, settings); };
     const TimingSummary full = summarise(timeFrames(a.warmup, a.frames, frame));
     p.context.stats = {};
     frame(); // one more frame for the counters and the output image

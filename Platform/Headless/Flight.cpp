@@ -2,13 +2,13 @@
 #include "Platform/Headless/Flight.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <ostream>
 #include <random>
 #include <string>
 #include <vector>
 
+#include "Platform/Headless/Json.hpp"
 #include "Platform/Headless/Timing.hpp"
 
 namespace sr::headless {
@@ -54,11 +54,11 @@ Vec3 sub(Vec3 a, Vec3 b) { return Vec3(a.x - b.x, a.y - b.y, a.z - b.z); }
 Vec3 mul(Vec3 a, double s) { return Vec3(float(a.x * s), float(a.y * s), float(a.z * s)); }
 
 struct Pose {
-    demo::CameraSetup camera;
+    app::CameraSetup camera;
     PoseKind kind = Orbit;
 };
 
-Pose nextPose(Random& rnd, const demo::LoadedScene& scene) {
+Pose nextPose(Random& rnd, const app::LoadedScene& scene) {
     const Vec3 c = scene.centre;
     const double r = scene.radius > 0 && std::isfinite(scene.radius) ? scene.radius : 1.0;
     const auto around = [&](double lo, double hi) { return add(c, mul(rnd.direction(), r * rnd.range(lo, hi))); };
@@ -74,7 +74,7 @@ Pose nextPose(Random& rnd, const demo::LoadedScene& scene) {
     };
 
     Pose p;
-    demo::CameraSetup& cam = p.camera;
+    app::CameraSetup& cam = p.camera;
     cam.up = Vec3(0, 1, 0);
     cam.fovDegrees = rnd.range(30.0, 90.0);
     cam.nearZ = 0.01 * r;
@@ -119,12 +119,6 @@ Pose nextPose(Random& rnd, const demo::LoadedScene& scene) {
     return p;
 }
 
-std::string number(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4f", v);
-    return buf;
-}
-
 } // namespace
 
 int runFlight(const CommandArgs& a, PreparedScene& p, std::uint32_t seed, Streams io) {
@@ -141,8 +135,8 @@ int runFlight(const CommandArgs& a, PreparedScene& p, std::uint32_t seed, Stream
         const Pose pose = nextPose(rnd, p.scene);
         ++poses[pose.kind];
         const auto t0 = Clock::now();
-        const FrameView view = demo::makeFrameView(pose.camera, w, h, a.scene.light, p.scene.lights, p.scene.physical);
-        demo::renderFrame(p.context, p.scene, view, p.settings);
+        const FrameView view = app::makeFrameView(pose.camera, w, h, a.scene.light, p.scene.lights, p.scene.physical);
+        app::renderFrame(p.context, p.scene, view, p.settings);
         ms[std::size_t(frame - 1)] = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         long long bad = 0;
         const float* depth = p.framebuffer.depthData();
@@ -151,7 +145,7 @@ int runFlight(const CommandArgs& a, PreparedScene& p, std::uint32_t seed, Stream
         nanFrames += bad > 0;
         if (bad > 0 && nanFrames <= 5 && !a.quiet)
             io.err << "softraster: frame " << frame << ": " << bad << " non-finite depth values; camera: "
-                   << demo::cameraFlags(pose.camera) << "\n";
+                   << app::cameraFlags(pose.camera) << "\n";
         if (frame == std::min(100, a.frames)) atFrame100 = currentMemoryUsage();
     }
     atEnd = currentMemoryUsage();
@@ -161,7 +155,7 @@ int runFlight(const CommandArgs& a, PreparedScene& p, std::uint32_t seed, Stream
     j += ",\"width\":" + std::to_string(w) + ",\"height\":" + std::to_string(h);
     j += ",\"triangles\":" + std::to_string(p.scene.scene.triangleCount());
     j += ",\"frames\":" + std::to_string(a.frames);
-    j += ",\"ms_per_frame_median\":" + number(t.median) + ",\"ms_per_frame_max\":" + number(ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()));
+    j += ",\"ms_per_frame_median\":" + jsonNumber(t.median) + ",\"ms_per_frame_max\":" + jsonNumber(ms.empty() ? 0.0 : *std::max_element(ms.begin(), ms.end()));
     j += ",\"nan_pixels\":" + std::to_string(nanPixels) + ",\"nan_frames\":" + std::to_string(nanFrames);
     j += ",\"rss_kb_frame_100\":" + std::to_string(atFrame100.rssKb) + ",\"rss_kb_end\":" + std::to_string(atEnd.rssKb);
     j += ",\"peak_kb_frame_100\":" + std::to_string(atFrame100.peakKb) + ",\"peak_kb_end\":" + std::to_string(atEnd.peakKb);

@@ -22,7 +22,7 @@ namespace {
 struct Setting {
     RenderSettings settings;
     bool truth = false;                   // the ground truth (SSAA 16 with the most accurate rest)
-    std::optional<demo::Quality> preset;  // the --quality preset this combination is, if any
+    std::optional<app::Quality> preset;  // the --quality preset this combination is, if any
 };
 
 struct Row {
@@ -76,8 +76,8 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool 
         out.push_back(gamma);
     }
     // Mark the presets (untextured scenes: the filter does not count).
-    for (demo::Quality q : {demo::Quality::Fast, demo::Quality::Balanced, demo::Quality::Accurate}) {
-        const demo::QualitySettings qs = demo::qualitySettings(q);
+    for (app::Quality q : {app::Quality::Fast, app::Quality::Balanced, app::Quality::Accurate}) {
+        const app::QualitySettings qs = app::qualitySettings(q);
         // A physical scene is shaded pbr where a preset says Phong (applySceneDefaults).
         const ShadingMode presetShading = physical && qs.shading == ShadingMode::Phong ? ShadingMode::Pbr : qs.shading;
         for (Setting& s : out)
@@ -186,7 +186,7 @@ std::string svgPlot(const std::vector<Row>& rows, const std::vector<bool>& front
         if (named)
             s << "<text x='" << (leftOf ? x - 8 : x + 8) << "' y='" << y - 6 << "' text-anchor='"
               << (leftOf ? "end" : "start") << "'>" << label(r.setting, textured)
-              << (r.setting.preset ? std::string(" [") + demo::qualityName(*r.setting.preset) + "]" : "") << "</text>\n";
+              << (r.setting.preset ? std::string(" [") + app::qualityName(*r.setting.preset) + "]" : "") << "</text>\n";
     }
     s << "<text x='" << W / 2 << "' y='42' text-anchor='middle'>green: Pareto front; red: the --quality presets; "
       << "grey: the other combinations</text>\n</svg>\n";
@@ -226,7 +226,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
     std::vector<ImageError> errors(settings.size());
     FrameBuffer truth;
     for (std::size_t k = 0; k < settings.size(); ++k) {
-        demo::renderFrame(p.context, p.scene, p.view, settings[k].settings);
+        app::renderFrame(p.context, p.scene, p.view, settings[k].settings);
         if (k == 0) truth = p.framebuffer;
         errors[k] = compareImages(truth, p.framebuffer);
     }
@@ -242,7 +242,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
                        << (io.progress ? "          " : "\n");
                 io.err.flush();
             }
-            auto frame = [&] { demo::renderFrame(p.context, p.scene, p.view, settings[k].settings); };
+            auto frame = [&] { app::renderFrame(p.context, p.scene, p.view, settings[k].settings); };
             perRound[k].push_back(summarise(timeFrames(a.warmup, a.frames, frame)).median);
         }
     if (!a.quiet && io.progress) io.err << "\n";
@@ -284,7 +284,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         const Row& r = rows[i];
         const RenderSettings& st = r.setting.settings;
         const std::string filter = textured ? filterName(st.filter) : "-";
-        const std::string preset = r.setting.preset ? demo::qualityName(*r.setting.preset) : "";
+        const std::string preset = r.setting.preset ? app::qualityName(*r.setting.preset) : "";
         csv << st.ssaa << "," << st.msaa << "," << filter << "," << shadingLabel(st) << "," << perspectiveModeName(st.perspective)
             << "," << fmt(r.time.median) << "," << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
             << "," << fmt(r.error.psnrDb, 2) << "," << r.error.maxAbs << "," << fmt(r.error.differingShare, 5) << ","

@@ -1,8 +1,8 @@
 // SoftRaster.exe entry point: command line, scene loading, DPI awareness, and the never-blocking
 // message loop (with --frames / --screenshot for scripts).
-#include "Platform/Demo/CommandLine.hpp"
-#include "Platform/Demo/DemoController.hpp"
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/CommandLine.hpp"
+#include "Platform/App/DemoController.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Platform/Win32/Console.hpp"
 #include "Platform/Win32/Dpi.hpp"
 #include "Platform/Win32/MainWindow.hpp"
@@ -39,9 +39,9 @@ bool pumpMessages(int& exitCode) {
 // (minimised / 0 x 0), so a hidden demo costs no CPU. With --frames N it stops after N rendered
 // frames (exit code 0 like a user close); --screenshot saves the last frame before that, or the
 // first frame when the demo runs until closed.
-int runMessageLoop(sr::win32::MainWindow& window, const sr::demo::DemoOptions& options) {
+int runMessageLoop(sr::win32::MainWindow& window, const sr::app::DemoOptions& options) {
     using namespace sr;
-    int exitCode = demo::kExitOk;
+    int exitCode = app::kExitOk;
     const long long maxFrames = options.frames.value_or(0);
     long long frames = 0;
     for (;;) {
@@ -61,7 +61,7 @@ int runMessageLoop(sr::win32::MainWindow& window, const sr::demo::DemoOptions& o
                 if (last) {
                     window.close();
                     pumpMessages(exitCode);
-                    return demo::kExitFailure;
+                    return app::kExitFailure;
                 }
             } else {
                 win32::writeStdout("SoftRaster: saved " + *options.screenshot + "\n");
@@ -76,40 +76,40 @@ int runMessageLoop(sr::win32::MainWindow& window, const sr::demo::DemoOptions& o
 
 int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
     using namespace sr;
-    const demo::ParseResult parsed = demo::parseCommandLine(win32::commandLineArguments());
+    const app::ParseResult parsed = app::parseCommandLine(win32::commandLineArguments());
     if (!parsed.ok) {
-        reportError("SoftRaster: " + parsed.error + "\n" + demo::usageText("SoftRaster.exe"));
-        return demo::kExitUsage;
+        reportError("SoftRaster: " + parsed.error + "\n" + app::usageText("SoftRaster.exe"));
+        return app::kExitUsage;
     }
-    demo::DemoOptions options = parsed.options; // applySceneDefaults completes it
+    app::DemoOptions options = parsed.options; // applySceneDefaults completes it
     if (options.help) {
-        const std::string text = demo::usageText("SoftRaster.exe");
+        const std::string text = app::usageText("SoftRaster.exe");
         if (!win32::writeStdout(text))
             win32::showMessageBox(text, /*isError=*/false);
-        return demo::kExitOk;
+        return app::kExitOk;
     }
 
     // The scene (built-in or the OBJ) and the camera it asks for: a failure names the file.
-    Result<demo::LoadedScene> loaded = demo::loadScene(options.scene);
+    Result<app::LoadedScene> loaded = app::loadScene(options.scene);
     if (!loaded) {
         reportError("SoftRaster: cannot load the scene: " + loaded.error() + "\n");
-        return demo::kExitFailure;
+        return app::kExitFailure;
     }
-    const demo::LoadedScene& scene = loaded.value();
+    const app::LoadedScene& scene = loaded.value();
     for (const std::string& warning : scene.warnings)
         win32::writeStderr("SoftRaster: warning: " + warning + "\n");
-    if (const auto problem = demo::applySceneDefaults(options.scene, scene)) {
+    if (const auto problem = app::applySceneDefaults(options.scene, scene)) {
         reportError("SoftRaster: " + *problem + "\n");
-        return demo::kExitFailure;
+        return app::kExitFailure;
     }
 
     // The fly camera starts at the resolved eye / target; a model's speed follows its size
     // (half its bounding radius per second), the built-in scene's is the tuned default.
-    const demo::CameraSetup setup = demo::resolveCamera(options.scene, scene);
-    demo::MotionTuning tuning;
+    const app::CameraSetup setup = app::resolveCamera(options.scene, scene);
+    app::MotionTuning tuning;
     if (!scene.builtIn)
         tuning.moveSpeed = float(std::max(scene.radius * 0.5, 1e-3));
-    demo::DemoController controller(setup, demo::makeRenderSettings(options.scene),
+    app::DemoController controller(setup, app::makeRenderSettings(options.scene),
                                     options.scene.light, tuning);
     controller.setCameras(scene.cameras); // V cycles through the model's own cameras
     controller.setLights(scene.lights);
@@ -123,7 +123,7 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
                              : window.create(instance, showCommand, kDefaultClientWidth, kDefaultClientHeight, true);
     if (!created) {
         reportError("SoftRaster: could not create the window (error " + std::to_string(GetLastError()) + ")\n");
-        return demo::kExitFailure;
+        return app::kExitFailure;
     }
     return runMessageLoop(window, options);
 }

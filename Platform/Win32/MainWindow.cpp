@@ -1,8 +1,8 @@
 // The demo window: class registration, message handling (size, paint, keys, mouse, DPI),
-// the per-frame render through sr_demo, presenting, the help overlay and the title bar.
+// the per-frame render through sr_app, presenting, the help overlay and the title bar.
 #include "Platform/Win32/MainWindow.hpp"
 
-#include "Platform/Demo/DepthView.hpp"
+#include "Platform/App/DepthView.hpp"
 #include "Platform/Win32/Console.hpp"
 #include "Platform/Win32/Dpi.hpp"
 
@@ -21,14 +21,14 @@ constexpr double kStatusSeconds = 4.0; // how long a status message stays in the
 // The help overlay's text: the shared key list, one key per line.
 std::wstring helpText() {
     std::string text = "SoftRaster keys (F1 hides this)\n";
-    for (const demo::KeyHelp& k : demo::kKeyHelp)
+    for (const app::KeyHelp& k : app::kKeyHelp)
         text += std::string(k.keys) + "\t" + k.what + "\n";
     return widen(text);
 }
 
 } // namespace
 
-MainWindow::MainWindow(const demo::LoadedScene& scene, demo::DemoController& controller)
+MainWindow::MainWindow(const app::LoadedScene& scene, app::DemoController& controller)
     : scene_(scene), controller_(controller), helpText_(helpText()) {}
 
 MainWindow::~MainWindow() {
@@ -60,7 +60,7 @@ bool MainWindow::create(HINSTANCE instance, int showCommand, int clientWidth, in
     RECT r{0, 0, w, h};
     AdjustWindowRectEx(&r, kStyle, FALSE, kExStyle);
 
-    const std::wstring title = widen(demo::windowTitle(stats_, context_.threads(), scene_.scene.triangleCount(), controller_.modeSummary()));
+    const std::wstring title = widen(app::windowTitle(stats_, context_.threads(), scene_.scene.triangleCount(), controller_.modeSummary()));
     hwnd_ = CreateWindowExW(kExStyle, kClassName, title.c_str(), kStyle, CW_USEDEFAULT, CW_USEDEFAULT,
                             r.right - r.left, r.bottom - r.top, nullptr, nullptr, instance, this);
     if (!hwnd_)
@@ -90,7 +90,7 @@ void MainWindow::renderFrame() {
         updateTitle();
 }
 
-Status MainWindow::saveFrame(const std::string& utf8Path) const { return demo::saveScreenshot(frame_, utf8Path); }
+Status MainWindow::saveFrame(const std::string& utf8Path) const { return app::saveScreenshot(frame_, utf8Path); }
 
 void MainWindow::close() {
     if (hwnd_)
@@ -101,9 +101,9 @@ void MainWindow::draw() {
     if (frame_.empty())
         return;
     context_.stats = {};
-    demo::renderFrame(context_, scene_, controller_.frameView(frame_.width(), frame_.height()), controller_.settings());
+    app::renderFrame(context_, scene_, controller_.frameView(frame_.width(), frame_.height()), controller_.settings());
     if (controller_.depthView())
-        demo::depthToGrey(frame_);
+        app::depthToGrey(frame_);
 }
 
 void MainWindow::present() {
@@ -130,7 +130,7 @@ void MainWindow::screenshot() {
     const std::time_t t = std::time(nullptr);
     std::tm local{};
     localtime_s(&local, &t);
-    const std::string name = demo::screenshotName(local, ++screenshotCounter_);
+    const std::string name = app::screenshotName(local, ++screenshotCounter_);
     const Status saved = saveFrame(name);
     setStatus(saved ? "saved " + name : "screenshot failed: " + saved.error());
 }
@@ -146,7 +146,7 @@ void MainWindow::updateTitle() {
         status_.clear();
     if (!hwnd_)
         return;
-    const std::string title = demo::windowTitle(stats_, context_.threads(), scene_.scene.triangleCount(), controller_.modeSummary(), status_);
+    const std::string title = app::windowTitle(stats_, context_.threads(), scene_.scene.triangleCount(), controller_.modeSummary(), status_);
     SetWindowTextW(hwnd_, widen(title).c_str());
 }
 
@@ -166,15 +166,15 @@ void MainWindow::onResize(int clientWidth, int clientHeight) {
 void MainWindow::onKeyDown(WPARAM virtualKey, LPARAM flags) {
     const bool repeat = (flags & (LPARAM(1) << 30)) != 0; // previous key state: already down
     switch (controller_.keyDown(translateKey(virtualKey), repeat)) {
-    case demo::Action::Quit: close(); return;
-    case demo::Action::Screenshot: screenshot(); return;
-    case demo::Action::None: return;
+    case app::Action::Quit: close(); return;
+    case app::Action::Screenshot: screenshot(); return;
+    case app::Action::None: return;
     default: updateTitle(); return; // a mode changed: show it now, not at the next average
     }
 }
 
-demo::Key MainWindow::translateKey(WPARAM vk) {
-    using demo::Key;
+app::Key MainWindow::translateKey(WPARAM vk) {
+    using app::Key;
     switch (vk) {
     case VK_ESCAPE: return Key::Escape;
     case 'W': return Key::W;

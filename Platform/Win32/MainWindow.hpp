@@ -2,10 +2,10 @@
 // scene with the DemoController's camera and modes, presents it, and shows the help overlay.
 #pragma once
 
-#include "Platform/Demo/DemoController.hpp"
-#include "Platform/Demo/FrameStats.hpp"
-#include "Platform/Demo/Input.hpp"
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/DemoController.hpp"
+#include "Platform/App/FrameStats.hpp"
+#include "Platform/App/Input.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Platform/Win32/GdiPresenter.hpp"
 #include "Platform/Win32/Win32Include.hpp"
 #include "Raster/FrameBuffer.hpp"
@@ -19,7 +19,7 @@ namespace sr::win32 {
 class MainWindow {
 public:
     // The scene and the controller outlive the window.
-    MainWindow(const demo::LoadedScene& scene, demo::DemoController& controller);
+    MainWindow(const app::LoadedScene& scene, app::DemoController& controller);
     ~MainWindow();
     MainWindow(const MainWindow&) = delete;
     MainWindow& operator=(const MainWindow&) = delete;
@@ -61,10 +61,10 @@ private:
     void screenshot();    // F12
     void updateTitle();
     void setStatus(std::string text);
-    static demo::Key translateKey(WPARAM virtualKey);
+    static app::Key translateKey(WPARAM virtualKey);
 
-    const demo::LoadedScene& scene_;
-    demo::DemoController& controller_;
+    const app::LoadedScene& scene_;
+    app::DemoController& controller_;
 
     HWND hwnd_ = nullptr;
     HDC dc_ = nullptr; // the class is CS_OWNDC: one DC for the window's lifetime
@@ -81,7 +81,7 @@ private:
     int lastMouseX_ = 0, lastMouseY_ = 0;
 
     // Title bar: statistics, a short-lived status message (e.g. where a screenshot went).
-    demo::FrameStats stats_;
+    app::FrameStats stats_;
     Clock::time_point lastFrame_{};
     bool haveLastFrame_ = false;
     std::string status_;

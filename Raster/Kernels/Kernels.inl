@@ -690,7 +690,7 @@ struct SpanKernel {
     bool deferred = false;
 
     // Transparent draws are drawn with DepthMode::Test (drawStateFor): only those kernels carry
-    // the blending code, so the opaque ones are the very loops they were without it.
+    // the blending code, so the opaque ones have none of it.
     static constexpr bool kMayBlend = kDepth == DepthMode::Test;
     bool blending() const { return kMayBlend && alpha < 1.0f; }
     // Programs whose shading of a fragment reads nothing of its triangle (only the draw's
@@ -699,8 +699,8 @@ struct SpanKernel {
     static constexpr bool kDeferrable =
         kV > 0 && Prog::kMode != ShadingMode::Flat && !(Prog::kIsTextured && kFilter == TextureFilter::Trilinear);
 
-    // A constructor, not an aggregate: initialised as an aggregate, the whole kernel (its plane
-    // steps are 8 vectors for Phong) was zeroed first with a `rep stos`, every triangle.
+    // A constructor, not an aggregate: aggregate initialisation would zero the whole kernel (its
+    // plane steps are 8 vectors for Phong) before filling it, every triangle.
     SpanKernel(const Prog& program, const TriangleSetup& setup, FrameBuffer& target, std::uint64_t& shadedCount,
                FragmentQueue<kV>& fragments, float opacity = 1.0f, bool deferQueue = false)
         : p(program), t(setup), fb(target), shaded(shadedCount), queue(fragments), alpha(opacity),

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # One camera path: the same camera and quality flags give the same image in the demo window
 # (SoftRaster.exe --frames N --screenshot, on a private Xvfb) and in the headless command
-# (softraster.exe render), byte for byte. Both views come from makeFrameView (Platform/Demo).
+# (softraster.exe render), byte for byte. Both views come from makeFrameView (Platform/App).
 # Usage: camera_path.sh <SoftRaster.exe> <softraster.exe> [artifacts dir (default build/artifacts)]
 set -euo pipefail
 

@@ -32,7 +32,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     // Small limits keep single runs fast; the checks themselves are what is being fuzzed.
-    sr::ObjOptions options;
+    sr::LoadOptions options;
     options.limits.maxMaterials = 256;
     options.limits.maxVertices = 1 << 16;
     options.limits.maxTriangles = 1 << 16;

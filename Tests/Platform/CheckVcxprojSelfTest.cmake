@@ -86,9 +86,9 @@ sr_expect_failure(extra_source "in Raster/Raster.vcxproj but not in CMake target
 
 # A project left out of the solution.
 function(sr_mutate_not_in_solution dir)
-  sr_mutate(${dir} SoftRaster.sln "Project\\([^\n]*Demo.vcxproj[^\n]*\nEndProject\n" "")
+  sr_mutate(${dir} SoftRaster.sln "Project\\([^\n]*App.vcxproj[^\n]*\nEndProject\n" "")
 endfunction()
-sr_expect_failure(not_in_solution "Platform/Demo/Demo.vcxproj is not in SoftRaster.sln")
+sr_expect_failure(not_in_solution "Platform/App/App.vcxproj is not in SoftRaster.sln")
 
 # The solution names a project file that is gone.
 function(sr_mutate_missing_project dir)
@@ -104,10 +104,10 @@ sr_expect_failure(wrong_standard "SoftRaster.Compile.props: expected <LanguageSt
 
 # A project overrides a shared setting itself.
 function(sr_mutate_local_override dir)
-  sr_mutate(${dir} Platform/Demo/Demo.vcxproj "<ConfigurationType>StaticLibrary</ConfigurationType>"
+  sr_mutate(${dir} Platform/App/App.vcxproj "<ConfigurationType>StaticLibrary</ConfigurationType>"
             "<ConfigurationType>StaticLibrary</ConfigurationType>\n    <PlatformToolset>v142</PlatformToolset>")
 endfunction()
-sr_expect_failure(local_override "Demo.vcxproj: sets <PlatformToolset> itself")
+sr_expect_failure(local_override "App.vcxproj: sets <PlatformToolset> itself")
 
 # A project that does not import the compile settings.
 function(sr_mutate_missing_sheet dir)

@@ -5,10 +5,10 @@
 #include <algorithm>
 #include <thread>
 
-#include "Platform/Demo/CommandLine.hpp"
-#include "Platform/Demo/Input.hpp"
+#include "Platform/App/CommandLine.hpp"
+#include "Platform/App/Input.hpp"
 
-using sr::demo::parseCommandLine;
+using sr::app::parseCommandLine;
 
 TEST_CASE("no arguments: run until closed", "[platform]") {
     const auto r = parseCommandLine({});
@@ -29,7 +29,7 @@ TEST_CASE("--frames N and --frames=N", "[platform]") {
 
     r = parseCommandLine({"--frames", "2000000000"});
     REQUIRE(r.ok);
-    CHECK(r.options.frames == sr::demo::kMaxDemoFrames);
+    CHECK(r.options.frames == sr::app::kMaxDemoFrames);
 }
 
 TEST_CASE("--help, -h and /? ask for help", "[platform]") {
@@ -81,7 +81,7 @@ TEST_CASE("unknown arguments are named in the error", "[platform]") {
 }
 
 TEST_CASE("usage text names the program and every flag", "[platform]") {
-    const std::string text = sr::demo::usageText("SoftRaster.exe");
+    const std::string text = sr::app::usageText("SoftRaster.exe");
     CHECK(text.find("SoftRaster.exe") != std::string::npos);
     CHECK(text.find("--frames N") != std::string::npos);
     CHECK(text.find("--help") != std::string::npos);
@@ -140,21 +140,21 @@ TEST_CASE("bad scene flags and combinations are errors naming the value", "[plat
 }
 
 TEST_CASE("Escape quits, toggle keys map to their actions, movement keys have no press action", "[platform]") {
-    using sr::demo::Action;
-    using sr::demo::Key;
-    CHECK(sr::demo::actionForKey(Key::Escape) == Action::Quit);
-    CHECK(sr::demo::actionForKey(Key::Unknown) == Action::None);
-    STATIC_REQUIRE(sr::demo::actionForKey(Key::Escape) == Action::Quit);
-    CHECK(sr::demo::actionForKey(Key::C) == Action::CycleCull);
-    CHECK(sr::demo::actionForKey(Key::F12) == Action::Screenshot);
-    CHECK(sr::demo::actionForKey(Key::W) == Action::None);
-    CHECK(sr::demo::actionForKey(Key::Shift) == Action::None);
+    using sr::app::Action;
+    using sr::app::Key;
+    CHECK(sr::app::actionForKey(Key::Escape) == Action::Quit);
+    CHECK(sr::app::actionForKey(Key::Unknown) == Action::None);
+    STATIC_REQUIRE(sr::app::actionForKey(Key::Escape) == Action::Quit);
+    CHECK(sr::app::actionForKey(Key::C) == Action::CycleCull);
+    CHECK(sr::app::actionForKey(Key::F12) == Action::Screenshot);
+    CHECK(sr::app::actionForKey(Key::W) == Action::None);
+    CHECK(sr::app::actionForKey(Key::Shift) == Action::None);
 }
 
 TEST_CASE("the demo renders on every hardware thread unless --threads says otherwise", "[platform]") {
-    const int all = sr::demo::defaultDemoThreads();
+    const int all = sr::app::defaultDemoThreads();
     CHECK(all >= 1);
-    CHECK(all == std::max(1, std::min(int(std::thread::hardware_concurrency()), sr::demo::kMaxThreads)));
+    CHECK(all == std::max(1, std::min(int(std::thread::hardware_concurrency()), sr::app::kMaxThreads)));
     CHECK(parseCommandLine({}).options.scene.threads == all);
     CHECK(parseCommandLine({"--threads", "1"}).options.scene.threads == 1);
     CHECK(parseCommandLine({"--threads=3"}).options.scene.threads == 3);
@@ -162,11 +162,11 @@ TEST_CASE("the demo renders on every hardware thread unless --threads says other
 }
 
 TEST_CASE("the demo starts at the balanced quality preset; --quality and explicit flags change it", "[platform]") {
-    using sr::demo::Quality;
+    using sr::app::Quality;
     const auto plain = parseCommandLine({});
     REQUIRE(plain.ok);
     CHECK(plain.options.scene.quality == Quality::Balanced);
-    CHECK(plain.options.scene.ssaa == sr::demo::qualitySettings(Quality::Balanced).ssaa);
+    CHECK(plain.options.scene.ssaa == sr::app::qualitySettings(Quality::Balanced).ssaa);
     CHECK(plain.options.scene.ssaa == 4);
     const auto fast = parseCommandLine({"--quality", "fast"});
     REQUIRE(fast.ok);
@@ -184,7 +184,7 @@ TEST_CASE("the demo starts at the balanced quality preset; --quality and explici
     // A window too large for its sample target is not an error (it renders without SSAA).
     CHECK(parseCommandLine({"--width", "8000"}).ok);
     CHECK_FALSE(parseCommandLine({"--width", "8000", "--ssaa", "4"}).ok);
-    CHECK(sr::demo::actionForKey(sr::demo::Key::N) == sr::demo::Action::CycleAntialiasing);
+    CHECK(sr::app::actionForKey(sr::app::Key::N) == sr::app::Action::CycleAntialiasing);
 }
 
 TEST_CASE("the demo starts with shadows in the built-in scene, without in a model; --shadows and --no-shadows win", "[platform]") {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <limits>
 
-#include "Platform/Demo/DemoController.hpp"
+#include "Platform/App/DemoController.hpp"
 
 using namespace sr;
-using namespace sr::demo;
+using namespace sr::app;
 
 namespace {
 

@@ -6,12 +6,12 @@
 #include <limits>
 #include <utility>
 
-#include "Platform/Demo/DemoController.hpp"
-#include "Platform/Demo/DepthView.hpp"
-#include "Platform/Demo/FrameStats.hpp"
+#include "Platform/App/DemoController.hpp"
+#include "Platform/App/DepthView.hpp"
+#include "Platform/App/FrameStats.hpp"
 
 using namespace sr;
-using namespace sr::demo;
+using namespace sr::app;
 
 namespace {
 

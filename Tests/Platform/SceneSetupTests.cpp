@@ -1,8 +1,8 @@
 // Tests of scene setup: splitting a loaded model into per-range meshes (contents, work bounded by the range), and the model's cameras (--camera, the demo's V key).
 #include "TestFramework.hpp"
 
-#include "Platform/Demo/DemoController.hpp"
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/DemoController.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Resources/GltfTestUtil.hpp"
 #include "Resources/ObjTestUtil.hpp"
 
@@ -11,7 +11,7 @@
 #include <vector>
 
 using namespace sr;
-using namespace sr::demo;
+using namespace sr::app;
 
 namespace {
 
@@ -59,7 +59,7 @@ TEST_CASE("appendRange keeps the range's vertices in order of first use; clearRa
 
 // The work of a range is bounded by its size, not the model's: appendRange and clearRange touch
 // only the remap entries of the range's own vertices. Every other entry holds a marker that a reset of
-// the whole array per range (the old quadratic split: R ranges x V vertices) would overwrite.
+// the whole array per range (a quadratic split: R ranges x V vertices) would overwrite.
 TEST_CASE("appendRange and clearRange read and write only the remap entries of the range's vertices",
           "[platform][scene]") {
     const int quads = 500;

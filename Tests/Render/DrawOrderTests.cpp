@@ -3,7 +3,7 @@
 
 #include <string>
 
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/ObjTestUtil.hpp" // Tests/Resources: the OBJ tests' temporary files
 
@@ -40,18 +40,18 @@ TEST_CASE("OBJ draw order: at an exact depth tie the face whose material appears
                               "usemtl red\nf 1/1 2/1 3/1\n"
                               "usemtl green\nf 4/1 5/1 6/1\n"
                               "usemtl red\nf 4/1 5/1 6/1\n");
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.obj = dir + "/tie.obj";
     options.width = 64;
     options.height = 64;
     options.shading = ShadingMode::Unlit;
-    auto scene = demo::loadScene(options);
+    auto scene = app::loadScene(options);
     REQUIRE(scene.ok());
     REQUIRE(scene.value().scene.draws.size() == 2); // one per material, not one per switch (3)
     CHECK(scene.value().scene.draws[0].texture != scene.value().scene.draws[1].texture);
     CHECK(scene.value().scene.draws[0].indexCount == 6); // faces 1 and 3
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light,
+        app::makeFrameView(app::resolveCamera(options, scene.value()), options.width, options.height, options.light,
                             scene.value().lights);
     FrameBuffer fb(options.width, options.height);
     RenderContext ctx(fb);
@@ -59,7 +59,7 @@ TEST_CASE("OBJ draw order: at an exact depth tie the face whose material appears
         INFO(threads << " thread(s)");
         ctx.setThreads(threads);
         ctx.stats = {};
-        demo::renderFrame(ctx, scene.value(), view, demo::makeRenderSettings(options));
+        app::renderFrame(ctx, scene.value(), view, app::makeRenderSettings(options));
         int red = 0, green = 0;
         for (int y = 0; y < fb.height(); ++y)
             for (int x = 0; x < fb.width(); ++x) {

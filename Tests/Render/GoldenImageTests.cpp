@@ -10,7 +10,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Resources/Image.hpp"
 
 using namespace sr;
@@ -33,8 +33,8 @@ constexpr int kWidth = 160, kHeight = 120;
 // the value sits that close to a rounding boundary, and a vertex moved by an ulp changes the
 // coverage of a pixel only when its centre is within ~1e-5 pixel of an edge. Both are rare and
 // local: a handful of pixels, off by 1 (colour), or by an edge's contrast (coverage - hence a
-// budget on the number of differing pixels, not only on the size of the difference). Measured when
-// the goldens were made: glibc, ASan/UBSan and MinGW + Wine all give 0 differing pixels. A
+// budget on the number of differing pixels, not only on the size of the difference). Against these
+// goldens, glibc, ASan/UBSan and MinGW + Wine all give 0 differing pixels. A
 // systematic change (texture orientation, a lighting term, a mode falling back to another, a
 // winding error) moves thousands of pixels by far more than 2 and fails.
 constexpr double kMaxDifferingShare = 0.005;
@@ -46,18 +46,18 @@ std::string goldenPath(ShadingMode mode) {
 }
 
 Image renderDefaultScene(ShadingMode mode) {
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.width = kWidth;
     options.height = kHeight;
     options.shading = mode;
-    auto scene = demo::loadScene(options);
+    auto scene = app::loadScene(options);
     REQUIRE(scene.ok());
-    const demo::CameraSetup camera = demo::resolveCamera(options, scene.value());
-    const FrameView view = demo::makeFrameView(camera, kWidth, kHeight, options.light, scene.value().lights);
-    const RenderSettings settings = demo::makeRenderSettings(options);
+    const app::CameraSetup camera = app::resolveCamera(options, scene.value());
+    const FrameView view = app::makeFrameView(camera, kWidth, kHeight, options.light, scene.value().lights);
+    const RenderSettings settings = app::makeRenderSettings(options);
     FrameBuffer fb(kWidth, kHeight);
     RenderContext ctx(fb);
-    demo::renderFrame(ctx, scene.value(), view, settings);
+    app::renderFrame(ctx, scene.value(), view, settings);
     return toImage(fb);
 }
 

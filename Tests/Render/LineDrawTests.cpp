@@ -1,7 +1,7 @@
 // World-space lines and points (glTF line and point primitives) through renderScene: projection, near-plane clipping, depth test and write, points, multisampling.
 #include "TestFramework.hpp"
 
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/Line.hpp"
 #include "Raster/LineDraw.hpp"
 #include "Raster/Viewport.hpp"
@@ -14,14 +14,14 @@ constexpr int kW = 96, kH = 64;
 const Pixel kBlack = packBgra(0, 0, 0);
 
 FrameView viewFrom(Vec3 eye, Vec3 target) {
-    demo::CameraSetup c;
+    app::CameraSetup c;
     c.eye = eye;
     c.target = target;
     c.up = {0, 1, 0};
     c.fovDegrees = 60.0;
     c.nearZ = 0.5;
     c.farZ = 50.0;
-    return demo::makeFrameView(c, kW, kH, {0, 0, 1}, {});
+    return app::makeFrameView(c, kW, kH, {0, 0, 1}, {});
 }
 
 ScreenVertex project(const FrameView& v, Vec3 p) {

@@ -1,4 +1,4 @@
-// MTL materials end to end (issue 16, item 6): an OBJ's Kd, Ks and Ns through loadScene and
+// MTL materials end to end: an OBJ's Kd, Ks and Ns through loadScene and
 // renderSceneFrame, against colours worked out by hand, under --materials mtl and fixed.
 #include "TestFramework.hpp"
 
@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "Math/Transform.hpp"
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/ObjTestUtil.hpp" // Tests/Resources: the OBJ tests' temporary files
 
@@ -51,7 +51,7 @@ std::string writeMaterialScene() {
 // The centre pixel of a 33 x 33 image looking straight down -Z at quad q from 100 units, the
 // light along +Z: at that pixel N = L = V (to well under 1e-6), so N.L = N.H = 1, diffuse
 // 1.1, and any Ns gives a specular sum of 1: colour = 1.1 kd + ks.
-Pixel centrePixel(const demo::LoadedScene& scene, demo::SceneOptions options, int q) {
+Pixel centrePixel(const app::LoadedScene& scene, app::SceneOptions options, int q) {
     options.width = options.height = 33;
     options.eye = Vec3{2.0f * float(q), 0.0f, 100.0f};
     options.target = Vec3{2.0f * float(q), 0.0f, 0.0f};
@@ -60,10 +60,10 @@ Pixel centrePixel(const demo::LoadedScene& scene, demo::SceneOptions options, in
     options.farZ = 200.0;
     options.light = Vec3{0.0f, 0.0f, 1.0f};
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene), options.width, options.height, options.light, scene.lights);
+        app::makeFrameView(app::resolveCamera(options, scene), options.width, options.height, options.light, scene.lights);
     FrameBuffer fb(options.width, options.height);
     RenderContext ctx(fb);
-    demo::renderFrame(ctx, scene, view, demo::makeRenderSettings(options));
+    app::renderFrame(ctx, scene, view, app::makeRenderSettings(options));
     return fb.pixel(16, 16);
 }
 
@@ -71,13 +71,13 @@ struct Expected {
     int r, g, b;
 };
 
-void checkCases(demo::SceneOptions options, const Expected (&expected)[5]) {
-    auto scene = demo::loadScene(options);
+void checkCases(app::SceneOptions options, const Expected (&expected)[5]) {
+    auto scene = app::loadScene(options);
     REQUIRE(scene.ok());
     REQUIRE(scene.value().scene.draws.size() == 5); // one per material, plus the faces without one
     for (int q = 0; q < 5; ++q) {
         INFO("quad " << "ABCDE"[q] << ", " << shadingModeName(options.shading) << ", materials "
-                     << demo::materialRuleName(options.materials) << ", isa " << isaName(options.isa));
+                     << app::materialRuleName(options.materials) << ", isa " << isaName(options.isa));
         const Pixel p = centrePixel(scene.value(), options, q);
         CHECK(int(pixelR(p)) == expected[q].r);
         CHECK(int(pixelG(p)) == expected[q].g);
@@ -88,7 +88,7 @@ void checkCases(demo::SceneOptions options, const Expected (&expected)[5]) {
 } // namespace
 
 TEST_CASE("MTL Kd, Ks and Ns shade as the reference renderer's --materials mtl", "[render][materials]") {
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.obj = writeMaterialScene();
     options.kd = Color{0.2f, 0.32f, 0.12f, 1.0f}; // faces without a material (E)
     // Lit (N.L = N.H = 1): colour = 1.1 kd + ks, x 255, rounded to nearest:
@@ -114,10 +114,10 @@ TEST_CASE("MTL Kd, Ks and Ns shade as the reference renderer's --materials mtl",
 
 TEST_CASE("--materials fixed ignores the MTL values: kd = --kd or the texel, white ks 0.5, shininess 32",
           "[render][materials]") {
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.obj = writeMaterialScene();
     options.kd = Color{0.2f, 0.32f, 0.12f, 1.0f};
-    options.materials = demo::MaterialRule::Fixed;
+    options.materials = app::MaterialRule::Fixed;
     // Every untextured quad is E's (184, 217, 161); the textured ones are 1.1 x texel + 0.5:
     // 220 + 127.5 -> 255, 100.1 + 127.5 = 227.6 -> 228, 45.1 + 127.5 = 172.6 -> 173.
     const Expected lit[5] = {{184, 217, 161}, {184, 217, 161}, {255, 228, 173}, {255, 228, 173}, {184, 217, 161}};
@@ -132,20 +132,20 @@ TEST_CASE("--materials fixed ignores the MTL values: kd = --kd or the texel, whi
 }
 
 TEST_CASE("--materials parses mtl and fixed; the default is mtl", "[render][materials]") {
-    CHECK(demo::SceneOptions{}.materials == demo::MaterialRule::Mtl);
-    CHECK(demo::parseMaterialRule("mtl") == demo::MaterialRule::Mtl);
-    CHECK(demo::parseMaterialRule("fixed") == demo::MaterialRule::Fixed);
-    CHECK_FALSE(demo::parseMaterialRule("MTL").has_value());
-    CHECK_FALSE(demo::parseMaterialRule("").has_value());
+    CHECK(app::SceneOptions{}.materials == app::MaterialRule::Mtl);
+    CHECK(app::parseMaterialRule("mtl") == app::MaterialRule::Mtl);
+    CHECK(app::parseMaterialRule("fixed") == app::MaterialRule::Fixed);
+    CHECK_FALSE(app::parseMaterialRule("MTL").has_value());
+    CHECK_FALSE(app::parseMaterialRule("").has_value());
     std::vector<std::string> args{"--materials", "fixed"};
     std::size_t i = 0;
-    demo::SceneOptions o;
+    app::SceneOptions o;
     std::string error;
-    CHECK(demo::parseSceneFlag(args, i, o, error) == demo::FlagResult::Consumed);
-    CHECK(o.materials == demo::MaterialRule::Fixed);
+    CHECK(app::parseSceneFlag(args, i, o, error) == app::FlagResult::Consumed);
+    CHECK(o.materials == app::MaterialRule::Fixed);
     args = {"--materials=phong"};
     i = 0;
-    CHECK(demo::parseSceneFlag(args, i, o, error) == demo::FlagResult::Error);
+    CHECK(app::parseSceneFlag(args, i, o, error) == app::FlagResult::Error);
     CHECK(error.find("mtl or fixed") != std::string::npos);
 }
 
@@ -203,10 +203,10 @@ TEST_CASE("a material's own sampler (glTF) sets its draw's wrap and filter unles
 TEST_CASE("--wrap and --filter given on the command line win over a file's samplers; --quality's filter does not",
           "[render][materials][samplers]") {
     auto parse = [](std::vector<std::string> args) {
-        demo::SceneOptions o;
+        app::SceneOptions o;
         std::string error;
-        for (std::size_t i = 0; i < args.size(); ++i) REQUIRE(demo::parseSceneFlag(args, i, o, error) == demo::FlagResult::Consumed);
-        return demo::makeRenderSettings(o);
+        for (std::size_t i = 0; i < args.size(); ++i) REQUIRE(app::parseSceneFlag(args, i, o, error) == app::FlagResult::Consumed);
+        return app::makeRenderSettings(o);
     };
     const RenderSettings none = parse({});
     CHECK(none.wrapFromFile);

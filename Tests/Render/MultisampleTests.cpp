@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "AntialiasTestUtil.hpp"
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/Kernels/Isa.hpp"
 #include "Raster/Line.hpp"
 #include "Raster/Msaa.hpp"
@@ -25,19 +25,19 @@ using namespace sr::test;
 namespace {
 
 // The built-in scene (the demo's) and its auto-fitted view at width x height.
-demo::LoadedScene builtInScene(int width, int height) {
-    demo::SceneOptions options;
+app::LoadedScene builtInScene(int width, int height) {
+    app::SceneOptions options;
     options.width = width;
     options.height = height;
-    auto scene = demo::loadScene(options);
+    auto scene = app::loadScene(options);
     REQUIRE(scene.ok());
     return std::move(scene.value());
 }
-FrameView builtInView(const demo::LoadedScene& scene, int width, int height) {
-    demo::SceneOptions options;
+FrameView builtInView(const app::LoadedScene& scene, int width, int height) {
+    app::SceneOptions options;
     options.width = width;
     options.height = height;
-    return demo::makeFrameView(demo::resolveCamera(options, scene), width, height, options.light, scene.lights);
+    return app::makeFrameView(app::resolveCamera(options, scene), width, height, options.light, scene.lights);
 }
 
 } // namespace
@@ -233,13 +233,13 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
     c3.setThreads(3);
     c3.binningMinTriangles = 0; // every draw binned (the sample rows decide the lanes)
     RenderSettings settings;
-    demo::renderFrame(c0, scene, view, settings); // the plain path
+    app::renderFrame(c0, scene, view, settings); // the plain path
     for (int n : {1, 2, 4, 8, 1}) {
         CAPTURE(n);
         settings.msaa = n;
-        demo::renderFrame(c1, scene, view, settings);
-        demo::renderFrame(c2, scene, view, settings);
-        demo::renderFrame(c3, scene, view, settings);
+        app::renderFrame(c1, scene, view, settings);
+        app::renderFrame(c2, scene, view, settings);
+        app::renderFrame(c3, scene, view, settings);
         CHECK(std::equal(one.colorData(), one.colorData() + 96 * 64, two.colorData()));
         CHECK(std::equal(one.depthData(), one.depthData() + 96 * 64, two.depthData()));
         CHECK(std::equal(one.colorData(), one.colorData() + 96 * 64, three.colorData()));
@@ -268,9 +268,9 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
     // Supersampling wins when both are asked for; no multisample memory then.
     settings.msaa = 4;
     settings.ssaa = 4;
-    demo::renderFrame(c1, scene, view, settings);
+    app::renderFrame(c1, scene, view, settings);
     CHECK(c1.msaa.empty());
-    CHECK(c1.samples.width() == 2 * 96);
+    CHECK(c1.supersampleTarget.width() == 2 * 96);
 }
 
 TEST_CASE("MSAA: every kernel ISA gives the scalar reference's image, for every program and filter", "[msaa]") {
@@ -287,14 +287,14 @@ TEST_CASE("MSAA: every kernel ISA gives the scalar reference's image, for every 
                 settings.isa = Isa::Scalar;
                 FrameBuffer reference(80, 56);
                 RenderContext cr(reference);
-                demo::renderFrame(cr, scene, view, settings);
+                app::renderFrame(cr, scene, view, settings);
                 for (Isa isa : kAllIsas) {
                     if (isa == Isa::Scalar || !isaAvailable(isa)) continue;
                     CAPTURE(shadingModeName(shading), filterName(filter), perspectiveModeName(persp), isaName(isa));
                     settings.isa = isa;
                     FrameBuffer fb(80, 56);
                     RenderContext ctx(fb);
-                    demo::renderFrame(ctx, scene, view, settings);
+                    app::renderFrame(ctx, scene, view, settings);
                     CHECK(std::equal(fb.colorData(), fb.colorData() + 80 * 56, reference.colorData()));
                 }
             }

@@ -1,4 +1,4 @@
-// Shadow maps (issue 17, item 1): a box floating over a floor, lit by one directional light. The
+// Shadow maps: a box floating over a floor, lit by one directional light. The
 // floor's pixels against a ray-cast reference (away from the penumbra), for steep and grazing
 // light directions; no acne on the lit floor; PCF softness growing with the kernel; the memory
 // only while shadows are on.
@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/Shadow.hpp"
 
 using namespace sr;
@@ -57,14 +57,14 @@ Scene boxOverFloor(float lift = 1.0f) {
 }
 
 FrameView viewWith(Vec3 toLight) {
-    demo::CameraSetup c;
+    app::CameraSetup c;
     c.eye = {0, 9, 9};
     c.target = {0, 0, 0};
     c.up = {0, 1, 0};
     c.fovDegrees = 60.0;
     c.nearZ = 0.5;
     c.farZ = 60.0;
-    FrameView v = demo::makeFrameView(c, kW, kH, normalize(toLight), {});
+    FrameView v = app::makeFrameView(c, kW, kH, normalize(toLight), {});
     v.lighting.lights = {Light::directional(normalize(toLight))};
     v.lighting.ambient = 0.1f;
     return v;

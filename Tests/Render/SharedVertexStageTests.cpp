@@ -1,4 +1,4 @@
-// One vertex stage per mesh, shared by its draws inside renderScene (issue 14, item 6): same images, fewer transforms.
+// One vertex stage per mesh, shared by its draws inside renderScene: same images, fewer transforms.
 #include "TestFramework.hpp"
 
 #include <algorithm>
@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "GeneralRenderer.hpp" // opaqueOnly
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/ObjTestUtil.hpp" // Tests/Resources: the OBJ tests' temporary files
 
@@ -37,7 +37,7 @@ Scene splitDraws(const Scene& in, int pieces) {
 }
 
 // The same draws with nothing to share: each draw gets a copy of its mesh of its own, so
-// renderScene transforms the whole mesh once per draw (the behaviour before the shared stage).
+// renderScene transforms the whole mesh once per draw (the reference the shared stage must match).
 Scene meshPerDraw(const Scene& in) {
     Scene out = in;
     out.meshes.clear();
@@ -75,8 +75,8 @@ std::string gridObj(int n, bool alternate) {
     return obj;
 }
 
-demo::SceneOptions smallBuiltIn() {
-    demo::SceneOptions options;
+app::SceneOptions smallBuiltIn() {
+    app::SceneOptions options;
     options.width = 160;
     options.height = 120;
     return options;
@@ -86,8 +86,8 @@ demo::SceneOptions smallBuiltIn() {
 
 TEST_CASE("draws of one mesh share its vertex stage: the same image, the vertices transformed once",
           "[render][vertexshare]") {
-    const demo::SceneOptions options = smallBuiltIn();
-    auto loaded = demo::loadScene(options);
+    const app::SceneOptions options = smallBuiltIn();
+    auto loaded = app::loadScene(options);
     REQUIRE(loaded.ok());
     // Opaque draws only: the transparent pass draws sorted runs of triangles, which may come back
     // to a mesh after another one (and transform it again); the counts below are per draw.
@@ -95,12 +95,12 @@ TEST_CASE("draws of one mesh share its vertex stage: the same image, the vertice
     const Scene split = splitDraws(whole, 8);
     REQUIRE(split.draws.size() > 4 * whole.draws.size()); // the split really made more draws
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, loaded.value()), options.width, options.height, options.light,
+        app::makeFrameView(app::resolveCamera(options, loaded.value()), options.width, options.height, options.light,
                             loaded.value().lights);
     for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
         for (int threads : {1, 2}) {
             INFO(shadingModeName(mode) << ", " << threads << " thread(s)");
-            RenderSettings settings = demo::makeRenderSettings(options);
+            RenderSettings settings = app::makeRenderSettings(options);
             settings.shading = mode;
             FrameBuffer shared(options.width, options.height), alone(options.width, options.height),
                 unsplit(options.width, options.height);
@@ -127,8 +127,8 @@ TEST_CASE("Gouraud draws with different specular constants do not share vertices
     // Gouraud lights per vertex, so its vertex stage reads the material's shininess (and whether
     // it has a specular term at all): a cache shared across a change of either would shade the
     // second draw with the first one's exponent. Phong's vertices do not depend on it.
-    const demo::SceneOptions options = smallBuiltIn();
-    auto loaded = demo::loadScene(options);
+    const app::SceneOptions options = smallBuiltIn();
+    auto loaded = app::loadScene(options);
     REQUIRE(loaded.ok());
     Scene split = splitDraws(test::opaqueOnly(loaded.value().scene), 8); // opaque: one vertex stage per draw at most
     for (std::size_t i = 0; i < split.draws.size(); ++i) {
@@ -137,13 +137,13 @@ TEST_CASE("Gouraud draws with different specular constants do not share vertices
         if (i % 3 == 2) sp.ks = Color{0.0f, 0.0f, 0.0f, 1.0f}; // no specular term
     }
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, loaded.value()), options.width, options.height, options.light,
+        app::makeFrameView(app::resolveCamera(options, loaded.value()), options.width, options.height, options.light,
                             loaded.value().lights);
     std::uint64_t perDraw = 0;
     for (const SceneDraw& d : split.draws) perDraw += split.meshes[std::size_t(d.mesh)].vertexCount();
     for (ShadingMode mode : {ShadingMode::Gouraud, ShadingMode::Phong}) {
         INFO(shadingModeName(mode));
-        RenderSettings settings = demo::makeRenderSettings(options);
+        RenderSettings settings = app::makeRenderSettings(options);
         settings.shading = mode;
         FrameBuffer shared(options.width, options.height), alone(options.width, options.height);
         RenderContext cs(shared), ca(alone);
@@ -160,8 +160,8 @@ TEST_CASE("Gouraud draws with different specular constants do not share vertices
 TEST_CASE("the shared vertex stage never outlives renderScene: a new view is transformed anew", "[render][vertexshare]") {
     // Same context, same scene, same program and viewport, a different camera each frame: were
     // the cache kept across frames, the second frame would be drawn with the first one's vertices.
-    const demo::SceneOptions options = smallBuiltIn();
-    auto loaded = demo::loadScene(options);
+    const app::SceneOptions options = smallBuiltIn();
+    auto loaded = app::loadScene(options);
     REQUIRE(loaded.ok());
     // One mesh only, so that the first draw of a frame meets the cache the last one left.
     Scene split = splitDraws(loaded.value().scene, 4);
@@ -170,14 +170,14 @@ TEST_CASE("the shared vertex stage never outlives renderScene: a new view is tra
                                      [&](const SceneDraw& d) { return d.mesh != firstMesh; }),
                       split.draws.end());
     REQUIRE(split.draws.size() >= 2);
-    demo::CameraSetup camera = demo::resolveCamera(options, loaded.value());
-    const RenderSettings settings = demo::makeRenderSettings(options);
+    app::CameraSetup camera = app::resolveCamera(options, loaded.value());
+    const RenderSettings settings = app::makeRenderSettings(options);
     FrameBuffer fb(options.width, options.height);
     RenderContext ctx(fb);
     for (int frame = 0; frame < 3; ++frame) {
         INFO("frame " << frame);
         camera.eye = camera.eye + Vec3{0.3f, 0.1f * float(frame), -0.2f};
-        const FrameView view = demo::makeFrameView(camera, options.width, options.height, options.light, loaded.value().lights);
+        const FrameView view = app::makeFrameView(camera, options.width, options.height, options.light, loaded.value().lights);
         renderSceneFrame(ctx, split, view, settings);
         FrameBuffer fresh(options.width, options.height);
         RenderContext cf(fresh);
@@ -185,7 +185,7 @@ TEST_CASE("the shared vertex stage never outlives renderScene: a new view is tra
         CHECK(differingPixels(fb, fresh) == 0);
     }
     // Outside renderScene nothing is reused, even for the very same draw twice.
-    const FrameView view = demo::makeFrameView(camera, options.width, options.height, options.light, loaded.value().lights);
+    const FrameView view = app::makeFrameView(camera, options.width, options.height, options.light, loaded.value().lights);
     const SceneDraw& d = split.draws.front();
     const Mesh& mesh = split.meshes[std::size_t(d.mesh)];
     ctx.stats = {};
@@ -206,13 +206,13 @@ TEST_CASE("a model's materials share one mesh: a checkerboard of two materials c
     const int n = 24;
     writeText(dir, "alternate.obj", gridObj(n, true));
     writeText(dir, "one.obj", gridObj(n, false));
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.width = 96;
     options.height = 96;
     options.obj = dir + "/alternate.obj";
-    auto alternate = demo::loadScene(options);
+    auto alternate = app::loadScene(options);
     options.obj = dir + "/one.obj";
-    auto one = demo::loadScene(options);
+    auto one = app::loadScene(options);
     REQUIRE(alternate.ok());
     REQUIRE(one.ok());
     const Scene& sa = alternate.value().scene;
@@ -226,11 +226,11 @@ TEST_CASE("a model's materials share one mesh: a checkerboard of two materials c
     CHECK(sa.triangleCount() == so.triangleCount());
 
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, one.value()), options.width, options.height, options.light,
+        app::makeFrameView(app::resolveCamera(options, one.value()), options.width, options.height, options.light,
                             one.value().lights);
     for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Phong}) {
         INFO(shadingModeName(mode));
-        RenderSettings settings = demo::makeRenderSettings(options);
+        RenderSettings settings = app::makeRenderSettings(options);
         settings.shading = mode;
         FrameBuffer fa(options.width, options.height), fo(options.width, options.height),
             alone(options.width, options.height);

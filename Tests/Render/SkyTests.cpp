@@ -1,4 +1,4 @@
-// The sky (issue 17, item 2): the cube map's orientation (OpenGL's table 8.19) and seamless
+// The sky: the cube map's orientation (OpenGL's table 8.19) and seamless
 // edges, the gradient, and the pass that draws it only where no geometry was drawn.
 #include "TestFramework.hpp"
 
@@ -9,7 +9,7 @@
 #include <random>
 #include <vector>
 
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/Blend.hpp"
 #include "Raster/Msaa.hpp"
 #include "Raster/Sky.hpp"
@@ -48,14 +48,14 @@ Pixel expected(int f, int q) {
 constexpr int kSize = 64;
 
 FrameView lookingAlong(Vec3 forward, Vec3 up) {
-    demo::CameraSetup c;
+    app::CameraSetup c;
     c.eye = {0, 0, 0};
     c.target = forward;
     c.up = up;
     c.fovDegrees = 90.0;
     c.nearZ = 0.1;
     c.farZ = 10.0;
-    return demo::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
+    return app::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
 }
 
 // A red square (side 2, unlit colour) facing +z at z = -3, with opacity `alpha`.
@@ -299,12 +299,12 @@ TEST_CASE("the sky pass's float path agrees with the double reference within one
         gradient.gradient.zenith = {colour(rng), colour(rng), colour(rng), 1.0f};
         gradient.gradient.horizon = {colour(rng), colour(rng), colour(rng), 1.0f};
         gradient.gradient.ground = {colour(rng), colour(rng), colour(rng), 1.0f};
-        demo::CameraSetup c;
+        app::CameraSetup c;
         c.eye = {0, 0, 0};
         c.target = {unit(rng), unit(rng), unit(rng)};
         c.up = {unit(rng), unit(rng), unit(rng)};
         c.fovDegrees = 20.0 + 130.0 * colour(rng);
-        const FrameView view = demo::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
+        const FrameView view = app::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
         for (const Sky* sky : {&gradient, &cube}) {
             INFO("view " << v << (sky == &cube ? " cube" : " gradient"));
             FrameBuffer fb(kSize, kSize);

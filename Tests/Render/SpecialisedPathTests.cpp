@@ -2,7 +2,7 @@
 #include "TestFramework.hpp"
 
 #include "GeneralRenderer.hpp"
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 
 using namespace sr;
 
@@ -10,26 +10,26 @@ TEST_CASE("specialised pipelines render the default scene exactly like the gener
     // Each varying is interpolated independently of how many others a draw carries, and each mode
     // does the same arithmetic in both renderers, so the images must be bit-identical; the
     // specialised ones only skip work (see Tests/Render/Bench/ShadingBench.cpp for the timing).
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.width = 160;
     options.height = 120;
-    auto scene = demo::loadScene(options);
+    auto scene = app::loadScene(options);
     REQUIRE(scene.ok());
     scene.value().scene = test::opaqueOnly(std::move(scene.value().scene)); // the general renderer draws opaque draws only
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light,
+        app::makeFrameView(app::resolveCamera(options, scene.value()), options.width, options.height, options.light,
                             scene.value().lights);
     for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
         for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
             for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear}) {
                 INFO("mode " << shadingModeName(mode) << ", " << perspectiveModeName(persp) << ", " << filterName(filter));
-                RenderSettings settings = demo::makeRenderSettings(options);
+                RenderSettings settings = app::makeRenderSettings(options);
                 settings.shading = mode;
                 settings.perspective = persp;
                 settings.filter = filter;
                 FrameBuffer special(options.width, options.height), general(options.width, options.height);
                 RenderContext cs(special), cg(general);
-                demo::renderFrame(cs, scene.value(), view, settings);
+                app::renderFrame(cs, scene.value(), view, settings);
                 general.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
                 test::renderSceneGeneral(cg, scene.value().scene, view, settings);
                 int differing = 0;
@@ -44,13 +44,13 @@ TEST_CASE("drawMesh renders the same image with every ISA's kernels and with the
     // End to end through drawMesh's per-draw kernel choice, including a non-integer shininess:
     // Phong then falls back to the scalar loop, while flat and Gouraud (lit per triangle / per
     // vertex, outside the kernels) keep their kernels; every image equals the scalar one.
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.width = 160;
     options.height = 120;
-    auto scene = demo::loadScene(options);
+    auto scene = app::loadScene(options);
     REQUIRE(scene.ok());
     FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light,
+        app::makeFrameView(app::resolveCamera(options, scene.value()), options.width, options.height, options.light,
                             scene.value().lights);
     // With the wireframe overlay too: an edge drawn after its triangle's fill must not be covered
     // by fill colours the kernel still had queued (fillSpans defers them; the pipeline flushes
@@ -60,14 +60,14 @@ TEST_CASE("drawMesh renders the same image with every ISA's kernels and with the
         for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
             for (TextureFilter filter : {TextureFilter::Nearest, TextureFilter::Bilinear})
             for (bool wireframe : {false, true}) {
-                RenderSettings settings = demo::makeRenderSettings(options);
+                RenderSettings settings = app::makeRenderSettings(options);
                 settings.shading = mode;
                 settings.filter = filter;
                 settings.wireframe = wireframe;
                 settings.isa = Isa::Scalar;
                 FrameBuffer reference(options.width, options.height);
                 RenderContext cr(reference);
-                demo::renderFrame(cr, scene.value(), view, settings);
+                app::renderFrame(cr, scene.value(), view, settings);
                 for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
                     if (!isaAvailable(isa)) continue;
                     INFO("shininess " << shininess << ", " << shadingModeName(mode) << ", " << filterName(filter) << ", "
@@ -75,7 +75,7 @@ TEST_CASE("drawMesh renders the same image with every ISA's kernels and with the
                     settings.isa = isa;
                     FrameBuffer fb(options.width, options.height);
                     RenderContext c(fb);
-                    demo::renderFrame(c, scene.value(), view, settings);
+                    app::renderFrame(c, scene.value(), view, settings);
                     int differing = 0;
                     for (int y = 0; y < fb.height(); ++y)
                         for (int x = 0; x < fb.width(); ++x) differing += fb.pixel(x, y) != reference.pixel(x, y);

@@ -1,4 +1,4 @@
-// The stencil buffer (issue 17, item 3): OpenGL's test functions and operations on hand-computed
+// The stencil buffer: OpenGL's test functions and operations on hand-computed
 // cases, a draw with the stencil test (the operation each outcome selects, per pixel), and the
 // selection outline that uses it, end to end.
 #include "TestFramework.hpp"
@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/Stencil.hpp"
 
 using namespace sr;
@@ -19,14 +19,14 @@ constexpr int kSize = 64;
 // Looking down -z from the origin, 90 degrees: a square of side 2 at z = -3 spans the middle
 // third of the image (ndc +-1/3: pixels 21.3 .. 42.7).
 FrameView frontView() {
-    demo::CameraSetup c;
+    app::CameraSetup c;
     c.eye = {0, 0, 0};
     c.target = {0, 0, -1};
     c.up = {0, 1, 0};
     c.fovDegrees = 90.0;
     c.nearZ = 0.1;
     c.farZ = 100.0;
-    return demo::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
+    return app::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
 }
 
 // A square facing +z at depth z, half side h.
@@ -216,7 +216,7 @@ TEST_CASE("the selection outline: a band around the picked draw's pixels, throug
             RenderContext ctx(fb);
             ctx.setThreads(threads);
             renderSceneFrame(ctx, scene, view, outlined);
-            CHECK((ssaa > 1 ? ctx.samples : fb).hasStencil());
+            CHECK((ssaa > 1 ? ctx.supersampleTarget : fb).hasStencil());
             int band = 0, wrong = 0;
             const Pixel green = packBgra(0, 255, 0);
             for (int y = 0; y < kSize; ++y)
@@ -243,7 +243,7 @@ TEST_CASE("the selection outline: a band around the picked draw's pixels, throug
                 for (int x = 0; x < kSize; ++x) differing += fb.pixel(x, y) != plain.pixel(x, y);
             CHECK(differing == 0);
             CHECK(!fb.hasStencil());
-            CHECK(!ctx.samples.hasStencil());
+            CHECK(!ctx.supersampleTarget.hasStencil());
         }
     }
 }

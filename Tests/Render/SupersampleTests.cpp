@@ -10,7 +10,7 @@
 
 #include "Raster/RenderContext.hpp"
 #include "Raster/Resolve.hpp"
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/Scene.hpp"
 #include "AntialiasTestUtil.hpp"
 
@@ -106,8 +106,8 @@ TEST_CASE("SSAA: the same image on every thread count; sample memory only while 
         CHECK(std::equal(one.colorData(), one.colorData() + 64 * 48, two.colorData()));
         CHECK(std::equal(one.depthData(), one.depthData() + 64 * 48, two.depthData()));
         const int f = ssaaFactor(ssaa);
-        CHECK(c1.samples.width() == (f > 1 ? 64 * f : 0));
-        CHECK(c1.samples.height() == (f > 1 ? 48 * f : 0));
+        CHECK(c1.supersampleTarget.width() == (f > 1 ? 64 * f : 0));
+        CHECK(c1.supersampleTarget.height() == (f > 1 ? 48 * f : 0));
         CHECK(&c1.target() == &one); // the output target is restored
     }
     // A sample target above FrameBuffer::kMaxDimension: drawn without SSAA, reported.
@@ -115,7 +115,7 @@ TEST_CASE("SSAA: the same image on every thread count; sample memory only while 
     RenderContext cw(wide);
     settings.ssaa = 4;
     CHECK_FALSE(renderSceneFrame(cw, scene, view, settings));
-    CHECK(cw.samples.empty());
+    CHECK(cw.supersampleTarget.empty());
 }
 
 TEST_CASE("SSAA: wireframe edges keep their weight after the resolve (k-sample-wide lines)", "[ssaa]") {
@@ -154,21 +154,21 @@ TEST_CASE("SSAA: wireframe edges keep their weight after the resolve (k-sample-w
 TEST_CASE("SSAA 16 of the built-in scene equals its 4x render, box-filtered by hand", "[ssaa]") {
     // The whole path (sample target, viewport, clear, texture LOD at the sample rate, resolve)
     // against the plain renderer at 4x the size and a box filter written out here.
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.width = 64;
     options.height = 40;
-    auto scene = demo::loadScene(options);
+    auto scene = app::loadScene(options);
     REQUIRE(scene.ok());
-    const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene.value()), 64, 40, options.light, scene.value().lights);
+    const FrameView view = app::makeFrameView(app::resolveCamera(options, scene.value()), 64, 40, options.light, scene.value().lights);
     for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear}) {
         CAPTURE(filterName(filter));
         RenderSettings settings;
         settings.filter = filter;
         FrameBuffer big(256, 160), aa(64, 40);
         RenderContext cBig(big), cAa(aa);
-        demo::renderFrame(cBig, scene.value(), view, settings);
+        app::renderFrame(cBig, scene.value(), view, settings);
         settings.ssaa = 16;
-        demo::renderFrame(cAa, scene.value(), view, settings);
+        app::renderFrame(cAa, scene.value(), view, settings);
         int differing = 0;
         for (int y = 0; y < 40; ++y)
             for (int x = 0; x < 64; ++x) {

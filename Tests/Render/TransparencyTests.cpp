@@ -1,11 +1,11 @@
-// Transparency (issue 16, item 3): "over" blending with a constant opacity, transparent triangles after the opaque ones, back to front, depth tested but not written; texel alpha (MASK, BLEND).
+// Transparency: "over" blending with a constant opacity, transparent triangles after the opaque ones, back to front, depth tested but not written; texel alpha (MASK, BLEND).
 #include "TestFramework.hpp"
 
 #include <cstdint>
 #include <string>
 #include <vector>
 
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/Blend.hpp"
 #include "Resources/ObjTestUtil.hpp" // Tests/Resources: the OBJ tests' temporary files
 
@@ -44,14 +44,14 @@ Scene layered() {
 constexpr int kSize = 64;
 
 FrameView topView() {
-    demo::CameraSetup c;
+    app::CameraSetup c;
     c.eye = {0, 0, 4};
     c.target = {0, 0, 0};
     c.up = {0, 1, 0};
     c.fovDegrees = 60.0;
     c.nearZ = 0.5;
     c.farZ = 20.0;
-    return demo::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
+    return app::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
 }
 
 // The pixel over world point (x, y) at depth z, as the view projects it.
@@ -148,13 +148,13 @@ TEST_CASE("the back-to-front order follows the view, not the file", "[render][tr
     settings.shading = ShadingMode::Unlit;
     for (const float side : {1.0f, -1.0f}) {
         INFO("eye on the " << (side > 0 ? "+z" : "-z") << " side");
-        demo::CameraSetup c;
+        app::CameraSetup c;
         c.eye = {0, 0, 4 * side - 0.5f};
         c.target = {0, 0, -0.5f};
         c.up = {0, 1, 0};
         c.nearZ = 0.5;
         c.farZ = 20.0;
-        const FrameView view = demo::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
+        const FrameView view = app::makeFrameView(c, kSize, kSize, {0, 0, 1}, {});
         FrameBuffer fb(kSize, kSize);
         RenderContext ctx(fb);
         renderSceneFrame(ctx, s, view, settings);
@@ -172,16 +172,16 @@ TEST_CASE("opacity from the files: MTL d and Tr, glTF BLEND and MASK; --material
     writeText(dir, "m.mtl", "newmtl half\nKd 1 0 0\nd 0.5\nnewmtl tr\nKd 0 1 0\nTr 0.25\nnewmtl solid\nKd 0 0 1\n");
     writeText(dir, "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl half\nf 1 2 3\nusemtl tr\nf 1 3 2\n"
                             "usemtl solid\nf 2 1 3\n");
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.obj = dir + "/m.obj";
-    auto scene = demo::loadScene(options);
+    auto scene = app::loadScene(options);
     REQUIRE(scene.ok());
     REQUIRE(scene.value().scene.draws.size() == 3);
     CHECK(scene.value().scene.draws[0].alpha == 0.5f);
     CHECK(scene.value().scene.draws[1].alpha == 0.75f); // Tr = 1 - d
     CHECK(scene.value().scene.draws[2].alpha == 1.0f);
-    options.materials = demo::MaterialRule::Fixed;
-    auto fixed = demo::loadScene(options);
+    options.materials = app::MaterialRule::Fixed;
+    auto fixed = app::loadScene(options);
     REQUIRE(fixed.ok());
     for (const SceneDraw& d : fixed.value().scene.draws) CHECK(d.alpha == 1.0f);
 
@@ -198,8 +198,8 @@ TEST_CASE("opacity from the files: MTL d and Tr, glTF BLEND and MASK; --material
         "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36}],"
         "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"}]}";
     options.obj = writeText(dir, "alpha.gltf", json);
-    options.materials = demo::MaterialRule::Mtl;
-    auto gltf = demo::loadScene(options);
+    options.materials = app::MaterialRule::Mtl;
+    auto gltf = app::loadScene(options);
     REQUIRE(gltf.ok());
     REQUIRE(gltf.value().scene.draws.size() == 2); // the MASK material below its cutoff is not drawn
     CHECK(gltf.value().scene.draws[0].alpha == 0.3f);

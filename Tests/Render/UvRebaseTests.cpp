@@ -1,4 +1,4 @@
-// Texture coordinates far from 0 (issue 14): a receding textured wall renders the same picture
+// Texture coordinates far from 0: a receding textured wall renders the same picture
 // whatever whole number of periods its uvs are offset by, on the scalar loop and every kernel ISA.
 #include "TestFramework.hpp"
 

@@ -765,7 +765,7 @@ TEST_CASE("glTF files of assimp-testmodels: each loads or fails in one line; the
     for (const auto& entry : std::filesystem::recursive_directory_iterator(kAssimpGltf)) {
         const std::string path = entry.path().string();
         if (!isGltfPath(path)) continue;
-        ObjOptions options;
+        LoadOptions options;
         options.loadTextures = false;
         auto r = loadGltf(path, options);
         INFO(path << ": " << (r.ok() ? "loaded" : r.error()));
@@ -810,7 +810,7 @@ TEST_CASE("glTF world-space triangles equal assimp's OBJ export of the same file
         REQUIRE(std::filesystem::exists(path));
         const std::string obj = dir + "/export" + std::to_string(compared) + ".obj";
         REQUIRE(std::system(("assimp export '" + path + "' '" + obj + "' >/dev/null 2>&1").c_str()) == 0);
-        ObjOptions options;
+        LoadOptions options;
         options.loadTextures = false;
         auto ours = loadGltf(path, options);
         auto theirs = loadObj(obj, options);
@@ -864,7 +864,7 @@ TEST_CASE("glTF-Asset-Generator's Mesh_PrimitiveMode set: every mode equals assi
         INFO(path);
         REQUIRE(std::filesystem::exists(path));
         REQUIRE(std::system(("assimp export '" + path + "' '" + obj + "' >/dev/null 2>&1").c_str()) == 0);
-        ObjOptions options;
+        LoadOptions options;
         options.loadTextures = false;
         auto ours = loadGltf(path, options);
         REQUIRE(ours.ok());

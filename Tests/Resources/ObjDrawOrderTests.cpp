@@ -55,7 +55,7 @@ int quadOf(const Mesh& m, std::size_t triangle, int n) {
 
 TEST_CASE("OBJ alternating-material grid: one draw range per material, not one per switch", "[resources][obj][ranges]") {
     // 16 x 16 quads, a material switch before every quad (255 switches): the ranges must not
-    // follow the switches (the quadratic old behaviour made 256 ranges of 2 triangles here).
+    // follow the switches (a range per switch would make 256 ranges of 2 triangles here).
     const int n = 16;
     const std::string dir = freshDir("grid-ranges");
     auto alt = loadObj(writeGrid(dir, n, true));

@@ -17,7 +17,7 @@ namespace {
 const char* kTri = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
 
 // Loads `text` written as `name` and returns the error (failing the test if it loaded).
-std::string errorOf(const std::string& dir, const std::string& name, const std::string& text, const ObjOptions& o = {}) {
+std::string errorOf(const std::string& dir, const std::string& name, const std::string& text, const LoadOptions& o = {}) {
     const std::string path = writeText(dir, name, text);
     auto r = loadObj(path, o);
     REQUIRE_FALSE(r.ok());
@@ -107,7 +107,7 @@ TEST_CASE("OBJ non-finite or overflowing coordinates name the vertex and line", 
 
 TEST_CASE("OBJ limits: counts, polygon size and memory estimate are clear errors", "[resources][obj]") {
     const std::string dir = freshDir("errors-limits");
-    ObjOptions o;
+    LoadOptions o;
     o.limits.maxVertices = 3;
     CHECK(contains(errorOf(dir, "v.obj", std::string(kTri) + "v 1 1 1\nf 1 2 3\n", o), "v.obj:4: more than 3 vertex entries"));
     o = {};

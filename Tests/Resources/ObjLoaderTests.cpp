@@ -243,7 +243,7 @@ TEST_CASE("OBJ texture override replaces every material, even for faces without 
     writeText(dir, "m.mtl", "newmtl A\nmap_Kd missing.png\n");
     const std::string obj = writeText(dir, "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\n"
                                                     "f 1/1 2/1 3/1\nusemtl A\nf 1/1 3/1 2/1\n");
-    ObjOptions o;
+    LoadOptions o;
     o.textureOverride = dir + "/over.png";
     auto r = loadObj(obj, o);
     REQUIRE(r.ok());
@@ -278,7 +278,7 @@ TEST_CASE("OBJ texture override replaces every material, even for faces without 
 TEST_CASE("OBJ loadTextures=false keeps texture slots but decodes nothing", "[resources][obj]") {
     const std::string dir = freshDir("no-decode");
     writeText(dir, "m.mtl", "newmtl A\nmap_Kd a.png\n");
-    ObjOptions o;
+    LoadOptions o;
     o.loadTextures = false;
     auto r = loadObj(writeText(dir, "m.obj", "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nusemtl A\nf 1/1 2/1 3/1\n"), o);
     REQUIRE(r.ok());

@@ -8,7 +8,7 @@
 #include <utility>
 #include <vector>
 
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/Pipeline.hpp"
 #include "Raster/ThreadPool.hpp"
 
@@ -40,12 +40,12 @@ std::size_t differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
 
 // binMin: RenderContext::binningMinTriangles (0: every draw on several lanes binned); weights:
 // the lanes' bands fixed to these weights (LaneBalance::fix) instead of adapting.
-Frame renderDefault(const demo::SceneOptions& options, int threads, const RenderSettings& settings,
+Frame renderDefault(const app::SceneOptions& options, int threads, const RenderSettings& settings,
                     std::size_t binMin = kBinningMinTriangles, const std::vector<int>& weights = {}) {
-    static auto scene = demo::loadScene(demo::SceneOptions{});
+    static auto scene = app::loadScene(app::SceneOptions{});
     REQUIRE(scene.ok());
     const FrameView view =
-        demo::makeFrameView(demo::resolveCamera(options, scene.value()), options.width, options.height, options.light,
+        app::makeFrameView(app::resolveCamera(options, scene.value()), options.width, options.height, options.light,
                             scene.value().lights);
     Frame f{FrameBuffer(options.width, options.height), {}};
     RenderContext ctx(f.fb);
@@ -53,8 +53,8 @@ Frame renderDefault(const demo::SceneOptions& options, int threads, const Render
     ctx.binningMinTriangles = binMin;
     if (!weights.empty()) ctx.laneBalance.fix(weights.data(), threads);
     REQUIRE(ctx.threads() == std::max(threads, 1));
-    demo::renderFrame(ctx, scene.value(), view, settings);
-    demo::renderFrame(ctx, scene.value(), view, settings); // a second frame reuses every buffer
+    app::renderFrame(ctx, scene.value(), view, settings);
+    app::renderFrame(ctx, scene.value(), view, settings); // a second frame reuses every buffer
     f.stats = ctx.stats;
     return f;
 }
@@ -178,14 +178,14 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
         {5, 3, ShadingMode::Gouraud, CullMode::None, PerspectiveMode::Exact, TextureFilter::Bilinear},
     };
     for (const Case& c : cases) {
-        demo::SceneOptions options;
+        app::SceneOptions options;
         options.width = c.width;
         options.height = c.height;
         options.shading = c.shading;
         options.cull = c.cull;
         options.perspective = c.persp;
         options.filter = c.filter;
-        const RenderSettings settings = demo::makeRenderSettings(options);
+        const RenderSettings settings = app::makeRenderSettings(options);
         const Frame one = renderDefault(options, 1, settings);
         for (int threads : {2, 3, 4, 7}) {
             INFO(c.width << "x" << c.height << " " << shadingModeName(c.shading) << " cull " << cullModeName(c.cull)
@@ -282,11 +282,11 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
 }
 
 TEST_CASE("wireframe falls back to one lane and still matches", "[threads]") {
-    demo::SceneOptions options;
+    app::SceneOptions options;
     options.width = 120;
     options.height = 90;
     options.wireframe = true;
-    const RenderSettings settings = demo::makeRenderSettings(options);
+    const RenderSettings settings = app::makeRenderSettings(options);
     const Frame one = renderDefault(options, 1, settings);
     const Frame two = renderDefault(options, 2, settings);
     CHECK(differingPixels(one.fb, two.fb) == 0);

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "../GeneralRenderer.hpp"
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/SceneSetup.hpp"
 
 using namespace sr;
 
@@ -28,21 +28,21 @@ double medianOf(std::vector<double> v) {
 
 int main(int argc, char** argv) {
     const int frames = argc > 1 ? std::max(1, std::atoi(argv[1])) : 60;
-    demo::SceneOptions options;
+    app::SceneOptions options;
     if (argc > 3) {
         options.width = std::clamp(std::atoi(argv[2]), 1, FrameBuffer::kMaxDimension);
         options.height = std::clamp(std::atoi(argv[3]), 1, FrameBuffer::kMaxDimension);
     }
     constexpr int kWarmup = 5;
 
-    auto loaded = demo::loadScene(options);
+    auto loaded = app::loadScene(options);
     if (!loaded.ok()) {
         std::fprintf(stderr, "sr_shading_bench: %s\n", loaded.error().c_str());
         return 1;
     }
     loaded.value().scene = test::opaqueOnly(std::move(loaded.value().scene)); // the general renderer's scenes
-    const demo::LoadedScene& scene = loaded.value();
-    const FrameView view = demo::makeFrameView(demo::resolveCamera(options, scene), options.width, options.height,
+    const app::LoadedScene& scene = loaded.value();
+    const FrameView view = app::makeFrameView(app::resolveCamera(options, scene), options.width, options.height,
                                                options.light, scene.lights);
     FrameBuffer special(options.width, options.height), general(options.width, options.height);
     RenderContext cs(special), cg(general);
@@ -59,9 +59,9 @@ int main(int argc, char** argv) {
     const char* varyings[] = {"0/2", "0/2", "6/8", "6/8"};
     int m = 0;
     for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong}) {
-        RenderSettings settings = demo::makeRenderSettings(options);
+        RenderSettings settings = app::makeRenderSettings(options);
         settings.shading = mode;
-        auto drawSpecial = [&] { demo::renderFrame(cs, scene, view, settings); };
+        auto drawSpecial = [&] { app::renderFrame(cs, scene, view, settings); };
         auto drawGeneral = [&] {
             general.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
             test::renderSceneGeneral(cg, scene.scene, view, settings,

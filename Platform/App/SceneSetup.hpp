@@ -1,4 +1,4 @@
-// From scene flags to something to draw: load the scene (built-in or OBJ), resolve the camera
+// From scene flags to something to draw: load the scene (built-in, OBJ or glTF), resolve the camera
 // (the reference renderer's auto-fit rule), and build the frame view and render settings.
 #pragma once
 
@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "Platform/Demo/SceneOptions.hpp"
+#include "Platform/App/SceneOptions.hpp"
 #include "Raster/RenderSettings.hpp"
 #include "Raster/Scene.hpp"
 #include "Resources/Result.hpp"
 
-namespace sr::demo {
+namespace sr::app {
 
 struct CameraSetup {
     Vec3 eye, target, up;
@@ -89,4 +89,4 @@ RenderSettings makeRenderSettings(const SceneOptions& options);
 // when settings.ssaa > 1 (renderSceneFrame).
 void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& view, const RenderSettings& settings);
 
-} // namespace sr::demo
+} // namespace sr::app

@@ -19,7 +19,7 @@
 #include "Raster/Texture.hpp"
 #include "Raster/PipelineModes.hpp" // PerspectiveMode
 
-namespace sr::demo {
+namespace sr::app {
 
 // Three points on the speed/accuracy front that `softraster report` measures (docs/reports),
 // selected by --quality on the command line and in the demo. Explicit --ssaa, --msaa, --filter,
@@ -45,8 +45,8 @@ std::optional<Quality> parseQuality(const std::string& text);
 // How an OBJ's MTL values are used (the reference renderer's --materials). Mtl: kd = Kd (times
 // the texel when textured; a textured material with a black Kd counts as Kd 1), ks = Ks,
 // shininess = Ns, no specular term when Ks is black or Ns <= 0, opacity = d (1 - Tr). Fixed:
-// every material is kd = --kd or the texel alone, white ks 0.5, shininess 32, opaque (the rule
-// before MTL values were read). glTF materials (GltfLoader.hpp) follow the same two rules.
+// every material is kd = --kd or the texel alone, white ks 0.5, shininess 32, opaque. glTF
+// materials (GltfLoader.hpp) follow the same two rules.
 // Faces without a material use the fixed values under both.
 enum class MaterialRule { Mtl, Fixed };
 const char* materialRuleName(MaterialRule rule);
@@ -119,4 +119,4 @@ std::string sceneFlagsHelp();
 // Parses "x,y,z" (three finite numbers) - the reference renderer's vector syntax.
 std::optional<Vec3> parseVec3(const std::string& text);
 
-} // namespace sr::demo
+} // namespace sr::app

@@ -1,5 +1,5 @@
-// Scene loading (built-in or OBJ), the auto-fit camera and the per-frame view.
-#include "Platform/Demo/SceneSetup.hpp"
+// Scene loading (built-in, OBJ or glTF), the auto-fit camera and the per-frame view.
+#include "Platform/App/SceneSetup.hpp"
 
 #include <algorithm>
 #include <cassert>
@@ -10,13 +10,14 @@
 
 #include "Math/Conventions.hpp"
 #include "Math/DoubleMath.hpp"
+#include "Math/Transform.hpp"
 #include "Raster/Camera.hpp"
 #include "Resources/DefaultScene.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/GltfLoader.hpp"
 #include "Resources/Skybox.hpp"
 
-namespace sr::demo {
+namespace sr::app {
 namespace {
 
 // Splits a model into at most two compact meshes: the vertices of its textured ranges and those
@@ -105,42 +106,6 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
     return scene;
 }
 
-// gluLookAt in double (right-handed, looking down -Z).
-Mat4d lookAtD(Vec3 eye, Vec3 target, Vec3 up) {
-    auto norm = [](Vec3d v) {
-        const double l = length(v);
-        return l > 0 ? v / l : v;
-    };
-    const Vec3d e(eye);
-    const Vec3d f = norm(Vec3d(target) - e);
-    const Vec3d s = norm(cross(f, Vec3d(up)));
-    const Vec3d u = cross(s, f);
-    Mat4d v;
-    const Vec3d rows[3] = {s, u, f * -1.0};
-    for (int r = 0; r < 3; ++r) {
-        v.m[r][0] = rows[r].x;
-        v.m[r][1] = rows[r].y;
-        v.m[r][2] = rows[r].z;
-    }
-    v.m[0][3] = -dot(s, e);
-    v.m[1][3] = -dot(u, e);
-    v.m[2][3] = dot(f, e);
-    v.m[3][3] = 1.0;
-    return v;
-}
-
-// Reversed-Z perspective (Math/Transform.hpp's formula) in double; far may be +infinity.
-Mat4d perspectiveD(double fovDeg, double aspect, double n, double f) {
-    const double cot = 1.0 / std::tan(fovDeg * kPiD / 360.0);
-    Mat4d p;
-    p.m[0][0] = cot / aspect;
-    p.m[1][1] = cot;
-    p.m[2][2] = std::isinf(f) ? 0.0 : n / (f - n);
-    p.m[2][3] = std::isinf(f) ? n : f * n / (f - n);
-    p.m[3][2] = -1.0;
-    return p;
-}
-
 std::string formatVec(Vec3 v) {
     char buf[96];
     std::snprintf(buf, sizeof buf, "%.9g,%.9g,%.9g", double(v.x), double(v.y), double(v.z));
@@ -197,9 +162,9 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         out.description = "built-in scene: " + std::to_string(out.scene.triangleCount()) + " triangles";
         out.lights = {keyLight(options.light), defaultSceneFillLight()};
     } else {
-        ObjOptions objOptions;
-        objOptions.textureOverride = options.texture;
-        auto model = loadModel(options.obj, objOptions); // .gltf / .glb or OBJ
+        LoadOptions loadOptions;
+        loadOptions.textureOverride = options.texture;
+        auto model = loadModel(options.obj, loadOptions); // .gltf / .glb or OBJ
         if (!model) return Result<LoadedScene>::failure(model.error());
         Model& m = model.value();
         out.warnings = m.warnings;
@@ -325,26 +290,21 @@ FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light,
     // As Camera::setNearFar: near clamped into Camera's range, a far not beyond it is infinite.
     const double nearZ = usableNear(c.nearZ);
     const double farZ = c.farZ > nearZ ? c.farZ : std::numeric_limits<double>::infinity();
-    const Mat4d mvp = perspectiveD(c.fovDegrees, aspect, nearZ, farZ) * lookAtD(c.eye, c.target, c.up);
+    const Mat4d view = lookAtD(c.eye, c.target, c.up);
+    const Mat4d mvp = perspectiveD(c.fovDegrees * kPiD / 180.0, aspect, nearZ, farZ) * view;
     FrameView v;
     for (int r = 0; r < 4; ++r)
         for (int col = 0; col < 4; ++col) v.viewProj(r, col) = float(mvp.m[r][col]);
     v.eye = c.eye;
     v.finiteFar = !std::isinf(farZ);
-    // The eye rays for the sky: lookAtD's basis, scaled to the frustum's half extents (vertical
-    // fov, the image's aspect).
+    // The eye rays for the sky: the view's basis (its rows are side, up and -forward), scaled to
+    // the frustum's half extents (vertical fov, the image's aspect).
     {
-        auto norm = [](Vec3d d) {
-            const double l = length(d);
-            return l > 0 ? d / l : d;
-        };
-        const Vec3d f = norm(Vec3d(c.target) - Vec3d(c.eye));
-        const Vec3d s = norm(cross(f, Vec3d(c.up)));
-        const Vec3d u = cross(s, f);
-        const double ty = std::tan(c.fovDegrees * 3.14159265358979323846 / 360.0), tx = ty * aspect;
-        v.rays.forward = Vec3(float(f.x), float(f.y), float(f.z));
-        v.rays.right = Vec3(float(s.x * tx), float(s.y * tx), float(s.z * tx));
-        v.rays.up = Vec3(float(u.x * ty), float(u.y * ty), float(u.z * ty));
+        const double ty = std::tan(c.fovDegrees * kPiD / 360.0), tx = ty * aspect;
+        const double(&m)[4][4] = view.m;
+        v.rays.forward = Vec3(float(-m[2][0]), float(-m[2][1]), float(-m[2][2]));
+        v.rays.right = Vec3(float(m[0][0] * tx), float(m[0][1] * tx), float(m[0][2] * tx));
+        v.rays.up = Vec3(float(m[1][0] * ty), float(m[1][1] * ty), float(m[1][2] * ty));
     }
     v.lighting.physical = physical;
     if (physical) v.lighting.ambient = 0.0f;
@@ -389,4 +349,4 @@ void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& 
     renderSceneFrame(ctx, scene.scene, view, settings, texture);
 }
 
-} // namespace sr::demo
+} // namespace sr::app

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "Platform/Demo/SceneOptions.hpp"
+#include "Platform/App/SceneOptions.hpp"
 
-namespace sr::demo {
+namespace sr::app {
 
 // Process exit codes shared by every front end.
 inline constexpr int kExitOk = 0;
@@ -52,4 +52,4 @@ ParseResult parseCommandLine(const std::vector<std::string>& args);
 // The usage text shown by --help and after an error (lines end in '\n'): flags and keys.
 std::string usageText(const std::string& programName);
 
-} // namespace sr::demo
+} // namespace sr::app

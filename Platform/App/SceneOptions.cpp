@@ -1,5 +1,5 @@
 // Parsing and validation of the scene and quality flags.
-#include "Platform/Demo/SceneOptions.hpp"
+#include "Platform/App/SceneOptions.hpp"
 
 #include <cerrno>
 #include <cmath>
@@ -10,7 +10,7 @@
 #include "Raster/Msaa.hpp"
 #include "Raster/Resolve.hpp"
 
-namespace sr::demo {
+namespace sr::app {
 namespace {
 
 std::optional<double> parseNumber(const std::string& text) {
@@ -361,4 +361,4 @@ std::string sceneFlagsHelp() {
            "                        opaque draw at the image centre; not drawn with --msaa\n";
 }
 
-} // namespace sr::demo
+} // namespace sr::app

@@ -1,11 +1,11 @@
 // Actions -> camera and toggles: the fly camera's frame-time-scaled motion and the mode cycles.
-#include "Platform/Demo/DemoController.hpp"
+#include "Platform/App/DemoController.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-namespace sr::demo {
+namespace sr::app {
 
 namespace {
 
@@ -197,4 +197,4 @@ std::string DemoController::modeSummary() const {
     return s;
 }
 
-} // namespace sr::demo
+} // namespace sr::app

@@ -7,12 +7,12 @@
 #include <string>
 #include <vector>
 
-#include "Platform/Demo/Input.hpp"
-#include "Platform/Demo/SceneSetup.hpp"
+#include "Platform/App/Input.hpp"
+#include "Platform/App/SceneSetup.hpp"
 #include "Raster/Camera.hpp"
 #include "Raster/RenderSettings.hpp"
 
-namespace sr::demo {
+namespace sr::app {
 
 // How fast the camera flies and turns. Every rate is per SECOND and scaled by the frame time,
 // so the demo feels the same at 30 and at 300 fps.
@@ -109,4 +109,4 @@ private:
     float axis(Key positive, Key negative) const { return float(held(positive)) - float(held(negative)); }
 };
 
-} // namespace sr::demo
+} // namespace sr::app

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <string>
 
-namespace sr::demo {
+namespace sr::app {
 
 // Averages frame times over `period` seconds, so the title changes a few times per second
 // instead of flickering every frame.
@@ -44,4 +44,4 @@ std::string withThousands(std::uint64_t value);
 std::string windowTitle(const FrameStats& stats, int threads, std::uint64_t triangles, const std::string& modes,
                         const std::string& status = {});
 
-} // namespace sr::demo
+} // namespace sr::app

@@ -1,10 +1,10 @@
 // Frame-time averaging and the title-bar text.
-#include "Platform/Demo/FrameStats.hpp"
+#include "Platform/App/FrameStats.hpp"
 
 #include <cmath>
 #include <cstdio>
 
-namespace sr::demo {
+namespace sr::app {
 
 bool FrameStats::addFrame(double seconds) {
     accumulated_ += (std::isfinite(seconds) && seconds > 0.0) ? seconds : 0.0;
@@ -58,4 +58,4 @@ std::string windowTitle(const FrameStats& stats, int threads, std::uint64_t tria
     return title;
 }
 
-} // namespace sr::demo
+} // namespace sr::app

@@ -1,5 +1,5 @@
 // Depth buffer -> grey (log scale) and screenshot naming / writing.
-#include "Platform/Demo/DepthView.hpp"
+#include "Platform/App/DepthView.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 
 #include "Resources/Image.hpp"
 
-namespace sr::demo {
+namespace sr::app {
 
 void depthToGrey(FrameBuffer& fb) {
     if (fb.empty())
@@ -56,4 +56,4 @@ Status saveScreenshot(const FrameBuffer& fb, const std::string& utf8Path) {
     return writeImage(utf8Path, toImage(fb));
 }
 
-} // namespace sr::demo
+} // namespace sr::app

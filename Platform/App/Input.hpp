@@ -3,7 +3,7 @@
 
 #include <array>
 
-namespace sr::demo {
+namespace sr::app {
 
 // Keys the demo reacts to; the platform maps its virtual-key codes here (Unknown otherwise).
 // Count is not a key: it sizes per-key tables.
@@ -91,4 +91,4 @@ inline constexpr std::array<KeyHelp, 20> kKeyHelp{{
     {"Esc", "quit"},
 }};
 
-} // namespace sr::demo
+} // namespace sr::app

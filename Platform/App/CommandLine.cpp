@@ -1,13 +1,13 @@
 // Command-line parsing of the demo program: strict, with messages that name the bad value.
-#include "Platform/Demo/CommandLine.hpp"
+#include "Platform/App/CommandLine.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <thread>
 
-#include "Platform/Demo/Input.hpp"
+#include "Platform/App/Input.hpp"
 
-namespace sr::demo {
+namespace sr::app {
 
 namespace {
 
@@ -158,4 +158,4 @@ std::string usageText(const std::string& programName) {
     return text;
 }
 
-} // namespace sr::demo
+} // namespace sr::app

@@ -8,7 +8,7 @@
 #include "Raster/FrameBuffer.hpp"
 #include "Resources/Result.hpp"
 
-namespace sr::demo {
+namespace sr::app {
 
 // Overwrites fb's colour with a grey picture of its depth buffer. Reversed-Z stores d in (0, 1]
 // with d = 0 the cleared background (infinitely far); with a perspective projection d is
@@ -26,4 +26,4 @@ std::string screenshotName(const std::tm& when, int counter);
 // Writes fb's colour as an image (format by the extension: .png, .bmp, .ppm) to a UTF-8 path.
 Status saveScreenshot(const FrameBuffer& fb, const std::string& utf8Path);
 
-} // namespace sr::demo
+} // namespace sr::app
