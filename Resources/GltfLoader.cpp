@@ -490,6 +490,64 @@ void addTangents(Mesh& mesh, std::uint32_t base, const std::vector<std::uint32_t
     }
 }
 
+// KHR_texture_transform of one texture reference, as the 2x3 matrix uv' = M (u, v, 1) in glTF's
+// uv space (v down the image): translation x rotation x scale, the extension's order. `found`:
+// the reference carries the extension.
+struct UvTransform {
+    double m[2][3] = {{1, 0, 0}, {0, 1, 0}};
+    bool found = false;
+    bool operator==(const UvTransform& o) const {
+        for (int r = 0; r < 2; ++r)
+            for (int c = 0; c < 3; ++c)
+                if (m[r][c] != o.m[r][c]) return false;
+        return true;
+    }
+};
+UvTransform uvTransformOf(const tinygltf::ExtensionMap& extensions) {
+    UvTransform t;
+    const auto ext = extensions.find("KHR_texture_transform");
+    if (ext == extensions.end() || !ext->second.IsObject()) return t;
+    t.found = true;
+    const tinygltf::Value& v = ext->second;
+    const auto number = [&](const tinygltf::Value& x, double fallback) {
+        return x.IsNumber() && std::isfinite(x.GetNumberAsDouble()) ? x.GetNumberAsDouble() : fallback;
+    };
+    double offset[2] = {0, 0}, scale[2] = {1, 1}, rotation = 0;
+    for (int k = 0; k < 2; ++k) {
+        if (v.Has("offset") && v.Get("offset").IsArray() && v.Get("offset").ArrayLen() == 2) offset[k] = number(v.Get("offset").Get(k), 0.0);
+        if (v.Has("scale") && v.Get("scale").IsArray() && v.Get("scale").ArrayLen() == 2) scale[k] = number(v.Get("scale").Get(k), 1.0);
+    }
+    if (v.Has("rotation")) rotation = number(v.Get("rotation"), 0.0);
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    // T R S with R = [[c, s], [-s, c]] (the extension's rotation matrix).
+    t.m[0][0] = c * scale[0];
+    t.m[0][1] = s * scale[1];
+    t.m[0][2] = offset[0];
+    t.m[1][0] = -s * scale[0];
+    t.m[1][1] = c * scale[1];
+    t.m[1][2] = offset[1];
+    return t;
+}
+
+// The transform a material's uvs get: its base colour texture's (else that of its first other
+// map that has one). One per material, baked into the vertices of its primitives (every vertex
+// of a glTF primitive is its own: no other material reads it); a map with another transform is
+// named in a warning.
+UvTransform materialUvTransform(const tinygltf::Material& gm, std::string* problem) {
+    const tinygltf::ExtensionMap* maps[] = {&gm.pbrMetallicRoughness.baseColorTexture.extensions,
+                                            &gm.pbrMetallicRoughness.metallicRoughnessTexture.extensions,
+                                            &gm.emissiveTexture.extensions, &gm.normalTexture.extensions,
+                                            &gm.occlusionTexture.extensions};
+    UvTransform chosen;
+    for (const tinygltf::ExtensionMap* e : maps) {
+        const UvTransform t = uvTransformOf(*e);
+        if (!t.found) continue;
+        if (!chosen.found) chosen = t;
+        else if (!(t == chosen) && problem) *problem = "its maps have different KHR_texture_transforms: the first one is used for all";
+    }
+    return chosen;
+}
+
 // Everything gathered while walking the scene: vertices in world space, triangles per material.
 struct Builder {
     std::string path; // the file, for warnings
@@ -698,8 +756,17 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
             mesh.uvs.assign(base, Vec2{}); // earlier vertices had none: (0, 0)
             b.model.hasUvs = true;
         }
+        UvTransform transform;
+        if (prim.material >= 0 && std::size_t(prim.material) < g.materials.size())
+            transform = materialUvTransform(g.materials[std::size_t(prim.material)], nullptr);
         for (std::size_t i = 0; i < vertices; ++i) {
-            const float u = readFloat(*uvs, src(i), 0), v = readFloat(*uvs, src(i), 1);
+            float u = readFloat(*uvs, src(i), 0), v = readFloat(*uvs, src(i), 1);
+            if (transform.found) {
+                const double tu = transform.m[0][0] * u + transform.m[0][1] * v + transform.m[0][2];
+                const double tv = transform.m[1][0] * u + transform.m[1][1] * v + transform.m[1][2];
+                u = float(tu);
+                v = float(tv);
+            }
             mesh.uvs.emplace_back(std::isfinite(u) ? u : 0.0f, std::isfinite(v) ? 1.0f - v : 0.0f);
         }
     } else if (b.model.hasUvs) {
@@ -886,6 +953,9 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
         return R::failure(path + ": " + why);
     }
     for (const std::string& ext : g.extensionsRequired) {
+        static const std::set<std::string> kSupported = {"KHR_texture_transform", "KHR_materials_emissive_strength",
+                                                         "KHR_lights_punctual"};
+        if (kSupported.count(ext)) continue;
         if (ext == "KHR_draco_mesh_compression")
             return R::failure(path + ": requires KHR_draco_mesh_compression (Draco-compressed meshes), which SoftRaster does not support");
         return R::failure(path + ": requires the extension " + ext + ", which SoftRaster does not support");
@@ -959,7 +1029,12 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
     model.normalsFromFile = b.anyFileNormal && !b.anyComputedNormal;
 
     // Materials and their base colour textures (one slot per image).
-    for (const tinygltf::Material& gm : g.materials) model.materials.push_back(materialFrom(gm));
+    for (std::size_t i = 0; i < g.materials.size(); ++i) {
+        model.materials.push_back(materialFrom(g.materials[i]));
+        std::string problem;
+        materialUvTransform(g.materials[i], &problem);
+        if (!problem.empty()) model.warnings.push_back(path + ": material " + std::to_string(i) + ": " + problem);
+    }
     std::map<int, int> slotOfImage;
     std::vector<int> imageOfSlot;
     const auto slotForTexture = [&](int textureIndex) {

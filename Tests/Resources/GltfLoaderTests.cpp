@@ -385,6 +385,49 @@ TEST_CASE("glTF tangents for a normal map: generated from the uvs, or the file's
     }
 }
 
+TEST_CASE("glTF KHR_texture_transform: offset, rotation and scale baked into the material's uvs", "[resources][gltf][pbr]") {
+    const std::string dir = freshDir("gltf-uvtransform");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {10, 20, 30, 255};
+    REQUIRE(writeImage(dir + "/t.png", one).ok());
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0.25f, 0.5f}, "VEC2");
+    std::string prims;
+    for (int k = 0; k < 3; ++k)
+        prims += std::string(k ? "," : "") + "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" +
+                 std::to_string(uv) + "},\"material\":" + std::to_string(k) + "}";
+    a.meshes = "[{\"primitives\":[" + prims + "]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    // 0: offset (0.5, 0) and scale (2, 2); 1: a quarter turn; 2: none.
+    a.materials = "[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0,\"extensions\":{\"KHR_texture_transform\":"
+                  "{\"offset\":[0.5,0],\"scale\":[2,2]}}}}},"
+                  "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0,\"extensions\":{\"KHR_texture_transform\":"
+                  "{\"rotation\":1.5707963267948966}}}}},"
+                  "{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}]";
+    a.extra = ",\"extensionsUsed\":[\"KHR_texture_transform\"],\"extensionsRequired\":[\"KHR_texture_transform\"],"
+              "\"images\":[{\"uri\":\"t.png\"}],\"textures\":[{\"source\":0}]";
+    auto r = load(dir, "uvt.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.mesh.uvs.size() == 9);
+    // Stored as (u, 1 - v) (OBJ's convention) after the transform in glTF's uv space.
+    const auto check = [&](std::size_t i, double u, double v) {
+        CHECK(double(m.mesh.uvs[i].x) == Approx(u).margin(1e-6));
+        CHECK(double(m.mesh.uvs[i].y) == Approx(1.0 - v).margin(1e-6));
+    };
+    check(0, 0.5, 0.0); // (0, 0) -> (2 * 0 + 0.5, 0)
+    check(1, 2.5, 0.0);
+    check(2, 1.0, 1.0); // (0.25, 0.5) -> (1, 1)
+    // Rotation r: u' = cos r u + sin r v, v' = -sin r u + cos r v: a quarter turn maps (u, v) to (v, -u).
+    check(3, 0.0, 0.0);
+    check(4, 0.0, -1.0);
+    check(5, 0.5, -0.25);
+    check(8, 0.25, 0.5);
+}
+
 TEST_CASE("glTF: embedded, external .bin and .glb forms of one asset load the same model", "[resources][gltf]") {
     const std::string dir = freshDir("gltf-forms");
     const Asset a = triangleAsset("[{\"translation\":[1,2,3],\"mesh\":0}]");
