@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <limits>
 
 namespace sr {
 
@@ -47,7 +49,7 @@ const std::array<float, 255> kMidpoints = [] {
 // [i / kBuckets, (i + 1) / kBuckets) starts. The midpoints are at least 1 / (12.92 x 255) apart
 // (the curve's linear segment; wider above), more than a bucket, so a bucket holds at most one
 // and the search takes one step at most.
-constexpr int kBuckets = 4096;
+constexpr int kBuckets = kSrgbBuckets;
 const std::array<std::uint8_t, kBuckets> kBucketStart = [] {
     std::array<std::uint8_t, kBuckets> b{};
     std::size_t k = 0;
@@ -59,9 +61,20 @@ const std::array<std::uint8_t, kBuckets> kBucketStart = [] {
     return b;
 }();
 
+const SrgbTables kTables = [] {
+    SrgbTables t{};
+    for (std::size_t b = 0; b < 256; ++b) std::memcpy(&t.decodeBits[b], &kDecode[b], 4);
+    for (std::size_t k = 0; k < 255; ++k) std::memcpy(&t.midpointBits[k], &kMidpoints[k], 4);
+    const float inf = std::numeric_limits<float>::infinity();
+    std::memcpy(&t.midpointBits[255], &inf, 4);
+    for (std::size_t i = 0; i < std::size_t(kBuckets); ++i) t.bucketStart[i] = kBucketStart[i];
+    return t;
+}();
+
 } // namespace
 
 const std::array<float, 256>& srgbDecodeTable() { return kDecode; }
+const SrgbTables& srgbTables() { return kTables; }
 
 std::uint8_t encodeSrgb8(float l) {
     if (!(l > 0.0f)) return 0; // NaN, negatives

@@ -38,6 +38,19 @@ const std::array<float, 256>& srgbDecodeTable();
 // per pixel). encodeSrgb8(srgbDecodeTable()[b]) == b for every byte b.
 std::uint8_t encodeSrgb8(float l);
 
+// The tables behind srgbDecodeTable and encodeSrgb8 as 32-bit words, for the vector kernels'
+// gathers: decodeBits[b] = the bits of srgbDecodeTable()[b]; encodeSrgb8(l) for l in (0, 1) is
+// k = bucketStart[int(l * kSrgbBuckets)], plus 1 when the float with bits midpointBits[k] is
+// below l (midpointBits[255] = +infinity). One step suffices: no bucket holds two midpoints
+// (checked by the tests).
+inline constexpr int kSrgbBuckets = 4096;
+struct SrgbTables {
+    std::uint32_t decodeBits[256];
+    std::uint32_t midpointBits[256];
+    std::uint32_t bucketStart[kSrgbBuckets];
+};
+const SrgbTables& srgbTables();
+
 // Tone mapping of a linear colour before it is encoded (none: clamp only).
 //  Aces:    the ACES filmic fit of Narkowicz (2015), x (2.51 x + 0.03) / (x (2.43 x + 0.59) + 0.14).
 //  Neutral: Khronos PBR Neutral (2024), hue-preserving, identity below 0.76 - 0.04.

@@ -53,9 +53,11 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
     KernelProgram<Program> withKernel{program};
     // Phong kernels test the shadow maps per pixel as the scalar program does (Kernels.inl's
     // shadowVisibility); flat and Gouraud light per triangle / vertex, unshadowed (Shadow.hpp).
-    // The kernels compute on display values: a linear draw, and pbr, fill with the scalar loop.
+    // Linear light in the kernels: decoded texels and the sRGB encoder, without tone mapping or
+    // exposure (those draws, and pbr, fill with the scalar loop).
+    const bool kernelsCoverColour = !d.linear || (d.settings.toneMap == ToneMap::None && d.exposureScale == 1.0f);
     if constexpr (Program::kMode != ShadingMode::Pbr) {
-        if (!d.linear && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
+        if (kernelsCoverColour && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
             const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
             withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
             withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);

@@ -62,6 +62,29 @@ SR_SIMD_INLINE I packBgra8(const Rgb& c) {
     return (iset(int(0xFF000000u)) | shiftLeft<16>(toUnorm8(c.r))) | (shiftLeft<8>(toUnorm8(c.g)) | toUnorm8(c.b));
 }
 
+// encodeSrgb8 (ColorSpace.cpp) per lane, through its tables (srgbTables): the bucket's first
+// byte, one step up where the midpoint above it lies below l; 0 for !(l > 0), 255 for l >= 1.
+SR_SIMD_INLINE I encodeSrgbLanes(F l) {
+    const SrgbTables& t = srgbTables();
+    const M pos = l > fzero(), one = l >= fset(1.0f);
+    const F inRange = select(pos, fmin(l, fset(0.99999994f)), fzero());
+    const I k = gather(t.bucketStart, truncToInt(inRange * fset(float(kSrgbBuckets))));
+    const F mid = asFloat(gather(t.midpointBits, k));
+    const I stepped = select(mid < l, k + iset(1), k);
+    return select(one, iset(255), select(pos, stepped, iset(0)));
+}
+
+// packLinearBgra8 (ColorSpace.hpp) without tone mapping or exposure: each channel encoded.
+SR_SIMD_INLINE I packLinearBgra8(const Rgb& c) {
+    return (iset(int(0xFF000000u)) | shiftLeft<16>(encodeSrgbLanes(c.r))) | (shiftLeft<8>(encodeSrgbLanes(c.g)) | encodeSrgbLanes(c.b));
+}
+
+// programs::encode per lane: the draw's colour mode decides (one branch per group).
+template <class Prog>
+SR_SIMD_INLINE I encodeLanes(const Prog& p, const Rgb& c) {
+    return p.d->linear ? packLinearBgra8(c) : packBgra8(c);
+}
+
 struct Terms {
     F diffuse, specular;
 };
@@ -421,6 +444,45 @@ SR_SIMD_INLINE RawRgb bilinearRaw(const Texture::LevelView& l, I fixedU, I fixed
             mulLow(shiftRightLogical<16>(rb0), ay) + mulLow(shiftRightLogical<16>(rb1), wy)};
 }
 
+// Byte k of each texel decoded from sRGB (srgbDecodeTable), by a gather from its table.
+template <int kShift>
+SR_SIMD_INLINE F decodedChannel(I texel) {
+    return asFloat(gather(srgbTables().decodeBits, shiftRightLogical<kShift>(texel) & iset(0xFF)));
+}
+
+// One channel of the decoded bilinear blend (TextureSampling's bilinearDecoded): the 2x2 texels
+// decoded, then mixed in float in the scalar order, a + (b - a) w along x in each row, then
+// along y. The pairs come from adjacentPair's memory order: aFirst / bFirst say whether tap a / b
+// is the pair's first texel (else its second).
+template <int kShift>
+SR_SIMD_INLINE F mixDecoded(I t00, I t10, I t01, I t11, M aFirst, M bFirst, F wx, F wy) {
+    const F c00 = decodedChannel<kShift>(t00), c10 = decodedChannel<kShift>(t10);
+    const F c01 = decodedChannel<kShift>(t01), c11 = decodedChannel<kShift>(t11);
+    const F a0 = select(aFirst, c00, c10), b0 = select(bFirst, c00, c10);
+    const F a1 = select(aFirst, c01, c11), b1 = select(bFirst, c01, c11);
+    const F row0 = a0 + (b0 - a0) * wx, row1 = a1 + (b1 - a1) * wx;
+    return row0 + (row1 - row0) * wy;
+}
+
+// GL_LINEAR in one level on decoded texels (Texture::sampleSrgb's bilinear): the taps and 8-bit
+// weights of bilinearRaw, the weighting in float.
+template <WrapMode kWrap>
+SR_SIMD_INLINE Rgb bilinearDecoded(const Texture::LevelView& l, I fixedU, I fixedV) {
+    I x0, x1, wxTaps, y0, y1, wy;
+    linearAxis<kWrap>(fixedU, l.width, l.maskX, x0, x1, wxTaps);
+    linearAxis<kWrap>(fixedV, l.height, l.maskY, y0, y1, wy);
+    I x, wPair;
+    adjacentPair<kWrap>(x0, x1, wxTaps, x, wPair);
+    const I stride = iset(l.stride);
+    I t00, t10, t01, t11;
+    gatherPair(l.texels, mulLow(y0, stride) + x, t00, t10);
+    gatherPair(l.texels, mulLow(y1, stride) + x, t01, t11);
+    const M aFirst = x0 == x, bFirst = x1 == x;
+    const F wx = toFloat(wxTaps) / fset(256.0f), wyF = toFloat(wy) / fset(256.0f);
+    return {mixDecoded<0>(t00, t10, t01, t11, aFirst, bFirst, wx, wyF), mixDecoded<8>(t00, t10, t01, t11, aFirst, bFirst, wx, wyF),
+            mixDecoded<16>(t00, t10, t01, t11, aFirst, bFirst, wx, wyF)};
+}
+
 // log2Positive (TextureLod.hpp) per lane, for normal positive finite x: the same operations.
 SR_SIMD_INLINE F log2Lanes(F x) {
     const I xBits = asInt(x);
@@ -527,6 +589,52 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
     return {toFloat(r) / scale, toFloat(g) / scale, toFloat(b) / scale};
 }
 
+// trilinearLanes on decoded texels (Texture::sampleSrgb's trilinear): each level's
+// bilinearDecoded, the levels mixed in float by wl / 256 where wl > 0.
+template <WrapMode kWrap>
+SR_SIMD_INLINE Rgb trilinearDecodedLanes(const Texture& texture, F u, F v, F lod) {
+    const int last = texture.levelCount() - 1;
+    lod = select(lod > fzero(), lod, fzero());
+    const M top = lod >= fset(float(last));
+    const I level = select(top, iset(last), truncToInt(select(top, fzero(), lod)));
+    const I wl = select(top, iset(0), truncToInt((lod - toFloat(level)) * fset(256.0f)));
+    const F w = toFloat(wl) / fset(256.0f);
+    const int first = firstLane(level);
+    const bool oneLevel = bits(level == iset(first)) == bits(mAll());
+    const int lo = oneLevel ? first : reduceMin(level), hi = oneLevel ? first : reduceMax(level);
+    const I zu = texelFixed<kWrap>(u, texture.width()), zv = texelFixed<kWrap>(v, texture.height());
+    const int halving = texture.halvingLevels();
+    auto coordinates = [&](const Texture::LevelView& l, int k, I& x, I& y) SR_SIMD_LAMBDA {
+        if (k < halving) {
+            x = l.width == 1 ? iset(0) : levelX(zu, k);
+            y = l.height == 1 ? iset(0) : levelX(zv, k);
+        } else {
+            x = linearX<kWrap>(u, l.width);
+            y = linearX<kWrap>(v, l.height);
+        }
+    };
+    Rgb out{fzero(), fzero(), fzero()};
+    for (int k = lo; k <= hi; ++k) {
+        const M mine = level == iset(k);
+        if (bits(mine) == 0) continue;
+        const Texture::LevelView here = texture.levelView(k);
+        I fixedU, fixedV;
+        coordinates(here, k, fixedU, fixedV);
+        Rgb c = bilinearDecoded<kWrap>(here, fixedU, fixedV);
+        const M blend = mine & (wl > iset(0));
+        if (k < last && bits(blend) != 0) {
+            const Texture::LevelView next = texture.levelView(k + 1);
+            I nextU, nextV;
+            coordinates(next, k + 1, nextU, nextV);
+            const Rgb c1 = bilinearDecoded<kWrap>(next, nextU, nextV);
+            c = {select(blend, c.r + (c1.r - c.r) * w, c.r), select(blend, c.g + (c1.g - c.g) * w, c.g),
+                 select(blend, c.b + (c1.b - c.b) * w, c.b)};
+        }
+        out = {select(mine, c.r, out.r), select(mine, c.g, out.g), select(mine, c.b, out.b)};
+    }
+    return out;
+}
+
 // The diffuse colour of the lanes from the texture with the kernel's filter and wrap, the
 // lanes off the vector path (NaN / Inf / huge uv) redone by the scalar sampler. `triangleLod`:
 // the affine triangle's mip level (trilinear only).
@@ -537,22 +645,28 @@ SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, F u, F v, F invW, F triangle
     const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
     Rgb kd;
     F lod = fzero();
+    const bool linear = p.d->linear; // texels decoded from sRGB (Texture::sampleSrgb)
     if constexpr (kFilter == TextureFilter::Nearest) {
         const Texture::LevelView l = texture.levelView(0);
         const I x = nearestAxis<kWrap>(uSafe, l.width, l.maskX);
         const I y = nearestAxis<kWrap>(vSafe, l.height, l.maskY);
         const I t = gather(l.texels, mulLow(y, iset(l.stride)) + x);
         const F scale = fset(255.0f); // kUnorm8: byte / 255.0f, correctly rounded
-        kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
+        if (linear) kd = {decodedChannel<0>(t), decodedChannel<8>(t), decodedChannel<16>(t)};
+        else kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
     } else if constexpr (kFilter == TextureFilter::Bilinear) {
         const Texture::LevelView l = texture.levelView(0);
-        const RawRgb raw = bilinearRaw<kWrap>(l, linearX<kWrap>(uSafe, l.width), linearX<kWrap>(vSafe, l.height));
-        const F scale = fset(255.0f * 65536.0f); // then raw / (255 * 65536)
-        kd = {toFloat(raw.r) / scale, toFloat(raw.g) / scale, toFloat(raw.b) / scale};
+        if (linear) {
+            kd = bilinearDecoded<kWrap>(l, linearX<kWrap>(uSafe, l.width), linearX<kWrap>(vSafe, l.height));
+        } else {
+            const RawRgb raw = bilinearRaw<kWrap>(l, linearX<kWrap>(uSafe, l.width), linearX<kWrap>(vSafe, l.height));
+            const F scale = fset(255.0f * 65536.0f); // then raw / (255 * 65536)
+            kd = {toFloat(raw.r) / scale, toFloat(raw.g) / scale, toFloat(raw.b) / scale};
+        }
     } else {
         if constexpr (kPersp == PerspectiveMode::Affine) lod = triangleLod;
         else lod = mipLevels(p, u, v, invW);
-        kd = trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
+        kd = linear ? trilinearDecodedLanes<kWrap>(texture, uSafe, vSafe, lod) : trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
     }
     if (bits(good) != bits(mAll())) {
         alignas(64) float us[kLanes], vs[kLanes], lods[kLanes], r[kLanes], g[kLanes], b[kLanes];
@@ -564,7 +678,8 @@ SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, F u, F v, F invW, F triangle
         fstore(b, kd.b);
         for (int i = 0, m = bits(good); i < kLanes; ++i) {
             if (m & (1 << i)) continue;
-            const Color c = texture.sample({us[i], vs[i]}, lods[i], kFilter, kWrap);
+            const Color c = linear ? texture.sampleSrgb({us[i], vs[i]}, lods[i], kFilter, kWrap)
+                                   : texture.sample({us[i], vs[i]}, lods[i], kFilter, kWrap);
             r[i] = c.r;
             g[i] = c.g;
             b[i] = c.b;
@@ -605,18 +720,18 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
     constexpr int kT = Prog::kIsTextured ? 2 : 0; // the first varying after the uv
     I out;
     if constexpr (Prog::kMode == ShadingMode::Unlit) {
-        out = packBgra8(kd);
+        out = encodeLanes(p, kd);
     } else if constexpr (Prog::kMode == ShadingMode::Flat) {
         p.ensureLit(); // FlatProgram lights on its first shaded fragment
         const RgbTerms& ft = p.terms;
         const TermsRgb t{{fset(ft.diffuse.r), fset(ft.diffuse.g), fset(ft.diffuse.b)},
                          {fset(ft.specular.r), fset(ft.specular.g), fset(ft.specular.b)},
                          mAll()};
-        out = packBgra8(applyTerms(kd, d.specular.ks, t));
+        out = encodeLanes(p, applyTerms(kd, d.specular.ks, t));
     } else if constexpr (Prog::kMode == ShadingMode::Gouraud) {
         if constexpr (Prog::kRgbTerms)
-            out = packBgra8(applyTerms(kd, d.specular.ks, TermsRgb{{v[kT], v[kT + 1], v[kT + 2]}, {v[kT + 3], v[kT + 4], v[kT + 5]}, mAll()}));
-        else out = packBgra8(applyTerms(kd, d.specular.ks, Terms{v[kT], v[kT + 1]}));
+            out = encodeLanes(p, applyTerms(kd, d.specular.ks, TermsRgb{{v[kT], v[kT + 1], v[kT + 2]}, {v[kT + 3], v[kT + 4], v[kT + 5]}, mAll()}));
+        else out = encodeLanes(p, applyTerms(kd, d.specular.ks, Terms{v[kT], v[kT + 1]}));
     } else {
         const V3 n = normalizeFast({v[kT + 3], v[kT + 4], v[kT + 5]}, ok);
         const Vec3 eye = d.view.eye;
@@ -626,9 +741,9 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
             const TermsRgb t = lightsRgb(d.view.lighting, d.specular, d.view.shadows, n.x, n.y, n.z, v[kT], v[kT + 1], v[kT + 2], toEye.x,
                                          toEye.y, toEye.z, ok);
             ok = t.ok;
-            out = packBgra8(applyTerms(kd, d.specular.ks, t));
+            out = encodeLanes(p, applyTerms(kd, d.specular.ks, t));
         } else {
-            out = packBgra8(applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, toEye, ok)));
+            out = encodeLanes(p, applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, toEye, ok)));
         }
     }
     if (bits(ok) != bits(mAll())) {
@@ -710,7 +825,7 @@ struct SpanKernel {
 
     // Writes the shaded colour of pixel `dst` (opaque: the colour itself; transparent: blendOver,
     // the scalar pipeline's very function, lane by lane).
-    void put(Pixel& dst, Pixel colour) const { dst = blending() ? blendOver(colour, dst, alpha) : colour; }
+    void put(Pixel& dst, Pixel colour) const { dst = blending() ? blendOver(colour, dst, alpha, p.d->linear) : colour; }
 
     // fillTriangle's depth and 1/w: start + step * ddx in double, rounded once.
     F planeInDouble(D startValue, int plane, F step) const {

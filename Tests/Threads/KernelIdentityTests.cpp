@@ -1,6 +1,7 @@
 // Every span kernel x every ISA the CPU has against the scalar reference (fillTriangle + fragment()), bit for bit.
 #include "TestFramework.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -50,7 +51,7 @@ void referenceFill(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const
     const float alpha = p.d->alpha;
     fillTriangle<kDepth, Prog::kVaryings, kPersp>(t, fb, s, [&](const Fragment<Prog::kVaryings>& f) {
         ++shaded;
-        if (alpha < 1.0f) return blendOver(p.fragment(f), fb.colorRow(f.y)[f.x], alpha); // the pipeline's `counted`
+        if (alpha < 1.0f) return blendOver(p.fragment(f), fb.colorRow(f.y)[f.x], alpha, p.d->linear); // the pipeline's `counted`
         return p.fragment(f);
     });
 }
@@ -240,6 +241,106 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                                << " shaded pixels");
     REQUIRE(!ran.empty());
     CHECK(totals.pixels > 100000 * long(ran.size()));
+}
+
+TEST_CASE("in linear light every span kernel is bit-identical to the scalar reference", "[threads][simd][kernels][colour]") {
+    // ColorMode::Linear: texels decoded from sRGB before filtering (nearest, the bilinear and
+    // trilinear float blends), the colour encoded by the sRGB tables, blends in linear light.
+    std::mt19937 rng(36u);
+    const Mesh mesh = oneTriangle();
+    FrameView view;
+    view.eye = {0.3f, 0.4f, 3.0f};
+    view.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1))), Light::directional(normalize(Vec3(-0.3f, 0.2f, 1.0f)))};
+    FrameView colouredView = view;
+    colouredView.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1)), {1.0f, 0.5f, 0.25f, 1.0f}),
+                                    Light::point({0.5f, 1.0f, 2.0f}, {4.0f, 3.0f, 1.0f, 1.0f}, 3.5f)};
+    const Texture textures[] = {randomTexture(rng, 13, 7), randomTexture(rng, 32, 16)};
+    Totals totals;
+    int ran = 0;
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+        if (!isaAvailable(isa)) continue;
+        ++ran;
+        for (DepthMode depth : {DepthMode::Test, DepthMode::TestWrite})
+            for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
+                for (TextureFilter filter : {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear})
+                    for (WrapMode wrap : {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror}) {
+                        RenderSettings settings;
+                        settings.filter = filter;
+                        settings.wrap = wrap;
+                        settings.perspective = persp;
+                        settings.colour = ColorMode::Linear;
+                        const KernelKey key{depth, persp, filter, wrap};
+                        for (const Texture& texture : textures) {
+                            DrawContext d{view, settings, mesh, mesh.indices.data(), &texture, Color{0.7f, 0.4f, 0.2f, 1.0f},
+                                          Specular{}, 1.0f, true, true, {}};
+                            d.linear = true;
+                            compareKernel<UnlitProgram<true>>(isa, key, [&] { return UnlitProgram<true>(&d, 0); }, rng, totals);
+                            compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
+                            compareKernel<GouraudProgram<true>>(isa, key, [&] { return GouraudProgram<true>(&d); }, rng, totals);
+                            compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&d); }, rng, totals);
+                            DrawContext c{colouredView, settings, mesh, mesh.indices.data(), &texture, Color{0.7f, 0.4f, 0.2f, 1.0f},
+                                          Specular{}, 1.0f, false, true, {}};
+                            c.linear = true;
+                            compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&c); }, rng, totals);
+                        }
+                        if (depth == DepthMode::Test) { // transparent: blended in linear light
+                            DrawContext t{view, settings, mesh, mesh.indices.data(), &textures[1], Color{0.7f, 0.4f, 0.2f, 1.0f},
+                                          Specular{}, 0.4f, true, true, {}};
+                            t.linear = true;
+                            compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&t); }, rng, totals);
+                            DrawContext u{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f},
+                                          Specular{}, 0.4f, true, true, {}};
+                            u.linear = true;
+                            compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&u); }, rng, totals);
+                        }
+                        if (filter != TextureFilter::Nearest || wrap != WrapMode::Repeat) continue;
+                        DrawContext d{view, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}, Specular{},
+                                      1.0f, true, true, {}};
+                        d.linear = true;
+                        compareKernel<UnlitProgram<false>>(isa, key, [&] { return UnlitProgram<false>(&d, encode(d, d.kd)); }, rng, totals);
+                        compareKernel<GouraudProgram<false>>(isa, key, [&] { return GouraudProgram<false>(&d); }, rng, totals);
+                        compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&d); }, rng, totals);
+                    }
+    }
+    REQUIRE(ran > 0);
+    CHECK(totals.pixels > 50000 * long(ran));
+}
+
+TEST_CASE("the sRGB encoder's buckets hold at most one midpoint: the kernels' one step is exact", "[threads][simd][colour]") {
+    const SrgbTables& t = srgbTables();
+    for (int i = 0; i < kSrgbBuckets; ++i) {
+        const float lo = float(i) / float(kSrgbBuckets), hi = float(i + 1) / float(kSrgbBuckets);
+        int inside = 0;
+        for (int k = 0; k < 255; ++k) {
+            float mid;
+            std::memcpy(&mid, &t.midpointBits[k], 4);
+            inside += mid >= lo && mid < hi;
+        }
+        INFO("bucket " << i);
+        REQUIRE(inside <= 1);
+    }
+    // And the one-step rule equals the encoder on a dense sample of (0, 1), every float near each
+    // midpoint included.
+    const auto oneStep = [&](float l) {
+        std::uint32_t k = t.bucketStart[std::size_t(std::min(l, 0.99999994f) * float(kSrgbBuckets))];
+        float mid;
+        std::memcpy(&mid, &t.midpointBits[k], 4);
+        return mid < l ? k + 1 : k;
+    };
+    for (int k = 0; k < 255; ++k) {
+        float mid;
+        std::memcpy(&mid, &t.midpointBits[k], 4);
+        float l = mid;
+        for (int s = 0; s < 4; ++s) l = std::nextafter(l, 0.0f);
+        for (int s = 0; s < 9; ++s, l = std::nextafter(l, 1.0f)) {
+            INFO("l " << l);
+            CHECK(oneStep(l) == encodeSrgb8(l));
+        }
+    }
+    for (int i = 1; i < 1000000; ++i) {
+        const float l = float(i) / 1000000.0f;
+        if (oneStep(l) != encodeSrgb8(l)) FAIL("l " << l);
+    }
 }
 
 namespace {
