@@ -47,6 +47,13 @@ bool kernelsCoverSpecular(const Specular& s) {
     return !s.on() || (s.shininess <= 1024.0f && s.shininess == float(int(s.shininess)));
 }
 
+// Whether the span kernels have an instantiation of this program at all.
+template <class Program>
+constexpr bool hasKernels() {
+    if constexpr (Program::kMode == ShadingMode::Pbr) return Program::kHasKernels;
+    else return true;
+}
+
 template <class Program>
 void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, Program program) {
     const DrawState state = programs::drawStateFor(d);
@@ -54,9 +61,9 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
     // Phong kernels test the shadow maps per pixel as the scalar program does (Kernels.inl's
     // shadowVisibility); flat and Gouraud light per triangle / vertex, unshadowed (Shadow.hpp).
     // Linear light in the kernels: decoded texels and the sRGB encoder, without tone mapping or
-    // exposure (those draws, and pbr, fill with the scalar loop).
+    // exposure (those draws, and normal-mapped pbr, fill with the scalar loop).
     const bool kernelsCoverColour = !d.linear || (d.settings.toneMap == ToneMap::None && d.exposureScale == 1.0f);
-    if constexpr (Program::kMode != ShadingMode::Pbr) {
+    if constexpr (hasKernels<Program>()) {
         if (kernelsCoverColour && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
             const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
             withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);

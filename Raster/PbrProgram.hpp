@@ -36,11 +36,14 @@ inline Vec3 perturbNormal(Vec3 n, Vec4 tangent, Color texel, float scale) {
 // in linear mode; the others are data and read as stored. Double-sided surfaces seen from
 // behind are lit on their back (the normal flipped toward the viewer, as the specification
 // asks); single-sided ones never show their back (culled).
-template <bool kMaps, bool kTangents>
+// The span kernels (Raster/Kernels/KernelsPbr*) cover PbrProgram<false> and PbrProgram<true>;
+// a normal-mapped draw (kTangents) fills with the scalar loop.
+template <bool kMaps, bool kTangents = false>
 struct PbrProgram {
     static_assert(kMaps || !kTangents, "a normal map needs uvs");
     static constexpr ShadingMode kMode = ShadingMode::Pbr;
     static constexpr bool kIsTextured = kMaps;
+    static constexpr bool kHasKernels = !kTangents;
     static constexpr int kP = kMaps ? 2 : 0; // position kP..kP+2, normal kP+3..kP+5
     static constexpr int kT = kP + 6;        // tangent kT..kT+3 (kTangents)
     static constexpr int kVaryings = kT + (kTangents ? 4 : 0);

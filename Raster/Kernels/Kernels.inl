@@ -501,20 +501,22 @@ SR_SIMD_INLINE F log2Lanes(F x) {
 // The mip level of an affine triangle, as programs::sampleKd computes it per fragment from the
 // triangle's constant plane gradients: one value per triangle (fillSpans computes it once).
 template <class Prog>
-float affineMipLevel(const Prog& p) {
+float affineMipLevel(const Prog& p, const Texture& texture) {
     const TriangleSetup& t = *p.setup;
     constexpr int kU = kPlaneVarying0, kVp = kPlaneVarying0 + 1;
-    return mipLevel(float(t.ddx[kU]), float(t.ddx[kVp]), float(t.ddy[kU]), float(t.ddy[kVp]), p.d->texture->width(),
-                    p.d->texture->height());
+    return mipLevel(float(t.ddx[kU]), float(t.ddx[kVp]), float(t.ddy[kU]), float(t.ddy[kVp]), texture.width(), texture.height());
+}
+template <class Prog>
+float affineMipLevel(const Prog& p) {
+    return affineMipLevel(p, *p.d->texture);
 }
 
 // The lanes' mip level under exact perspective, as programs::sampleKd computes it per fragment:
 // uvDerivatives (the quotient rule in float) at each lane, then mipLevel (TextureLod.cpp) lane by
 // lane.
 template <class Prog>
-SR_SIMD_INLINE F mipLevels(const Prog& p, F u, F v, F invW) {
+SR_SIMD_INLINE F mipLevels(const Prog& p, const Texture& texture, F u, F v, F invW) {
     const TriangleSetup& t = *p.setup;
-    const Texture& texture = *p.d->texture;
     constexpr int kU = kPlaneVarying0, kVp = kPlaneVarying0 + 1;
     const F dqdx = fset(float(t.ddx[kPlaneInvW])), dqdy = fset(float(t.ddy[kPlaneInvW]));
     const F w = fset(1.0f) / invW;
@@ -635,17 +637,16 @@ SR_SIMD_INLINE Rgb trilinearDecodedLanes(const Texture& texture, F u, F v, F lod
     return out;
 }
 
-// The diffuse colour of the lanes from the texture with the kernel's filter and wrap, the
-// lanes off the vector path (NaN / Inf / huge uv) redone by the scalar sampler. `triangleLod`:
-// the affine triangle's mip level (trilinear only).
+// The colour of the lanes from `texture` with the kernel's filter and wrap, the lanes off the
+// vector path (NaN / Inf / huge uv) redone by the scalar sampler. `linear`: texels decoded from
+// sRGB (Texture::sampleSrgb). `triangleLod`: the affine triangle's mip level for this texture
+// (trilinear only).
 template <PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap, class Prog>
-SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, F u, F v, F invW, F triangleLod) {
-    const Texture& texture = *p.d->texture;
+SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, const Texture& texture, bool linear, F u, F v, F invW, F triangleLod) {
     const M good = onVectorPath(u) & onVectorPath(v);
     const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
     Rgb kd;
     F lod = fzero();
-    const bool linear = p.d->linear; // texels decoded from sRGB (Texture::sampleSrgb)
     if constexpr (kFilter == TextureFilter::Nearest) {
         const Texture::LevelView l = texture.levelView(0);
         const I x = nearestAxis<kWrap>(uSafe, l.width, l.maskX);
@@ -665,7 +666,7 @@ SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, F u, F v, F invW, F triangle
         }
     } else {
         if constexpr (kPersp == PerspectiveMode::Affine) lod = triangleLod;
-        else lod = mipLevels(p, u, v, invW);
+        else lod = mipLevels(p, texture, u, v, invW);
         kd = linear ? trilinearDecodedLanes<kWrap>(texture, uSafe, vSafe, lod) : trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
     }
     if (bits(good) != bits(mAll())) {
@@ -694,13 +695,123 @@ SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, F u, F v, F invW, F triangle
 // compile time) for the textured programs, whose three wrap variants differ only in these
 // few instructions.
 template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
-SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, F triangleLod) {
+SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear, F u, F v, F invW, F triangleLod) {
     switch (p.d->settings.wrap) {
-    case WrapMode::Clamp: return sampleTextureWrap<kPersp, kFilter, WrapMode::Clamp>(p, u, v, invW, triangleLod);
-    case WrapMode::Mirror: return sampleTextureWrap<kPersp, kFilter, WrapMode::Mirror>(p, u, v, invW, triangleLod);
+    case WrapMode::Clamp: return sampleTextureWrap<kPersp, kFilter, WrapMode::Clamp>(p, texture, linear, u, v, invW, triangleLod);
+    case WrapMode::Mirror: return sampleTextureWrap<kPersp, kFilter, WrapMode::Mirror>(p, texture, linear, u, v, invW, triangleLod);
     case WrapMode::Repeat: break;
     }
-    return sampleTextureWrap<kPersp, kFilter, WrapMode::Repeat>(p, u, v, invW, triangleLod);
+    return sampleTextureWrap<kPersp, kFilter, WrapMode::Repeat>(p, texture, linear, u, v, invW, triangleLod);
+}
+// The draw's texture (programs::sampleTexel).
+template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
+SR_SIMD_INLINE Rgb sampleTexture(const Prog& p, F u, F v, F invW, F triangleLod) {
+    return sampleMap<kPersp, kFilter>(p, *p.d->texture, p.d->linear, u, v, invW, triangleLod);
+}
+
+// --- The pbr program (PbrProgram::fragment, Brdf.hpp), lane by lane -------------------------
+// brdfCosineTerms compiled for this ISA (the scalar reference's source, Brdf.hpp).
+#include "Raster/BrdfTerms.inl"
+
+// The radiance at the lanes' points (px, py, pz) with unit normals n and view vectors v:
+// pbrRadiance's loop over the lights (lightAt's direction and factor as lightsRgb computes
+// them, the shadow maps' lit fraction, brdfCosineTerms), the same operations in the same
+// order. Lanes whose light or half vector is off normalize's fast path lose `ok`.
+SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* shadows, F baseR, F baseG, F baseB, F metallic,
+                               F roughness, F nx, F ny, F nz, F px, F py, F pz, F vx, F vy, F vz, M& ok) {
+    const V3 n{nx, ny, nz}, p{px, py, pz}, v{vx, vy, vz};
+    const F base[3] = {baseR, baseG, baseB};
+    Rgb sum{fzero(), fzero(), fzero()};
+    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
+        const Light& light = lighting.lights[i];
+        V3 l;
+        F a = fset(1.0f);
+        if (light.type == LightType::Directional) {
+            l = {fset(light.toLight.x), fset(light.toLight.y), fset(light.toLight.z)};
+        } else {
+            const V3 d{fset(light.position.x) - p.x, fset(light.position.y) - p.y, fset(light.position.z) - p.z};
+            const F d2 = dot3(d, d);
+            l = normalizeFast(d, ok);
+            a = fset(1.0f) / fmax(fset(kMinLightDistance2), d2);
+            if (light.range > 0.0f) {
+                const F q = d2 / fset(light.range * light.range);
+                a = a * clampLanes(fset(1.0f) - q * q, fzero(), fset(1.0f));
+            }
+            if (light.type == LightType::Spot) {
+                const V3 s{fset(light.spotDirection.x), fset(light.spotDirection.y), fset(light.spotDirection.z)};
+                const F c = clampLanes((fzero() - dot3(s, l)) * fset(light.coneScale) + fset(light.coneOffset), fzero(),
+                                       fset(1.0f));
+                a = a * (c * c);
+            }
+        }
+        const F ndl = dot3(n, l);
+        const M lit = (a > fzero()) & (ndl > fzero());
+        if (bits(lit) == 0) continue;
+        if (shadows) {
+            const F seen = shadowVisibility(*shadows, i, p, n, l, lit & ok);
+            a = select(seen < fset(1.0f), a * seen, a);
+        }
+        M hOk = ok;
+        const V3 h = normalizeFast({l.x + v.x, l.y + v.y, l.z + v.z}, hOk);
+        ok = (lit & hOk) | andNot(ok, lit);
+        const V3 nxh{n.y * h.z - n.z * h.y, n.z * h.x - n.x * h.z, n.x * h.y - n.y * h.x}; // cross(n, h)
+        F f[3];
+        brdfCosineTerms(ndl, dot3(n, v), dot3(n, h), dot3(nxh, nxh), dot3(v, h), roughness, metallic, base, f);
+        sum.r = select(lit, sum.r + f[0] * fset(light.colour.r) * a, sum.r);
+        sum.g = select(lit, sum.g + f[1] * fset(light.colour.g) * a, sum.g);
+        sum.b = select(lit, sum.b + f[2] * fset(light.colour.b) * a, sum.b);
+    }
+    return sum;
+}
+
+// PbrProgram::fragment for the lanes: the interpolated normal and view vector (the normal
+// flipped toward the viewer on a double-sided surface), the factors times the maps, the lights,
+// the emission, encoded.
+template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
+SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
+    const DrawContext& d = *p.d;
+    const SurfaceMaterial& m = *d.material;
+    const PbrFactors& k = *m.pbr;
+    constexpr int kP = Prog::kP;
+    V3 n = normalizeFast({v[kP + 3], v[kP + 4], v[kP + 5]}, ok);
+    const Vec3 eye = d.view.eye;
+    const V3 toEye = normalizeFast({fset(eye.x) - v[kP], fset(eye.y) - v[kP + 1], fset(eye.z) - v[kP + 2]}, ok);
+    if (d.doubleSided) {
+        const M back = dot3(n, toEye) < fzero();
+        const F minus = fset(-1.0f);
+        n = {select(back, minus * n.x, n.x), select(back, minus * n.y, n.y), select(back, minus * n.z, n.z)};
+    }
+    F baseR = fset(k.baseColor.r), baseG = fset(k.baseColor.g), baseB = fset(k.baseColor.b);
+    F metallic = fset(k.metallic), roughness = fset(k.roughness);
+    F eR = fset(k.emissive.x), eG = fset(k.emissive.y), eB = fset(k.emissive.z);
+    if constexpr (Prog::kIsTextured) {
+        // Each map at its own level of detail (PbrProgram::sampleMap).
+        auto mapLanes = [&](const Texture& map, bool colour) SR_SIMD_LAMBDA {
+            F lod = fzero();
+            if constexpr (kPersp == PerspectiveMode::Affine && kFilter == TextureFilter::Trilinear) lod = fset(affineMipLevel(p, map));
+            return sampleMap<kPersp, kFilter>(p, map, colour && d.linear, v[0], v[1], invW, lod);
+        };
+        if (m.texture) {
+            const Rgb c = mapLanes(*m.texture, true);
+            baseR = baseR * c.r;
+            baseG = baseG * c.g;
+            baseB = baseB * c.b;
+        }
+        if (m.metallicRoughness) {
+            const Rgb c = mapLanes(*m.metallicRoughness, false);
+            roughness = roughness * c.g;
+            metallic = metallic * c.b;
+        }
+        if (m.emissive && (k.emissive.x > 0.0f || k.emissive.y > 0.0f || k.emissive.z > 0.0f)) {
+            const Rgb c = mapLanes(*m.emissive, true);
+            eR = eR * c.r;
+            eG = eG * c.g;
+            eB = eB * c.b;
+        }
+    }
+    const Rgb r = pbrLights(d.view.lighting, d.view.shadows, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z, v[kP],
+                            v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok);
+    return {r.r + eR, r.g + eG, r.b + eB};
 }
 
 // --- Shading: the programs' fragment(), lane by lane -----------------------------------------
@@ -713,13 +824,16 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
     const DrawContext& d = *p.d;
     M ok = mAll();
     Rgb kd{fset(d.kd.r), fset(d.kd.g), fset(d.kd.b)};
-    if constexpr (Prog::kIsTextured) {
+    if constexpr (Prog::kIsTextured && Prog::kMode != ShadingMode::Pbr) {
         const Rgb texel = sampleTexture<kPersp, kFilter>(p, v[0], v[1], invW, triangleLod);
         kd = {kd.r * texel.r, kd.g * texel.g, kd.b * texel.b}; // sampleKd: the draw's kd times the texel
     }
     constexpr int kT = Prog::kIsTextured ? 2 : 0; // the first varying after the uv
     I out;
-    if constexpr (Prog::kMode == ShadingMode::Unlit) {
+    if constexpr (Prog::kMode == ShadingMode::Pbr) {
+        (void)triangleLod; // each map takes its own (shadePbr)
+        out = encodeLanes(p, shadePbr<Prog, kPersp, kFilter>(p, v, invW, ok));
+    } else if constexpr (Prog::kMode == ShadingMode::Unlit) {
         out = encodeLanes(p, kd);
     } else if constexpr (Prog::kMode == ShadingMode::Flat) {
         p.ensureLit(); // FlatProgram lights on its first shaded fragment

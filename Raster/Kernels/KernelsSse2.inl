@@ -12,6 +12,7 @@
 #include "Raster/Kernels/KernelTable.hpp"
 #include "Raster/Kernels/SimdSse2.hpp"
 #include "Raster/MeshPrograms.hpp"
+#include "Raster/PbrProgram.hpp"
 
 #if SR_KERNELS_X86
 SR_BEGIN_TARGET(SR_TARGET_STRING_SSE2)

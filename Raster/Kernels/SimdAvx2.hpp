@@ -37,6 +37,14 @@ SR_SIMD_INLINE M operator>=(F a, F b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_GE_
 SR_SIMD_INLINE M operator<(F a, F b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LT_OQ)}; }
 SR_SIMD_INLINE M operator<=(F a, F b) { return {_mm256_cmp_ps(a.v, b.v, _CMP_LE_OQ)}; }
 SR_SIMD_INLINE F select(M m, F a, F b) { return {_mm256_blendv_ps(b.v, a.v, m.v)}; }
+// The BRDF's operations (Raster/Brdf.hpp's maxOf, minOf, ... for float), lane by lane:
+// std::max(a, b) is a < b ? b : a, i.e. max(b, a) of the instruction (its first operand when
+// greater, else the second, NaN included); std::min(a, b) likewise min(b, a).
+SR_SIMD_INLINE F maxOf(F a, F b) { return fmax(b, a); }
+SR_SIMD_INLINE F minOf(F a, F b) { return fmin(b, a); }
+SR_SIMD_INLINE F sqrtOf(F a) { return fsqrt(a); }
+SR_SIMD_INLINE F selectOf(M c, F a, F b) { return select(c, a, b); }
+SR_SIMD_INLINE F splatAs(F, float c) { return fset(c); }
 
 // --- masks ------------------------------------------------------------------------------------
 SR_SIMD_INLINE M operator&(M a, M b) { return {_mm256_and_ps(a.v, b.v)}; }

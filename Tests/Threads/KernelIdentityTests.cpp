@@ -11,6 +11,7 @@
 
 #include "Raster/Kernels/KernelTable.hpp"
 #include "Raster/MeshPrograms.hpp"
+#include "Raster/PbrProgram.hpp"
 #include "Raster/ScanlineFill.hpp" // fillTriangle, the reference
 #include "Math/Transform.hpp"
 #include "Raster/Shadow.hpp"
@@ -301,6 +302,71 @@ TEST_CASE("in linear light every span kernel is bit-identical to the scalar refe
                         compareKernel<GouraudProgram<false>>(isa, key, [&] { return GouraudProgram<false>(&d); }, rng, totals);
                         compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&d); }, rng, totals);
                     }
+    }
+    REQUIRE(ran > 0);
+    CHECK(totals.pixels > 50000 * long(ran));
+}
+
+TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical to the scalar program",
+          "[threads][simd][kernels][pbr]") {
+    std::mt19937 rng(37u);
+    const Mesh mesh = oneTriangle();
+    FrameView view;
+    view.eye = {0.3f, 0.4f, 3.0f};
+    view.lighting.physical = true;
+    view.lighting.ambient = 0.0f;
+    view.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1)), {kPiF, kPiF, kPiF, 1.0f}),
+                            Light::point({0.5f, 1.0f, 2.0f}, {4.0f, 3.0f, 1.0f, 1.0f}, 3.5f),
+                            Light::spot({0.0f, 0.0f, 4.0f}, {0.1f, -0.2f, -1.0f}, {6.0f, 6.0f, 3.0f, 1.0f}, 0.2f, 0.6f, 9.0f)};
+    const Texture base = randomTexture(rng, 13, 7), mr = randomTexture(rng, 32, 16), emissive = randomTexture(rng, 8, 8);
+    PbrFactors rough, polished;
+    rough.baseColor = {0.8f, 0.5f, 0.3f, 1.0f};
+    rough.metallic = 0.2f;
+    rough.roughness = 0.9f;
+    rough.emissive = {0.3f, 0.1f, 0.0f};
+    polished.baseColor = {1.0f, 0.8f, 0.4f, 1.0f};
+    polished.metallic = 1.0f;
+    polished.roughness = 0.03f; // below the smallest roughness evaluated
+    Totals totals;
+    int ran = 0;
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+        if (!isaAvailable(isa)) continue;
+        ++ran;
+        for (DepthMode depth : {DepthMode::Test, DepthMode::TestWrite})
+            for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
+                for (TextureFilter filter : {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear})
+                    for (WrapMode wrap : {WrapMode::Repeat, WrapMode::Mirror})
+                        for (const bool linear : {true, false}) {
+                            RenderSettings settings;
+                            settings.filter = filter;
+                            settings.wrap = wrap;
+                            settings.perspective = persp;
+                            settings.shading = ShadingMode::Pbr;
+                            settings.colour = linear ? ColorMode::Linear : ColorMode::Gamma;
+                            const KernelKey key{depth, persp, filter, wrap};
+                            for (const PbrFactors* factors : {&rough, &polished}) {
+                                SurfaceMaterial material;
+                                material.pbr = factors;
+                                material.texture = &base;
+                                material.metallicRoughness = &mr;
+                                material.emissive = &emissive;
+                                for (const bool doubleSided : {true, false}) {
+                                    DrawContext d{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
+                                                  Specular{}, 1.0f, false, doubleSided, {}};
+                                    d.linear = linear;
+                                    d.material = &material;
+                                    compareKernel<PbrProgram<true>>(isa, key, [&] { return PbrProgram<true>(&d); }, rng, totals);
+                                }
+                                if (filter != TextureFilter::Nearest || wrap != WrapMode::Repeat) continue;
+                                SurfaceMaterial plain;
+                                plain.pbr = factors;
+                                DrawContext u{view, settings, mesh, mesh.indices.data(), nullptr, Color{1.0f, 1.0f, 1.0f, 1.0f},
+                                              Specular{}, depth == DepthMode::Test ? 0.4f : 1.0f, false, true, {}};
+                                u.linear = linear;
+                                u.material = &plain;
+                                compareKernel<PbrProgram<false>>(isa, key, [&] { return PbrProgram<false>(&u); }, rng, totals);
+                            }
+                        }
     }
     REQUIRE(ran > 0);
     CHECK(totals.pixels > 50000 * long(ran));

@@ -1,0 +1,54 @@
+// The glTF BRDF's terms over a generic real type: included by Brdf.hpp (float) and Kernels.inl (each ISA's lanes).
+//
+// Included INSIDE a namespace (sr, or sr::kernels_<isa> within that ISA's target region), with
+// no include guard: each includer gets its own copy, compiled for its own instruction set. The
+// operations maxOf, minOf, sqrtOf, selectOf and splatAs come from Brdf.hpp (float) or the ISA's
+// Simd*.hpp (its lane vector F), found by argument-dependent lookup.
+
+// f(l, v) N.L of appendix B ("Specular BRDF", "Complete model"; its combined implementation),
+// per channel, from the dot products of the unit vectors N, L, V and H = normalize(L + V):
+//   alpha  = roughness^2, roughness clamped to [kMinRoughness, 1], metallic to [0, 1]
+//   D      = alpha^2 / (pi ((N.H)^2 (alpha^2 - 1) + 1)^2)                  (GGX / Trowbridge-Reitz)
+//   V      = 0.5 / (N.L sqrt((N.V)^2 (1 - alpha^2) + alpha^2) + N.V sqrt((N.L)^2 (1 - alpha^2) + alpha^2))
+//                                                                          (Smith, height-correlated)
+//   F      = F0 + (1 - F0) (1 - V.H)^5, F0 = mix(0.04, baseColor, metallic) (Schlick)
+//   f N.L  = ((1 - F) c_diff / pi + F D V) N.L, c_diff = baseColor (1 - metallic)
+// V is the specification's G / (4 N.L N.V). D's denominator is written |N x H|^2 + (N.H)^2 alpha^2
+// (equal for unit N and H): in float, alpha^2 - 1 keeps only a few bits of a small alpha^2, which
+// near the peak is all that is left (0.7% off at roughness 0.05); sin2NH = |N x H|^2 keeps them.
+// N.V is clamped to 1e-4 (a viewer at grazing, or just behind an interpolated normal, still sees
+// the lit surface), V.H and N.H to 0; where N.L <= 0 the result is 0 (no light on the side the
+// surface does not face). A NaN roughness or metallic reads as the end of its range it fails.
+template <class R>
+inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRaw, R roughnessIn, R metallicIn,
+                            const R base[3], R out[3]) {
+    const R zero = splatAs(nDotL, 0.0f), one = splatAs(nDotL, 1.0f);
+    const R nDotV = maxOf(nDotVRaw, splatAs(nDotL, 1e-4f));
+    const R nDotH = maxOf(nDotHRaw, zero), vDotH = maxOf(vDotHRaw, zero);
+    const R minRoughness = splatAs(nDotL, kMinRoughness);
+    const R roughness = selectOf(roughnessIn >= minRoughness, minOf(roughnessIn, one), minRoughness);
+    const R metallic = selectOf(metallicIn > zero, minOf(metallicIn, one), zero);
+    const R alpha = roughness * roughness;
+    const R a2 = alpha * alpha;
+    // Schlick's weight (1 - V.H)^5, 1 - V.H clamped to [0, 1] (std::clamp's order of tests).
+    const R m0 = one - vDotH;
+    const R m = selectOf(m0 < zero, zero, selectOf(one < m0, one, m0));
+    const R m2 = m * m;
+    const R fw = m2 * m2 * m;
+    const R pi = splatAs(nDotL, kPiF);
+    const R d = sin2NH + nDotH * nDotH * a2;
+    const R distribution = selectOf(d > zero, a2 / (pi * d * d), zero);
+    const R gv = nDotL * sqrtOf(nDotV * nDotV * (one - a2) + a2);
+    const R gl = nDotV * sqrtOf(nDotL * nDotL * (one - a2) + a2);
+    const R sum = gv + gl;
+    const R visibility = selectOf(sum > zero, splatAs(nDotL, 0.5f) / sum, zero);
+    const R specular = distribution * visibility;
+    const R dielectricF0 = splatAs(nDotL, 0.04f);
+    const auto lit = nDotL > zero;
+    for (int c = 0; c < 3; ++c) {
+        const R f0 = dielectricF0 + (base[c] - dielectricF0) * metallic;
+        const R f = f0 + (one - f0) * fw;
+        const R diffuse = (one - f) * (base[c] * (one - metallic)) / pi;
+        out[c] = selectOf(lit, (diffuse + f * specular) * nDotL, zero);
+    }
+}

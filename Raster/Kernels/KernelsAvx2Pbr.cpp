@@ -1,0 +1,3 @@
+// The AVX2 span kernels of the pbr programs, without and with maps (see Kernels.inl).
+#define SR_KERNEL_PROGRAM PbrProgram
+#include "Raster/Kernels/KernelsAvx2.inl"
