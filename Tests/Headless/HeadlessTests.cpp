@@ -88,6 +88,9 @@ TEST_CASE("every bad flag or value gives one clear line and exit code 2", "[head
         {{"render", "--light", "0,0,0"}, "--light must not be the zero vector"},
         {{"render", "--shading", "toon"}, "bad value for --shading: 'toon' (expected unlit, flat, gouraud, phong or pbr)"},
         {{"render", "--cull", "back"}, "bad value for --cull: 'back' (expected none, cw or ccw)"},
+        {{"render", "--color", "srgb"}, "bad value for --color: 'srgb' (expected linear or gamma)"},
+        {{"render", "--tonemap", "filmic"}, "bad value for --tonemap: 'filmic' (expected none, aces or neutral)"},
+        {{"render", "--exposure", "40"}, "bad value for --exposure: '40'"},
         {{"render", "--filter", "aniso"}, "bad value for --filter: 'aniso'"},
         {{"render", "--persp", "span4"}, "bad value for --persp: 'span4' (expected exact or affine)"},
         // The retired span modes are named as such, with the modes that remain.
@@ -117,6 +120,13 @@ TEST_CASE("every bad flag or value gives one clear line and exit code 2", "[head
         CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1); // one line
         CHECK(r.out.empty());
     }
+}
+
+TEST_CASE("pbr needs glTF materials: the built-in scene refuses it in one line, exit code 1", "[headless][pbr]") {
+    const Run r = run({"render", "--shading", "pbr", "--width", "32", "--height", "24", "--out", tempDir("h") + "/x.png"});
+    CHECK(r.rc == kExitFailure);
+    CHECK(r.err.find("--shading pbr needs glTF metallic-roughness materials") != std::string::npos);
+    CHECK(r.out.empty());
 }
 
 TEST_CASE("an unreadable model or texture is named, exit code 1", "[headless]") {
