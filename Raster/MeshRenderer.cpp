@@ -63,8 +63,10 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
     // Linear light in the kernels: decoded texels and the sRGB encoder, without tone mapping or
     // exposure (those draws, and normal-mapped pbr, fill with the scalar loop).
     const bool kernelsCoverColour = !d.linear || (d.settings.toneMap == ToneMap::None && d.exposureScale == 1.0f);
+    // Light from the sky is the scalar pbr program's (the kernels have no image light).
+    const bool kernelsCoverLight = Program::kMode != ShadingMode::Pbr || d.view.ibl == nullptr;
     if constexpr (hasKernels<Program>()) {
-        if (kernelsCoverColour && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
+        if (kernelsCoverColour && kernelsCoverLight && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
             const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
             withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
             withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);

@@ -5,6 +5,7 @@
 #include <cstddef>
 
 #include "Raster/Brdf.hpp"
+#include "Raster/Ibl.hpp"
 #include "Raster/MeshPrograms.hpp"
 #include "Raster/Shadow.hpp"
 
@@ -27,6 +28,25 @@ inline Vec3 perturbNormal(Vec3 n, Vec4 tangent, Color texel, float scale) {
     const float ml = length(m);
     if (!(ml > 1e-12f) || !std::isfinite(ml)) return n;
     return m / ml;
+}
+
+// The light a sky sends toward v from a surface (N, V unit): Lambert's c_diff x E(n) / pi plus
+// the split sum's prefiltered radiance along R = 2 (N.V) N - V times F0 a + b (Ibl.hpp).
+inline Vec3 imageLight(const ImageLight& ibl, const PbrSurface& s, Vec3 n, Vec3 v) {
+    const float roughness = s.roughness >= kMinRoughness ? std::min(s.roughness, 1.0f) : kMinRoughness;
+    const float metallic = s.metallic > 0.0f ? std::min(s.metallic, 1.0f) : 0.0f;
+    const float nDotV = std::max(dot(n, v), 1e-4f);
+    const Vec3 r = n * (2.0f * dot(n, v)) - v;
+    float a = 0.0f, b = 0.0f;
+    ibl.brdfScaleBias(nDotV, roughness, a, b);
+    const Vec3 e = ibl.diffuse(n), spec = ibl.specular(r, roughness);
+    const float base[3] = {s.baseColor.x, s.baseColor.y, s.baseColor.z}, ev[3] = {e.x, e.y, e.z}, sv[3] = {spec.x, spec.y, spec.z};
+    float out[3];
+    for (int c = 0; c < 3; ++c) {
+        const float f0 = 0.04f + (base[c] - 0.04f) * metallic;
+        out[c] = base[c] * (1.0f - metallic) * ev[c] + sv[c] * (f0 * a + b);
+    }
+    return {out[0], out[1], out[2]};
 }
 
 // Phong's interpolation (world position and normal, perspective-correct), lit per pixel by the
@@ -114,12 +134,19 @@ struct PbrProgram {
                 n = perturbNormal(n, t, sampleMap(*m.normalMap, false, f), k.normalScale);
             }
         }
-        const Vec3 r = d->view.shadows
-                           ? pbrRadiance(d->view.lighting, s, n, p, v,
-                                         [sh = d->view.shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) {
-                                             return sh->visibility(light, q, normal, l);
-                                         })
-                           : pbrRadiance(d->view.lighting, s, n, p, v);
+        Vec3 r = d->view.shadows ? pbrRadiance(d->view.lighting, s, n, p, v,
+                                               [sh = d->view.shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) {
+                                                   return sh->visibility(light, q, normal, l);
+                                               })
+                                 : pbrRadiance(d->view.lighting, s, n, p, v);
+        if (d->view.ibl) {
+            float occlusion = 1.0f;
+            if constexpr (kMaps) {
+                if (m.occlusion) occlusion = 1.0f + k.occlusionStrength * (sampleMap(*m.occlusion, false, f).r - 1.0f);
+            }
+            const Vec3 sky = imageLight(*d->view.ibl, s, n, v) * occlusion;
+            r = r + sky;
+        }
         return encode(*d, Color{r.x + emissive.x, r.y + emissive.y, r.z + emissive.z, 1.0f});
     }
     template <bool kM = kMaps, std::enable_if_t<kM, int> = 0> // textured programs only (HasFragmentAlpha)

@@ -18,6 +18,7 @@
 namespace sr {
 
 struct PbrFactors; // Brdf.hpp
+class ImageLight; // Ibl.hpp
 
 // A selection outline (what the stencil buffer serves): after the opaque draws, scene draw
 // `draw` (an opaque one) is drawn again without colour and with the GEQUAL depth test, marking 1
@@ -78,6 +79,8 @@ struct FrameView {
     // This frame's shadow maps (renderSceneFrame sets it when RenderSettings::shadows is on;
     // Phong-shaded draws then test each fragment against them, Shadow.hpp). Null: no shadows.
     const SceneShadows* shadows = nullptr;
+    // Light from the sky (Ibl.hpp: --ibl), read by the pbr model only. Null: none.
+    const ImageLight* ibl = nullptr;
 };
 
 // The surface of one draw: a texture (used when the mesh has uvs) times `tint`, or the flat

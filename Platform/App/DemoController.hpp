@@ -76,12 +76,14 @@ public:
     void setLights(std::vector<Light> lights) { lights_ = std::move(lights); }
     // The lights' units (LoadedScene::physical: a glTF scene's).
     void setPhysicalLights(bool physical) { physical_ = physical; }
+    // The sky's light (LoadedScene::ibl), or null.
+    void setImageLight(const ImageLight* ibl) { ibl_ = ibl; }
     int cameraIndex() const { return cameraIndex_; }
 
     // The camera as a setup for the one view builder (makeFrameView): the starting setup while
     // the camera is where it started, else eye = position, target = position + forward, up = +Y.
     CameraSetup cameraSetup() const;
-    FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_, lights_, physical_); }
+    FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_, lights_, physical_, ibl_); }
 
     // "cull none | phong | bilinear | exact | ssaa 4" (or "| msaa 4" while multisampling; + " | wireframe",
     // " | depth view", " | help").
@@ -101,6 +103,7 @@ private:
     Vec3 toLight_;
     std::vector<Light> lights_;
     bool physical_ = false;
+    const ImageLight* ibl_ = nullptr;
     MotionTuning tuning_;
     bool depthView_ = false;
     bool help_ = false;

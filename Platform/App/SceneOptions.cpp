@@ -93,18 +93,19 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
                                          "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera",
-                                         "--sky",   "--skybox",  "--outline", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
+                                         "--sky",   "--skybox",  "--outline", "--ibl", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
 
-    if (flag == "--wireframe" || flag == "--outline" || flag == "--shadows" || flag == "--no-shadows") {
+    if (flag == "--wireframe" || flag == "--outline" || flag == "--ibl" || flag == "--shadows" || flag == "--no-shadows") {
         if (inlineValue) {
             error = flag + " takes no value";
             return FlagResult::Error;
         }
         if (flag == "--wireframe") o.wireframe = true;
         else if (flag == "--outline") o.outline = true;
+        else if (flag == "--ibl") o.ibl = true;
         else o.shadows.on = flag == "--shadows";
         return FlagResult::Consumed;
     }
@@ -290,6 +291,7 @@ std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
         return "--far (" + std::to_string(*o.farZ) + ") must be greater than --near (" + std::to_string(*o.nearZ) + ")";
     if (o.eye && o.target && *o.eye == *o.target) return "--eye and --target must differ";
     if (length(o.light) == 0.0f) return "--light must not be the zero vector";
+    if (o.ibl && o.sky == Sky::Kind::None) return "--ibl lights the model from the sky: it needs --sky gradient or --skybox DIR";
     if (o.ssaa > 1 && o.msaa > 1)
         return "--ssaa " + std::to_string(o.ssaa) + " and --msaa " + std::to_string(o.msaa) +
                ": choose one way of anti-aliasing (the other must be 1)";
@@ -327,6 +329,8 @@ std::string sceneFlagsHelp() {
            "                        values (default for OBJ and the built-in scene)\n"
            "  --tonemap T           none (default: clamp) | aces | neutral (Khronos PBR Neutral); linear only\n"
            "  --exposure EV         scale the linear colour by 2^EV before tone mapping (default 0)\n"
+           "  --ibl                 light glTF (pbr) surfaces from the sky too: diffuse irradiance and\n"
+           "                        prefiltered specular, made once when the sky loads; needs a sky\n"
            "  --texture PATH        texture for every material (overrides map_Kd)\n"
            "  --sky S               none (default: black) | gradient: what shows where nothing is drawn\n"
            "  --skybox DIR          cube-map sky: DIR holds px, nx, py, ny, pz, nz images (OpenGL's\n"

@@ -91,6 +91,7 @@ struct SceneOptions {
     // --color linear|gamma (unset: the scene's own convention, applySceneDefaults), --tonemap,
     // --exposure EV (linear only: Raster/ColorSpace.hpp).
     std::optional<ColorMode> colour;
+    bool ibl = false; // --ibl: the sky lights pbr surfaces (Raster/Ibl.hpp)
     ToneMap toneMap = ToneMap::None;
     float exposure = 0.0f;
 };

@@ -211,6 +211,7 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         if (!cube) return Result<LoadedScene>::failure(cube.error());
         out.scene.sky.cube = std::make_shared<const CubeMap>(std::move(cube.value()));
     }
+    if (options.ibl && out.scene.sky.on()) out.ibl = std::make_shared<const ImageLight>(out.scene.sky);
     if (options.camera && std::size_t(*options.camera) >= out.cameras.size())
         return Result<LoadedScene>::failure((options.obj.empty() ? std::string("the built-in scene") : options.obj) +
                                             ": --camera " + std::to_string(*options.camera) + ": it has " +
@@ -285,7 +286,7 @@ Light keyLight(Vec3 light) {
 }
 
 FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light, const std::vector<Light>& sceneLights,
-                        bool physical) {
+                        bool physical, const ImageLight* ibl) {
     const double aspect = (width > 0 && height > 0) ? double(width) / double(height) : 1.0;
     // As Camera::setNearFar: near clamped into Camera's range, a far not beyond it is infinite.
     const double nearZ = usableNear(c.nearZ);
@@ -307,6 +308,7 @@ FrameView makeFrameView(const CameraSetup& c, int width, int height, Vec3 light,
         v.rays.up = Vec3(float(m[1][0] * ty), float(m[1][1] * ty), float(m[1][2] * ty));
     }
     v.lighting.physical = physical;
+    v.ibl = ibl;
     if (physical) v.lighting.ambient = 0.0f;
     if (!sceneLights.empty()) {
         v.lighting.lights = sceneLights; // the scene's own lights; --light is for scenes without

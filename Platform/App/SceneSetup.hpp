@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "Platform/App/SceneOptions.hpp"
+#include "Raster/Ibl.hpp"
 #include "Raster/RenderSettings.hpp"
 #include "Raster/Scene.hpp"
 #include "Resources/Result.hpp"
@@ -35,6 +36,8 @@ struct LoadedScene {
     // A glTF scene: its materials are metallic-roughness (pbr), its colours linear and its
     // lights in physical units (Lighting::physical); the default light then has intensity pi.
     bool physical = false;
+    // --ibl with a sky: the light it sends (made once, here); null otherwise.
+    std::shared_ptr<const ImageLight> ibl;
 };
 
 // Loads options.obj (or builds the default scene when empty). Errors name the file.
@@ -81,7 +84,7 @@ Light keyLight(Vec3 direction);
 // default light has intensity pi (a white Lambertian surface facing it shows its albedo) and
 // there is no ambient term (glTF has none).
 FrameView makeFrameView(const CameraSetup& camera, int width, int height, Vec3 light,
-                        const std::vector<Light>& sceneLights, bool physical = false);
+                        const std::vector<Light>& sceneLights, bool physical = false, const ImageLight* ibl = nullptr);
 
 RenderSettings makeRenderSettings(const SceneOptions& options);
 

@@ -179,6 +179,7 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
     p->camera = app::resolveCamera(p->options, p->scene);
     if (!a.quiet) err << "softraster: camera: " << app::cameraFlags(p->camera) << "\n";
     p->view = app::makeFrameView(p->camera, a.scene.width, a.scene.height, a.scene.light, p->scene.lights, p->scene.physical);
+    p->view.ibl = p->scene.ibl.get();
     p->settings = app::makeRenderSettings(p->options);
     if (!p->framebuffer.resize(a.scene.width, a.scene.height)) {
         err << "softraster: cannot allocate a " << a.scene.width << "x" << a.scene.height << " framebuffer\n";

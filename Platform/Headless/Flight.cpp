@@ -135,7 +135,8 @@ int runFlight(const CommandArgs& a, PreparedScene& p, std::uint32_t seed, Stream
         const Pose pose = nextPose(rnd, p.scene);
         ++poses[pose.kind];
         const auto t0 = Clock::now();
-        const FrameView view = app::makeFrameView(pose.camera, w, h, a.scene.light, p.scene.lights, p.scene.physical);
+        FrameView view = app::makeFrameView(pose.camera, w, h, a.scene.light, p.scene.lights, p.scene.physical);
+        view.ibl = p.scene.ibl.get();
         app::renderFrame(p.context, p.scene, view, p.settings);
         ms[std::size_t(frame - 1)] = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
         long long bad = 0;

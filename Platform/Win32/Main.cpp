@@ -114,6 +114,7 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
     controller.setCameras(scene.cameras); // V cycles through the model's own cameras
     controller.setLights(scene.lights);
     controller.setPhysicalLights(scene.physical);
+    controller.setImageLight(scene.ibl.get());
 
     win32::enableDpiAwareness(); // before any window exists
     win32::MainWindow window(scene, controller);

@@ -89,6 +89,7 @@ TEST_CASE("every bad flag or value gives one clear line and exit code 2", "[head
         {{"render", "--shading", "toon"}, "bad value for --shading: 'toon' (expected unlit, flat, gouraud, phong or pbr)"},
         {{"render", "--cull", "back"}, "bad value for --cull: 'back' (expected none, cw or ccw)"},
         {{"render", "--color", "srgb"}, "bad value for --color: 'srgb' (expected linear or gamma)"},
+        {{"render", "--ibl"}, "--ibl lights the model from the sky: it needs --sky gradient or --skybox DIR"},
         {{"render", "--tonemap", "filmic"}, "bad value for --tonemap: 'filmic' (expected none, aces or neutral)"},
         {{"render", "--exposure", "40"}, "bad value for --exposure: '40'"},
         {{"render", "--filter", "aniso"}, "bad value for --filter: 'aniso'"},

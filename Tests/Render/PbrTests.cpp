@@ -13,6 +13,7 @@
 #include "Raster/ColorSpace.hpp"
 #include "Raster/MeshRenderer.hpp"
 #include "Raster/PbrProgram.hpp"
+#include "Raster/Ibl.hpp"
 #include "Raster/Msaa.hpp"
 #include "Raster/Resolve.hpp"
 #include "Raster/Scene.hpp"
@@ -500,4 +501,78 @@ TEST_CASE("linear light resolves in linear light: SSAA and MSAA average decoded 
     INFO("off by one: " << mismatches << " of " << 3 * kW * kH);
     CHECK(maxDiff <= 1);
     CHECK(mismatches < 3 * kW * kH / 200);
+}
+
+TEST_CASE("image-based light: a uniform sky gives E = pi, unit prefiltered radiance, and no energy gained",
+          "[render][ibl][pbr]") {
+    Sky white;
+    white.kind = Sky::Kind::Gradient;
+    white.gradient.zenith = white.gradient.horizon = white.gradient.ground = Color{1.0f, 1.0f, 1.0f, 1.0f};
+    const ImageLight ibl(white);
+    for (const Vec3& n : {Vec3{0, 1, 0}, Vec3{0, -1, 0}, normalize(Vec3{1, 2, 3}), Vec3{-1, 0, 0}}) {
+        CHECK(ibl.diffuse(n).x == Approx(1.0f).margin(0.01)); // E / pi
+        for (float r : {0.0f, 0.3f, 0.7f, 1.0f}) CHECK(ibl.specular(n, r).y == Approx(1.0f).margin(0.01));
+    }
+    // The split sum's directional albedo of the lobe, F0 a + b, for a white metal (F0 = 1): at most 1.
+    for (float nDotV : {0.05f, 0.3f, 0.7f, 1.0f})
+        for (float r : {0.05f, 0.3f, 0.6f, 1.0f}) {
+            float a = 0.0f, b = 0.0f;
+            ibl.brdfScaleBias(nDotV, r, a, b);
+            INFO("N.V " << nDotV << ", roughness " << r << ": a " << a << " b " << b);
+            CHECK(a >= 0.0f);
+            CHECK(b >= 0.0f);
+            CHECK(a + b <= 1.0f + 2e-3f);
+            if (r <= 0.3f && nDotV >= 0.3f) CHECK(a + b > 0.9f); // a smooth lobe loses almost nothing
+        }
+    // A white dielectric in the white sky reflects about what it receives: its Lambert part, less
+    // the 4% its coat takes, plus that coat's reflection.
+    PbrSurface s;
+    s.baseColor = {1.0f, 1.0f, 1.0f};
+    s.metallic = 0.0f;
+    s.roughness = 0.5f;
+    const Vec3 n{0, 0, 1};
+    const Vec3 out = programs::imageLight(ibl, s, n, normalize(Vec3{0.3f, 0.0f, 1.0f}));
+    CHECK(out.x == Approx(1.0f).margin(0.06));
+}
+
+TEST_CASE("image-based light: a sky bright above lights an upward normal, not a downward one; occlusion scales it",
+          "[render][ibl][pbr]") {
+    Sky above;
+    above.kind = Sky::Kind::Gradient;
+    above.gradient.zenith = above.gradient.horizon = Color{1.0f, 1.0f, 1.0f, 1.0f};
+    above.gradient.ground = Color{0.0f, 0.0f, 0.0f, 1.0f};
+    const ImageLight ibl(above);
+    // Half the sphere bright: E / pi = 1 facing up, 0 facing down, 1/2 sideways (the SH's band 2
+    // leaves a small ringing).
+    CHECK(ibl.diffuse({0, 1, 0}).x == Approx(1.0f).margin(0.05));
+    CHECK(ibl.diffuse({0, -1, 0}).x < 0.05f);
+    CHECK(ibl.diffuse({1, 0, 0}).x == Approx(0.5f).margin(0.05));
+    // Rendered: the pbr scene lit by the sky alone; an occlusion map of 0 at strength 1 takes
+    // all of it, at strength 0 none.
+    PbrScene sc = makePbrScene();
+    sc.view.lighting.lights.clear();
+    for (SceneDraw& d : sc.scene.draws) d.pbr->emissive = {0.0f, 0.0f, 0.0f};
+    sc.view.ibl = &ibl;
+    const Image lit = renderPbr(sc, sc.settings);
+    const std::uint8_t black[4] = {0, 0, 0, 255};
+    sc.scene.textures.push_back(Texture::fromRgba8(1, 1, black));
+    sc.scene.draws[3].occlusionTexture = 1; // the ground, which has uvs
+    sc.scene.draws[3].pbr->occlusionStrength = 1.0f;
+    const Image occluded = renderPbr(sc, sc.settings);
+    sc.scene.draws[3].pbr->occlusionStrength = 0.0f;
+    const Image unoccluded = renderPbr(sc, sc.settings);
+    sc.view.ibl = nullptr;
+    const Image noSky = renderPbr(sc, sc.settings);
+    long litSum = 0, occludedSum = 0, differing = 0, noSkySum = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) {
+            litSum += lit.texel(x, y)[1];
+            occludedSum += occluded.texel(x, y)[1];
+            noSkySum += noSky.texel(x, y)[1];
+            for (int c = 0; c < 3; ++c) differing += lit.texel(x, y)[c] != unoccluded.texel(x, y)[c];
+        }
+    CHECK(litSum > 100000);
+    CHECK(occludedSum < litSum * 3 / 4); // the ground went dark
+    CHECK(differing == 0);               // strength 0: the map changes nothing
+    CHECK(noSkySum == 0);                // no lights, no emission, no sky: black
 }
