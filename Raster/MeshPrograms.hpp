@@ -66,11 +66,13 @@ inline RgbTerms litTerms(const DrawContext& d, Vec3 n, Vec3 p, Vec3 v) {
     return lightTerms(d.view.lighting, d.specular, n, p, v);
 }
 
-// The filtered texel at a fragment whose varyings 0 and 1 are (u, v). Trilinear filtering needs
-// the screen-space uv derivatives, taken analytically from the triangle's planes (no quad
-// shading).
+// The filtered texel of `texture` at a fragment whose varyings 0 and 1 are (u, v), its colour
+// decoded from sRGB when `decode` (linear light). Trilinear filtering needs the screen-space uv
+// derivatives, taken analytically from the triangle's planes (no quad shading), and the level of
+// detail is the texture's own (its size).
 template <int kVaryings>
-inline Color sampleTexel(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
+inline Color sampleTextureAt(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f,
+                             const Texture& texture, bool decode) {
     const Vec2 uv{f.varyings[0], f.varyings[1]};
     float lod = 0.0f;
     if (d.settings.filter == TextureFilter::Trilinear) {
@@ -79,10 +81,16 @@ inline Color sampleTexel(const DrawContext& d, const TriangleSetup* setup, const
                                     ? UvDerivatives{float(setup->ddx[kU]), float(setup->ddx[kV]), float(setup->ddy[kU]),
                                                     float(setup->ddy[kV])}
                                     : uvDerivatives(*setup, kU, kV, f.invW, uv.x, uv.y);
-        lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, d.texture->width(), d.texture->height());
+        lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, texture.width(), texture.height());
     }
-    return d.linear ? d.texture->sampleSrgb(uv, lod, d.settings.filter, d.settings.wrap)
-                    : d.texture->sample(uv, lod, d.settings.filter, d.settings.wrap);
+    return decode ? texture.sampleSrgb(uv, lod, d.settings.filter, d.settings.wrap)
+                  : texture.sample(uv, lod, d.settings.filter, d.settings.wrap);
+}
+
+// The draw's texture (a colour map: decoded in linear light).
+template <int kVaryings>
+inline Color sampleTexel(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f) {
+    return sampleTextureAt(d, setup, f, *d.texture, d.linear);
 }
 
 // Diffuse colour at a textured fragment: the texel times the draw's kd (the reference's

@@ -86,21 +86,10 @@ struct PbrProgram {
     }
     void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
 
-    // One map at this fragment: trilinear's level of detail from the map's own size.
+    // One map at this fragment (its own level of detail); colour maps decoded in linear light.
     template <int kV>
     Color sampleMap(const Texture& map, bool colour, const Fragment<kV>& f) const {
-        const Vec2 uv{f.varyings[0], f.varyings[1]};
-        float lod = 0.0f;
-        if (d->settings.filter == TextureFilter::Trilinear) {
-            constexpr int kU = kPlaneVarying0, kVv = kPlaneVarying0 + 1;
-            const UvDerivatives g = d->settings.perspective == PerspectiveMode::Affine
-                                        ? UvDerivatives{float(setup->ddx[kU]), float(setup->ddx[kVv]), float(setup->ddy[kU]),
-                                                        float(setup->ddy[kVv])}
-                                        : uvDerivatives(*setup, kU, kVv, f.invW, uv.x, uv.y);
-            lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, map.width(), map.height());
-        }
-        return colour && d->linear ? map.sampleSrgb(uv, lod, d->settings.filter, d->settings.wrap)
-                                   : map.sample(uv, lod, d->settings.filter, d->settings.wrap);
+        return sampleTextureAt(*d, setup, f, map, colour && d->linear);
     }
 
     Pixel fragment(const Fragment<kVaryings>& f) const {
