@@ -37,6 +37,16 @@ const std::array<float, 256> kDecode = [] {
     return t;
 }();
 
+const std::array<std::uint16_t, 256> kDecode16 = [] {
+    std::array<std::uint16_t, 256> t{};
+    for (int b = 0; b < 256; ++b) {
+        const double x = double(b) / 255.0;
+        const double l = x <= 0.04045 ? x / 12.92 : std::pow((x + 0.055) / 1.055, 2.4);
+        t[std::size_t(b)] = std::uint16_t(std::lround(l * 65535.0));
+    }
+    return t;
+}();
+
 // kMidpoints[k] = decode((k + 0.5) / 255): the linear value whose encoding lies halfway between
 // bytes k and k + 1, so l above it encodes, rounded to the nearest byte, to k + 1 or more.
 const std::array<float, 255> kMidpoints = [] {
@@ -74,6 +84,7 @@ const SrgbTables kTables = [] {
 } // namespace
 
 const std::array<float, 256>& srgbDecodeTable() { return kDecode; }
+const std::array<std::uint16_t, 256>& srgbDecode16Table() { return kDecode16; }
 const SrgbTables& srgbTables() { return kTables; }
 
 std::uint8_t encodeSrgb8(float l) {

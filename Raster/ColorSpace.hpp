@@ -32,6 +32,11 @@ float linearToSrgb(float l);
 // srgbToLinear(b / 255) for every byte b: the decode of one texel channel is a table lookup.
 const std::array<float, 256>& srgbDecodeTable();
 
+// The same decode in 16 bits, the texel storage of the linear-light samplers (Texture's decoded
+// levels): round(decode(b / 255) 65535), the curve evaluated in double. A texel read back as
+// value / 65535 encodes to its byte again (encodeSrgb8), for every byte.
+const std::array<std::uint16_t, 256>& srgbDecode16Table();
+
 // A linear channel value as the stored sRGB byte: linearToSrgb(l) rounded to the nearest byte,
 // as a GPU's sRGB render target stores it (a value exactly on a midpoint goes down), found by a
 // binary search over the 255 linear values that encode to the midpoints between bytes (no pow

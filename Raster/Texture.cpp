@@ -2,6 +2,8 @@
 // The samplers are in TextureSampling.cpp.
 #include "Texture.hpp"
 
+#include "Raster/ColorSpace.hpp"
+
 #include <algorithm>
 #include <cassert>
 #include <utility>
@@ -150,6 +152,30 @@ Texture Texture::fromRgba8(int width, int height, const std::uint8_t* rgbaTopRow
         ++t.halvingLevels_;
     }
     return t;
+}
+
+const Texture::Decoded& Texture::decoded() const {
+    std::call_once(decoded_->once, [this] {
+        const auto& d16 = srgbDecode16Table();
+        decoded_->levels.resize(levels_.size());
+        for (std::size_t k = 0; k < levels_.size(); ++k) {
+            const std::vector<std::uint32_t>& src = levels_[k].texels;
+            std::vector<std::uint32_t>& dst = decoded_->levels[k];
+            dst.resize(2 * src.size());
+            for (std::size_t i = 0; i < src.size(); ++i) {
+                const std::uint32_t t = src[i];
+                dst[2 * i] = std::uint32_t(d16[t & 0xFFu]) | std::uint32_t(d16[(t >> 8) & 0xFFu]) << 16;
+                dst[2 * i + 1] = std::uint32_t(d16[(t >> 16) & 0xFFu]) | ((t >> 24) * 257u) << 16;
+            }
+        }
+    });
+    return *decoded_;
+}
+
+Texture::LevelView Texture::decodedLevelView(int level) const {
+    LevelView v = levelView(level);
+    v.decoded = decoded().levels[std::size_t(level)].data();
+    return v;
 }
 
 std::uint32_t Texture::texel(int level, int x, int y) const {

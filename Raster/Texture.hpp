@@ -3,6 +3,8 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
+#include <mutex>
 #include <optional>
 #include <string_view>
 #include <vector>
@@ -100,15 +102,23 @@ public:
     // else 0. stride = width + 1: each row ends with a copy of its texel 0 (texels[y * stride +
     // width]), so that a texel and its right neighbour under GL_REPEAT lie next to each other in
     // memory for every x, the last one included: one 64-bit load fetches a bilinear pair.
+    // decoded: the level's decoded storage (decodedLevelView only, else null).
     struct LevelView {
         const std::uint32_t* texels = nullptr;
         int width = 0, height = 0, stride = 0;
         std::uint32_t maskX = 0, maskY = 0;
+        const std::uint32_t* decoded = nullptr;
     };
     LevelView levelView(int level) const {
         const Level& l = levels_[std::size_t(level)];
-        return {l.texels.data(), l.width, l.height, l.stride(), l.maskX, l.maskY};
+        return {l.texels.data(), l.width, l.height, l.stride(), l.maskX, l.maskY, nullptr};
     }
+    // The same with the level's decoded storage for linear light: texel (x, y) as two 32-bit words
+    // at decoded[2 (y * stride + x)], r | g << 16 and b | a << 16, the colour channels the 16-bit
+    // linear values of srgbDecode16Table (ColorSpace.hpp), alpha a * 257 (a / 255 in 16 bits).
+    // Made from every level the first time any level is asked for (once, thread-safe), so a
+    // texture never sampled in linear light holds none.
+    LevelView decodedLevelView(int level) const;
 
     // --- Sampling -------------------------------------------------------------------------------
     // General entry: Nearest and Bilinear read the base level and ignore lod; Trilinear uses lod
@@ -133,10 +143,14 @@ public:
     // read one level only.
     Color sampleTrilinear(Vec2 uv, float lod, WrapMode wrap) const;
 
-    // The same filters on decoded texels (linear light, ColorSpace.hpp): each texel's colour
-    // channels are decoded from sRGB through a 256-entry table BEFORE they are weighted (as a GPU
-    // samples an SRGB8_ALPHA8 texture), alpha taken as it is; same taps and 8-bit weights as the
-    // paths above, the weighting in float. The mip levels are those of the stored bytes.
+    // The same filters on decoded texels (linear light, ColorSpace.hpp): the colour channels
+    // decoded from sRGB BEFORE they are weighted (as a GPU samples an SRGB8_ALPHA8 texture), from
+    // the decoded storage (decodedLevelView: 16-bit linear values d, alpha a * 257); same taps and
+    // 8-bit weights as the paths above. Nearest: d / 65535. Bilinear, per channel: the rows
+    // t0 (256 - wx) + t1 wx in integers (below 2^24, exact in float), then
+    // (row0 (256 - wy) + row1 wy) / (65535 * 65536) in float: at a texel centre exactly d / 65535.
+    // Trilinear: the two levels' results mixed in float, c0 + (c1 - c0) wl / 256. The mip levels
+    // are those of the stored bytes, decoded.
     Color sampleSrgb(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const;
 
     // The fast paths above are tested bit-identical to a straightforward reference of sample()
@@ -159,7 +173,16 @@ private:
     static Level makeLevel(int width, int height);
     static Level downsample(const Level& src);
 
+    // The decoded storage of every level (decodedLevelView), made once on first use; shared by
+    // copies, which hold the same texels.
+    struct Decoded {
+        std::once_flag once;
+        std::vector<std::vector<std::uint32_t>> levels;
+    };
+    const Decoded& decoded() const;
+
     std::vector<Level> levels_; // levels_[0] is the base level; never empty
+    std::shared_ptr<Decoded> decoded_ = std::make_shared<Decoded>();
     bool hasAlpha_ = false;
     int halvingLevels_ = 1;
 };

@@ -166,6 +166,8 @@ inline Raw blendLevels(const Raw& a, const Raw& b, int wl) {
         r.c[k] = std::uint32_t((std::uint64_t(a.c[k]) * std::uint64_t(256 - wl) + std::uint64_t(b.c[k]) * std::uint64_t(wl) + 128u) >> 8);
     return r;
 }
+// The decoded bilinear blend's scale: 65535 (16-bit texels) times 65536 (two 8-bit weights).
+constexpr float kDecodedScale = 65535.0f * 65536.0f;
 inline Color toColor(const Raw& r) {
     return {float(r.c[0]) / kRawScale, float(r.c[1]) / kRawScale, float(r.c[2]) / kRawScale, float(r.c[3]) / kRawScale};
 }
@@ -208,43 +210,50 @@ struct TextureSampling {
         return blendLevels(c0, bilinear<kWrap>(levels[std::size_t(level) + 1], uv), wl);
     }
 
-    // The decoded twins (sampleSrgb): the same taps and weights, each texel decoded first.
-    static Color decoded(std::uint32_t t, const std::array<float, 256>& d) {
-        return {d[t & 0xFFu], d[(t >> 8) & 0xFFu], d[(t >> 16) & 0xFFu], kUnorm8[t >> 24]};
+    // The decoded twins (sampleSrgb): the same taps and weights on the decoded storage
+    // (Texture::decodedLevelView: two words per texel, r | g << 16 and b | a << 16).
+    static Color decoded(const Texture::LevelView& l, int x, int y) {
+        const std::uint32_t* t = l.decoded + 2 * (std::size_t(y) * std::size_t(l.stride) + std::size_t(x));
+        return {float(t[0] & 0xFFFFu) / 65535.0f, float(t[0] >> 16) / 65535.0f, float(t[1] & 0xFFFFu) / 65535.0f,
+                float(t[1] >> 16) / 65535.0f};
     }
-    template <WrapMode kWrap, class Level>
-    static Color bilinearDecoded(const Level& l, Vec2 uv) {
+    template <WrapMode kWrap>
+    static Color bilinearDecoded(const Texture::LevelView& l, Vec2 uv) {
         const LinearTaps tx = linearTaps(uv.x, l.width, kWrap);
         const LinearTaps ty = linearTaps(uv.y, l.height, kWrap);
         int x0, x1, y0, y1;
         Wrap<kWrap>::pair(tx.i0, l.width, l.maskX, x0, x1);
         Wrap<kWrap>::pair(ty.i0, l.height, l.maskY, y0, y1);
-        const auto& d = srgbDecodeTable();
-        const Color c00 = decoded(l.row(y0)[x0], d), c10 = decoded(l.row(y0)[x1], d);
-        const Color c01 = decoded(l.row(y1)[x0], d), c11 = decoded(l.row(y1)[x1], d);
-        const float wx = float(tx.w) / 256.0f, wy = float(ty.w) / 256.0f;
-        const auto mix = [](Color a, Color b, float w) {
-            return Color{a.r + (b.r - a.r) * w, a.g + (b.g - a.g) * w, a.b + (b.b - a.b) * w, a.a + (b.a - a.a) * w};
-        };
-        return mix(mix(c00, c10, wx), mix(c01, c11, wx), wy);
+        auto at = [&](int x, int y) { return l.decoded + 2 * (std::size_t(y) * std::size_t(l.stride) + std::size_t(x)); };
+        const std::uint32_t *t00 = at(x0, y0), *t10 = at(x1, y0), *t01 = at(x0, y1), *t11 = at(x1, y1);
+        const std::uint32_t ax = std::uint32_t(256 - tx.w), bx = std::uint32_t(tx.w);
+        const float ay = float(256 - ty.w), by = float(ty.w);
+        float c[4];
+        for (int k = 0; k < 4; ++k) {
+            const int word = k >> 1, sh = 16 * (k & 1);
+            const std::uint32_t row0 = ((t00[word] >> sh) & 0xFFFFu) * ax + ((t10[word] >> sh) & 0xFFFFu) * bx;
+            const std::uint32_t row1 = ((t01[word] >> sh) & 0xFFFFu) * ax + ((t11[word] >> sh) & 0xFFFFu) * bx;
+            c[k] = (float(row0) * ay + float(row1) * by) / kDecodedScale;
+        }
+        return {c[0], c[1], c[2], c[3]};
     }
-    template <WrapMode kWrap, class Levels>
-    static Color sampleDecoded(const Levels& levels, Vec2 uv, float lod, TextureFilter filter) {
-        const auto& base = levels[0];
+    template <WrapMode kWrap>
+    static Color sampleDecoded(const Texture& texture, Vec2 uv, float lod, TextureFilter filter) {
         if (filter == TextureFilter::Nearest) {
+            const Texture::LevelView base = texture.decodedLevelView(0);
             const int x = Wrap<kWrap>::one(nearestTap(uv.x, base.width, kWrap), base.width, base.maskX);
             const int y = Wrap<kWrap>::one(nearestTap(uv.y, base.height, kWrap), base.height, base.maskY);
-            return decoded(base.row(y)[x], srgbDecodeTable());
+            return decoded(base, x, y);
         }
-        if (filter == TextureFilter::Bilinear) return bilinearDecoded<kWrap>(base, uv);
-        const int last = int(levels.size()) - 1;
+        if (filter == TextureFilter::Bilinear) return bilinearDecoded<kWrap>(texture.decodedLevelView(0), uv);
+        const int last = texture.levelCount() - 1;
         if (!(lod > 0.0f)) lod = 0.0f;
-        if (lod >= float(last)) return bilinearDecoded<kWrap>(levels[std::size_t(last)], uv);
+        if (lod >= float(last)) return bilinearDecoded<kWrap>(texture.decodedLevelView(last), uv);
         const int level = int(lod);
         const int wl = lodWeight(lod - float(level));
-        const Color c0 = bilinearDecoded<kWrap>(levels[std::size_t(level)], uv);
+        const Color c0 = bilinearDecoded<kWrap>(texture.decodedLevelView(level), uv);
         if (wl == 0) return c0;
-        const Color c1 = bilinearDecoded<kWrap>(levels[std::size_t(level) + 1], uv);
+        const Color c1 = bilinearDecoded<kWrap>(texture.decodedLevelView(level + 1), uv);
         const float w = float(wl) / 256.0f;
         return {c0.r + (c1.r - c0.r) * w, c0.g + (c1.g - c0.g) * w, c0.b + (c1.b - c0.b) * w, c0.a + (c1.a - c0.a) * w};
     }
@@ -252,9 +261,9 @@ struct TextureSampling {
 
 Color Texture::sampleSrgb(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const {
     switch (wrap) {
-    case WrapMode::Repeat: return TextureSampling::sampleDecoded<WrapMode::Repeat>(levels_, uv, lod, filter);
-    case WrapMode::Clamp: return TextureSampling::sampleDecoded<WrapMode::Clamp>(levels_, uv, lod, filter);
-    case WrapMode::Mirror: return TextureSampling::sampleDecoded<WrapMode::Mirror>(levels_, uv, lod, filter);
+    case WrapMode::Repeat: return TextureSampling::sampleDecoded<WrapMode::Repeat>(*this, uv, lod, filter);
+    case WrapMode::Clamp: return TextureSampling::sampleDecoded<WrapMode::Clamp>(*this, uv, lod, filter);
+    case WrapMode::Mirror: return TextureSampling::sampleDecoded<WrapMode::Mirror>(*this, uv, lod, filter);
     }
     return {};
 }

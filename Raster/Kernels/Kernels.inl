@@ -74,8 +74,9 @@ SR_SIMD_INLINE I encodeSrgbLanes(F l) {
     return select(one, iset(255), select(pos, stepped, iset(0)));
 }
 
-// packLinearBgra8 (ColorSpace.hpp) without tone mapping or exposure: each channel encoded.
-SR_SIMD_INLINE I packLinearBgra8(const Rgb& c) {
+// packLinearBgra8 (ColorSpace.hpp) without tone mapping or exposure: each channel encoded. Out
+// of line (one copy per ISA): six gathers, too much code to copy into every kernel.
+SR_SIMD_NOINLINE I packLinearBgra8(const Rgb& c) {
     return (iset(int(0xFF000000u)) | shiftLeft<16>(encodeSrgbLanes(c.r))) | (shiftLeft<8>(encodeSrgbLanes(c.g)) | encodeSrgbLanes(c.b));
 }
 
@@ -444,43 +445,31 @@ SR_SIMD_INLINE RawRgb bilinearRaw(const Texture::LevelView& l, I fixedU, I fixed
             mulLow(shiftRightLogical<16>(rb0), ay) + mulLow(shiftRightLogical<16>(rb1), wy)};
 }
 
-// Byte k of each texel decoded from sRGB (srgbDecodeTable), by a gather from its table.
-template <int kShift>
-SR_SIMD_INLINE F decodedChannel(I texel) {
-    return asFloat(gather(srgbTables().decodeBits, shiftRightLogical<kShift>(texel) & iset(0xFF)));
-}
-
-// One channel of the decoded bilinear blend (TextureSampling's bilinearDecoded): the 2x2 texels
-// decoded, then mixed in float in the scalar order, a + (b - a) w along x in each row, then
-// along y. The pairs come from adjacentPair's memory order: aFirst / bFirst say whether tap a / b
-// is the pair's first texel (else its second).
-template <int kShift>
-SR_SIMD_INLINE F mixDecoded(I t00, I t10, I t01, I t11, M aFirst, M bFirst, F wx, F wy) {
-    const F c00 = decodedChannel<kShift>(t00), c10 = decodedChannel<kShift>(t10);
-    const F c01 = decodedChannel<kShift>(t01), c11 = decodedChannel<kShift>(t11);
-    const F a0 = select(aFirst, c00, c10), b0 = select(bFirst, c00, c10);
-    const F a1 = select(aFirst, c01, c11), b1 = select(bFirst, c01, c11);
-    const F row0 = a0 + (b0 - a0) * wx, row1 = a1 + (b1 - a1) * wx;
-    return row0 + (row1 - row0) * wy;
-}
-
 // GL_LINEAR in one level on decoded texels (Texture::sampleSrgb's bilinear): the taps and 8-bit
-// weights of bilinearRaw, the weighting in float.
+// weights of bilinearRaw on the level's decoded storage (l.decoded: two words per texel,
+// r | g << 16 and b | a << 16, one 64-bit load per tap and lane); per channel the rows
+// t0 (256 - wx) + t1 wx in integers, then (row0 (256 - wy) + row1 wy) / (65535 * 65536) in float.
 template <WrapMode kWrap>
 SR_SIMD_INLINE Rgb bilinearDecoded(const Texture::LevelView& l, I fixedU, I fixedV) {
-    I x0, x1, wxTaps, y0, y1, wy;
-    linearAxis<kWrap>(fixedU, l.width, l.maskX, x0, x1, wxTaps);
+    I x0, x1, wx, y0, y1, wy;
+    linearAxis<kWrap>(fixedU, l.width, l.maskX, x0, x1, wx);
     linearAxis<kWrap>(fixedV, l.height, l.maskY, y0, y1, wy);
-    I x, wPair;
-    adjacentPair<kWrap>(x0, x1, wxTaps, x, wPair);
     const I stride = iset(l.stride);
-    I t00, t10, t01, t11;
-    gatherPair(l.texels, mulLow(y0, stride) + x, t00, t10);
-    gatherPair(l.texels, mulLow(y1, stride) + x, t01, t11);
-    const M aFirst = x0 == x, bFirst = x1 == x;
-    const F wx = toFloat(wxTaps) / fset(256.0f), wyF = toFloat(wy) / fset(256.0f);
-    return {mixDecoded<0>(t00, t10, t01, t11, aFirst, bFirst, wx, wyF), mixDecoded<8>(t00, t10, t01, t11, aFirst, bFirst, wx, wyF),
-            mixDecoded<16>(t00, t10, t01, t11, aFirst, bFirst, wx, wyF)};
+    const I row0 = mulLow(y0, stride), row1 = mulLow(y1, stride);
+    I rg00, ba00, rg10, ba10, rg01, ba01, rg11, ba11;
+    gatherPair(l.decoded, shiftLeft<1>(row0 + x0), rg00, ba00);
+    gatherPair(l.decoded, shiftLeft<1>(row0 + x1), rg10, ba10);
+    gatherPair(l.decoded, shiftLeft<1>(row1 + x0), rg01, ba01);
+    gatherPair(l.decoded, shiftLeft<1>(row1 + x1), rg11, ba11);
+    const I low16 = iset(0xFFFF), ax = iset(256) - wx;
+    const F ay = toFloat(iset(256) - wy), by = toFloat(wy), scale = fset(65535.0f * 65536.0f);
+    auto blend = [&](I t00, I t10, I t01, I t11) SR_SIMD_LAMBDA {
+        const I r0 = mulLow(t00, ax) + mulLow(t10, wx), r1 = mulLow(t01, ax) + mulLow(t11, wx);
+        return (toFloat(r0) * ay + toFloat(r1) * by) / scale;
+    };
+    return {blend(rg00 & low16, rg10 & low16, rg01 & low16, rg11 & low16),
+            blend(shiftRightLogical<16>(rg00), shiftRightLogical<16>(rg10), shiftRightLogical<16>(rg01), shiftRightLogical<16>(rg11)),
+            blend(ba00 & low16, ba10 & low16, ba01 & low16, ba11 & low16)};
 }
 
 // log2Positive (TextureLod.hpp) per lane, for normal positive finite x: the same operations.
@@ -619,13 +608,13 @@ SR_SIMD_INLINE Rgb trilinearDecodedLanes(const Texture& texture, F u, F v, F lod
     for (int k = lo; k <= hi; ++k) {
         const M mine = level == iset(k);
         if (bits(mine) == 0) continue;
-        const Texture::LevelView here = texture.levelView(k);
+        const Texture::LevelView here = texture.decodedLevelView(k);
         I fixedU, fixedV;
         coordinates(here, k, fixedU, fixedV);
         Rgb c = bilinearDecoded<kWrap>(here, fixedU, fixedV);
         const M blend = mine & (wl > iset(0));
         if (k < last && bits(blend) != 0) {
-            const Texture::LevelView next = texture.levelView(k + 1);
+            const Texture::LevelView next = texture.decodedLevelView(k + 1);
             I nextU, nextV;
             coordinates(next, k + 1, nextU, nextV);
             const Rgb c1 = bilinearDecoded<kWrap>(next, nextU, nextV);
@@ -637,39 +626,46 @@ SR_SIMD_INLINE Rgb trilinearDecodedLanes(const Texture& texture, F u, F v, F lod
     return out;
 }
 
-// The colour of the lanes from `texture` with the kernel's filter and wrap, the lanes off the
-// vector path (NaN / Inf / huge uv) redone by the scalar sampler. `linear`: texels decoded from
-// sRGB (Texture::sampleSrgb). `triangleLod`: the affine triangle's mip level for this texture
-// (trilinear only).
-template <PerspectiveMode kPersp, TextureFilter kFilter, WrapMode kWrap, class Prog>
-SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, const Texture& texture, bool linear, F u, F v, F invW, F triangleLod) {
+// The colour of the lanes from `texture` with the filter and wrap at level of detail `lod`
+// (trilinear only), the lanes off the vector path (NaN / Inf / huge uv) redone by the scalar
+// sampler. `linear`: texels decoded from sRGB (Texture::sampleSrgb). Out of line: one copy per
+// filter and wrap that every kernel of the ISA calls (a call per group of lanes), instead of a
+// copy inlined into each kernel for each map, wrap and colour mode.
+template <TextureFilter kFilter, WrapMode kWrap>
+SR_SIMD_NOINLINE Rgb sampleLanes(const Texture& texture, bool linear, F u, F v, F lod) {
     const M good = onVectorPath(u) & onVectorPath(v);
     const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
     Rgb kd;
-    F lod = fzero();
     if constexpr (kFilter == TextureFilter::Nearest) {
-        const Texture::LevelView l = texture.levelView(0);
+        const Texture::LevelView l = linear ? texture.decodedLevelView(0) : texture.levelView(0);
         const I x = nearestAxis<kWrap>(uSafe, l.width, l.maskX);
         const I y = nearestAxis<kWrap>(vSafe, l.height, l.maskY);
-        const I t = gather(l.texels, mulLow(y, iset(l.stride)) + x);
-        const F scale = fset(255.0f); // kUnorm8: byte / 255.0f, correctly rounded
-        if (linear) kd = {decodedChannel<0>(t), decodedChannel<8>(t), decodedChannel<16>(t)};
-        else kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
+        const I i = mulLow(y, iset(l.stride)) + x;
+        if (linear) {
+            I rg, ba;
+            gatherPair(l.decoded, shiftLeft<1>(i), rg, ba);
+            const I low16 = iset(0xFFFF);
+            const F scale = fset(65535.0f); // the decoded value d / 65535, correctly rounded
+            kd = {toFloat(rg & low16) / scale, toFloat(shiftRightLogical<16>(rg)) / scale, toFloat(ba & low16) / scale};
+        } else {
+            const I t = gather(l.texels, i);
+            const F scale = fset(255.0f); // kUnorm8: byte / 255.0f, correctly rounded
+            kd = {channel<0>(t) / scale, channel<8>(t) / scale, channel<16>(t) / scale};
+        }
     } else if constexpr (kFilter == TextureFilter::Bilinear) {
         const Texture::LevelView l = texture.levelView(0);
         if (linear) {
-            kd = bilinearDecoded<kWrap>(l, linearX<kWrap>(uSafe, l.width), linearX<kWrap>(vSafe, l.height));
+            const Texture::LevelView dl = texture.decodedLevelView(0);
+            kd = bilinearDecoded<kWrap>(dl, linearX<kWrap>(uSafe, l.width), linearX<kWrap>(vSafe, l.height));
         } else {
             const RawRgb raw = bilinearRaw<kWrap>(l, linearX<kWrap>(uSafe, l.width), linearX<kWrap>(vSafe, l.height));
             const F scale = fset(255.0f * 65536.0f); // then raw / (255 * 65536)
             kd = {toFloat(raw.r) / scale, toFloat(raw.g) / scale, toFloat(raw.b) / scale};
         }
     } else {
-        if constexpr (kPersp == PerspectiveMode::Affine) lod = triangleLod;
-        else lod = mipLevels(p, texture, u, v, invW);
         kd = linear ? trilinearDecodedLanes<kWrap>(texture, uSafe, vSafe, lod) : trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
     }
-    if (bits(good) != bits(mAll())) {
+    if (SR_UNLIKELY(bits(good) != bits(mAll()))) {
         alignas(64) float us[kLanes], vs[kLanes], lods[kLanes], r[kLanes], g[kLanes], b[kLanes];
         fstore(us, u);
         fstore(vs, v);
@@ -690,18 +686,26 @@ SR_SIMD_INLINE Rgb sampleTextureWrap(const Prog& p, const Texture& texture, bool
     return kd;
 }
 
-// The draw's wrap mode is read here, per group of lanes, not made a template parameter of the
-// kernels: one predictable branch per group, and a third of the kernels' instantiations (and
-// compile time) for the textured programs, whose three wrap variants differ only in these
-// few instructions.
+// sampleLanes for the draw: the lanes' level of detail (trilinear: the affine triangle's
+// `triangleLod`, or per lane under exact perspective), then the draw's wrap mode, read here per
+// group of lanes rather than made a template parameter of the kernels (one predictable branch
+// per group).
 template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
 SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear, F u, F v, F invW, F triangleLod) {
+    F lod = fzero();
+    if constexpr (kFilter == TextureFilter::Trilinear) {
+        if constexpr (kPersp == PerspectiveMode::Affine) lod = triangleLod;
+        else lod = mipLevels(p, texture, u, v, invW);
+    } else {
+        (void)invW;
+        (void)triangleLod;
+    }
     switch (p.d->settings.wrap) {
-    case WrapMode::Clamp: return sampleTextureWrap<kPersp, kFilter, WrapMode::Clamp>(p, texture, linear, u, v, invW, triangleLod);
-    case WrapMode::Mirror: return sampleTextureWrap<kPersp, kFilter, WrapMode::Mirror>(p, texture, linear, u, v, invW, triangleLod);
+    case WrapMode::Clamp: return sampleLanes<kFilter, WrapMode::Clamp>(texture, linear, u, v, lod);
+    case WrapMode::Mirror: return sampleLanes<kFilter, WrapMode::Mirror>(texture, linear, u, v, lod);
     case WrapMode::Repeat: break;
     }
-    return sampleTextureWrap<kPersp, kFilter, WrapMode::Repeat>(p, texture, linear, u, v, invW, triangleLod);
+    return sampleLanes<kFilter, WrapMode::Repeat>(texture, linear, u, v, lod);
 }
 // The draw's texture (programs::sampleTexel).
 template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "Raster/ColorSpace.hpp"
 #include "TextureReference.hpp"
 #include "TextureTestUtil.hpp"
 
@@ -274,4 +275,75 @@ TEST_CASE("a 3x5 (non-power-of-two) texture: centres, edges and wrap seams", "[t
     // v on the 5-high axis: v = 1e6 + 0.1 is not exact, 1e6 + 0.125 is: floor(0.625) = row 0.
     requireAll(t, {0.5f, 1000000.125f}, TextureFilter::Nearest, WrapMode::Repeat, tex(1, 0));
     requireAll(t, {0.5f, -999999.125f}, TextureFilter::Nearest, WrapMode::Repeat, tex(1, 4)); // frac 0.875
+}
+
+// --- Linear light: sampleSrgb on the decoded storage -------------------------------------------
+namespace {
+
+double decodeCurve(int byte) {
+    const double x = double(byte) / 255.0;
+    return x <= 0.04045 ? x / 12.92 : std::pow((x + 0.055) / 1.055, 2.4);
+}
+Color decodedTexel(Rgba8 t) {
+    const auto& d = srgbDecode16Table();
+    return {float(d[t.r]) / 65535.0f, float(d[t.g]) / 65535.0f, float(d[t.b]) / 65535.0f, float(t.a) / 255.0f};
+}
+
+} // namespace
+
+TEST_CASE("the 16-bit decode of every byte lies within half a step of the sRGB curve and encodes back to it", "[texture][srgb]") {
+    const auto& d = srgbDecode16Table();
+    for (int b = 0; b < 256; ++b) {
+        INFO("byte " << b);
+        REQUIRE(std::fabs(double(d[std::size_t(b)]) - decodeCurve(b) * 65535.0) <= 0.5);
+        REQUIRE(int(encodeSrgb8(float(d[std::size_t(b)]) / 65535.0f)) == b);
+        if (b > 0) REQUIRE(d[std::size_t(b)] > d[std::size_t(b - 1)]); // distinct, increasing
+    }
+    REQUIRE(d[0] == 0);
+    REQUIRE(d[255] == 65535);
+}
+
+TEST_CASE("sampleSrgb returns each texel decoded at its centre, alpha as a / 255, for every filter and wrap", "[texture][srgb]") {
+    for (int size : {1, 2, 4, 8}) {
+        const Texture t = makeTexture(size, 2 * size, distinctTexel);
+        for (int y = 0; y < 2 * size; ++y)
+            for (int x = 0; x < size; ++x) {
+                const Vec2 uv{(float(x) + 0.5f) / float(size), (float(y) + 0.5f) / float(2 * size)};
+                for (WrapMode w : kWraps)
+                    for (TextureFilter f : kFilters) {
+                        INFO("size " << size << " texel " << x << "," << y << " " << filterName(f) << " " << wrapName(w));
+                        REQUIRE(bitEqual(t.sampleSrgb(uv, 0.0f, f, w), decodedTexel(distinctTexel(x, y))));
+                    }
+            }
+    }
+}
+
+TEST_CASE("sampleSrgb filters decoded values: halfway between texels is the mean of their decodes, not the decode of their mean", "[texture][srgb]") {
+    const Rgba8 dark{20, 50, 0, 255}, light{220, 200, 255, 0};
+    const Texture t = makeTexture(2, 1, [&](int x, int) { return x == 0 ? dark : light; });
+    const Color c = t.sampleSrgb({0.5f, 0.5f}, 0.0f, TextureFilter::Bilinear, WrapMode::Clamp);
+    const Color a = decodedTexel(dark), b = decodedTexel(light);
+    REQUIRE(c.r == Approx((a.r + b.r) / 2).epsilon(1e-6));
+    REQUIRE(c.g == Approx((a.g + b.g) / 2).epsilon(1e-6));
+    REQUIRE(c.b == Approx((a.b + b.b) / 2).epsilon(1e-6));
+    REQUIRE(c.a == Approx(0.5f).epsilon(1e-6));
+    // Display-space filtering would give decode(120 / 255) = 0.188 for red; the mean of the decodes is 0.358.
+    REQUIRE(c.r > float(decodeCurve(120)) + 0.15f);
+    // A quarter of the way: 3/4 of the first texel (8-bit weight 128 -> 64 along u).
+    const Color q = t.sampleSrgb({0.375f, 0.5f}, 0.0f, TextureFilter::Bilinear, WrapMode::Clamp);
+    REQUIRE(q.r == Approx(0.75f * a.r + 0.25f * b.r).epsilon(1e-6));
+}
+
+TEST_CASE("sampleSrgb trilinear mixes the two levels' decoded results by frac(lod)", "[texture][srgb]") {
+    // 2x2 of two bytes: level 1 is their box average (rounded), decoded.
+    const Texture t = makeTexture(2, 2, [](int x, int y) { return (x + y) % 2 ? Rgba8{0, 0, 0, 255} : Rgba8{255, 255, 255, 255}; });
+    REQUIRE(t.levelCount() == 2);
+    const Vec2 uv{0.25f, 0.25f}; // texel (0, 0): white at level 0
+    const Color level0 = t.sampleSrgb(uv, 0.0f, TextureFilter::Trilinear, WrapMode::Repeat);
+    const Color level1 = t.sampleSrgb(uv, 1.0f, TextureFilter::Trilinear, WrapMode::Repeat);
+    const Color half = t.sampleSrgb(uv, 0.5f, TextureFilter::Trilinear, WrapMode::Repeat);
+    REQUIRE(level0.r == 1.0f);
+    const Rgba8 avg = unpackTexel(t.texel(1, 0, 0));
+    REQUIRE(bitEqual(level1, decodedTexel(avg)));
+    REQUIRE(half.r == level0.r + (level1.r - level0.r) * 0.5f);
 }
