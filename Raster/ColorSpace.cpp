@@ -55,29 +55,30 @@ const std::array<float, 255> kMidpoints = [] {
     return m;
 }();
 
-// kBucketStart[i] = the number of midpoints below i / kBuckets: where the search for any l in
-// [i / kBuckets, (i + 1) / kBuckets) starts. The midpoints are at least 1 / (12.92 x 255) apart
-// (the curve's linear segment; wider above), more than a bucket, so a bucket holds at most one
-// and the search takes one step at most.
-constexpr int kBuckets = kSrgbBuckets;
-const std::array<std::uint8_t, kBuckets> kBucketStart = [] {
-    std::array<std::uint8_t, kBuckets> b{};
-    std::size_t k = 0;
-    for (int i = 0; i < kBuckets; ++i) {
-        const float edge = float(i) / float(kBuckets);
-        while (k < kMidpoints.size() && kMidpoints[k] < edge) ++k;
-        b[std::size_t(i)] = std::uint8_t(k);
-    }
-    return b;
-}();
-
+// The encoder's buckets (SrgbTables::encodeBits): bucket i holds the floats whose top 16 bits
+// are kSrgbEncodeFirst + i (i = 0 also every float below 2^-13, none of which reaches the first
+// midpoint, 1.5e-4). Its entry: the number of midpoints below its first float, and the low 16
+// bits of the midpoint inside it, 0xFFFF when there is none. The midpoints are farther apart
+// than any bucket is wide (1 / (12.92 x 255) on the linear segment; at least 0.0059 in [0.5, 1),
+// where buckets are 0.0039 wide), so a bucket holds at most one (the tests check it).
 const SrgbTables kTables = [] {
     SrgbTables t{};
     for (std::size_t b = 0; b < 256; ++b) std::memcpy(&t.decodeBits[b], &kDecode[b], 4);
-    for (std::size_t k = 0; k < 255; ++k) std::memcpy(&t.midpointBits[k], &kMidpoints[k], 4);
-    const float inf = std::numeric_limits<float>::infinity();
-    std::memcpy(&t.midpointBits[255], &inf, 4);
-    for (std::size_t i = 0; i < std::size_t(kBuckets); ++i) t.bucketStart[i] = kBucketStart[i];
+    std::size_t k = 0;
+    for (std::uint32_t i = 0; i < std::uint32_t(kSrgbEncodeBuckets); ++i) {
+        const std::uint32_t top = std::uint32_t(kSrgbEncodeFirst) + i;
+        float first;
+        const std::uint32_t firstBits = top << 16;
+        std::memcpy(&first, &firstBits, 4);
+        while (k < kMidpoints.size() && kMidpoints[k] < first) ++k;
+        std::uint32_t threshold = 0xFFFFu;
+        if (k < kMidpoints.size()) {
+            std::uint32_t mid;
+            std::memcpy(&mid, &kMidpoints[k], 4);
+            if ((mid >> 16) == top) threshold = mid & 0xFFFFu;
+        }
+        t.encodeBits[i] = std::uint32_t(k) | threshold << 16;
+    }
     return t;
 }();
 
@@ -90,10 +91,13 @@ const SrgbTables& srgbTables() { return kTables; }
 std::uint8_t encodeSrgb8(float l) {
     if (!(l > 0.0f)) return 0; // NaN, negatives
     if (l >= 1.0f) return 255;
-    // The number of midpoints below l is the nearest byte (ties, l == a midpoint, go down).
-    unsigned k = kBucketStart[std::size_t(l * float(kBuckets))];
-    while (k < kMidpoints.size() && kMidpoints[k] < l) ++k;
-    return std::uint8_t(k);
+    // The number of midpoints below l is the nearest byte (ties, l == a midpoint, go down): those
+    // below l's bucket, plus its own where l lies above it.
+    std::uint32_t bits;
+    std::memcpy(&bits, &l, 4);
+    const std::uint32_t top = bits >> 16;
+    const std::uint32_t e = kTables.encodeBits[top > std::uint32_t(kSrgbEncodeFirst) ? top - std::uint32_t(kSrgbEncodeFirst) : 0u];
+    return std::uint8_t((e & 0xFFFFu) + ((bits & 0xFFFFu) > (e >> 16) ? 1u : 0u));
 }
 
 const char* toneMapName(ToneMap t) {

@@ -44,15 +44,17 @@ const std::array<std::uint16_t, 256>& srgbDecode16Table();
 std::uint8_t encodeSrgb8(float l);
 
 // The tables behind srgbDecodeTable and encodeSrgb8 as 32-bit words, for the vector kernels'
-// gathers: decodeBits[b] = the bits of srgbDecodeTable()[b]; encodeSrgb8(l) for l in (0, 1) is
-// k = bucketStart[int(l * kSrgbBuckets)], plus 1 when the float with bits midpointBits[k] is
-// below l (midpointBits[255] = +infinity). One step suffices: no bucket holds two midpoints
-// (checked by the tests).
-inline constexpr int kSrgbBuckets = 4096;
+// gathers: decodeBits[b] = the bits of srgbDecodeTable()[b]. encodeSrgb8(l) for l in (0, 1), with
+// the float's bits B: the entry e = encodeBits[max(B >> 16, kSrgbEncodeFirst) - kSrgbEncodeFirst]
+// gives k = e & 0xFFFF, the number of midpoints between bytes below the floats of that top 16
+// bits, and e >> 16, the low 16 bits of the one midpoint among them (0xFFFF if none); l encodes
+// to k + 1 where its low 16 bits exceed those, else k. One gather per channel; the buckets start at
+// 2^-13 (below it everything encodes to 0) and end at 1.
+inline constexpr int kSrgbEncodeFirst = (127 - 13) << 7; // the top 16 bits of 2^-13
+inline constexpr int kSrgbEncodeBuckets = (127 << 7) - kSrgbEncodeFirst;
 struct SrgbTables {
     std::uint32_t decodeBits[256];
-    std::uint32_t midpointBits[256];
-    std::uint32_t bucketStart[kSrgbBuckets];
+    std::uint32_t encodeBits[kSrgbEncodeBuckets];
 };
 const SrgbTables& srgbTables();
 

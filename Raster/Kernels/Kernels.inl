@@ -62,15 +62,16 @@ SR_SIMD_INLINE I packBgra8(const Rgb& c) {
     return (iset(int(0xFF000000u)) | shiftLeft<16>(toUnorm8(c.r))) | (shiftLeft<8>(toUnorm8(c.g)) | toUnorm8(c.b));
 }
 
-// encodeSrgb8 (ColorSpace.cpp) per lane, through its tables (srgbTables): the bucket's first
-// byte, one step up where the midpoint above it lies below l; 0 for !(l > 0), 255 for l >= 1.
+// encodeSrgb8 (ColorSpace.cpp) per lane, through its table (SrgbTables::encodeBits): the bucket
+// of the float's top 16 bits, one step up where its low 16 bits exceed the bucket's midpoint's;
+// 0 for !(l > 0), 255 for l >= 1.
 SR_SIMD_INLINE I encodeSrgbLanes(F l) {
     const SrgbTables& t = srgbTables();
     const M pos = l > fzero(), one = l >= fset(1.0f);
-    const F inRange = select(pos, fmin(l, fset(0.99999994f)), fzero());
-    const I k = gather(t.bucketStart, truncToInt(inRange * fset(float(kSrgbBuckets))));
-    const F mid = asFloat(gather(t.midpointBits, k));
-    const I stepped = select(mid < l, k + iset(1), k);
+    const I b = asInt(select(pos, fmin(l, fset(0.99999994f)), fzero()));
+    const I e = gather(t.encodeBits, imax(shiftRightLogical<16>(b) - iset(kSrgbEncodeFirst), iset(0)));
+    const I low16 = iset(0xFFFF);
+    const I stepped = (e & low16) + select((b & low16) > shiftRightLogical<16>(e), iset(1), iset(0));
     return select(one, iset(255), select(pos, stepped, iset(0)));
 }
 

@@ -372,40 +372,37 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
     CHECK(totals.pixels > 50000 * long(ran));
 }
 
-TEST_CASE("the sRGB encoder's buckets hold at most one midpoint: the kernels' one step is exact", "[threads][simd][colour]") {
-    const SrgbTables& t = srgbTables();
-    for (int i = 0; i < kSrgbBuckets; ++i) {
-        const float lo = float(i) / float(kSrgbBuckets), hi = float(i + 1) / float(kSrgbBuckets);
-        int inside = 0;
-        for (int k = 0; k < 255; ++k) {
-            float mid;
-            std::memcpy(&mid, &t.midpointBits[k], 4);
-            inside += mid >= lo && mid < hi;
-        }
+TEST_CASE("the sRGB encoder's table: one midpoint per bucket at most, and the encoder exact for every float from 2^-13 to 1", "[threads][simd][colour]") {
+    // The midpoints between bytes, as the piecewise curve defines them (srgbToLinear, ColorSpace.hpp).
+    std::vector<float> mids(255);
+    for (int k = 0; k < 255; ++k) mids[std::size_t(k)] = srgbToLinear(float((double(k) + 0.5) / 255.0));
+    std::vector<int> perBucket(std::size_t(kSrgbEncodeBuckets), 0);
+    for (float m : mids) {
+        std::uint32_t bits;
+        std::memcpy(&bits, &m, 4);
+        REQUIRE(int(bits >> 16) >= kSrgbEncodeFirst); // every midpoint above 2^-13
+        ++perBucket[std::size_t(int(bits >> 16) - kSrgbEncodeFirst)];
+    }
+    for (int i = 0; i < kSrgbEncodeBuckets; ++i) {
         INFO("bucket " << i);
-        REQUIRE(inside <= 1);
+        REQUIRE(perBucket[std::size_t(i)] <= 1);
     }
-    // And the one-step rule equals the encoder on a dense sample of (0, 1), every float near each
-    // midpoint included.
-    const auto oneStep = [&](float l) {
-        std::uint32_t k = t.bucketStart[std::size_t(std::min(l, 0.99999994f) * float(kSrgbBuckets))];
-        float mid;
-        std::memcpy(&mid, &t.midpointBits[k], 4);
-        return mid < l ? k + 1 : k;
-    };
-    for (int k = 0; k < 255; ++k) {
-        float mid;
-        std::memcpy(&mid, &t.midpointBits[k], 4);
-        float l = mid;
-        for (int s = 0; s < 4; ++s) l = std::nextafter(l, 0.0f);
-        for (int s = 0; s < 9; ++s, l = std::nextafter(l, 1.0f)) {
-            INFO("l " << l);
-            CHECK(oneStep(l) == encodeSrgb8(l));
-        }
+    // Exhaustive: every float in [2^-13, 1), walked in order with the count of midpoints below it
+    // (the nearest byte; a float equal to a midpoint goes down), against encodeSrgb8.
+    float l = std::ldexp(1.0f, -13);
+    std::uint32_t bits;
+    std::memcpy(&bits, &l, 4);
+    std::size_t k = 0, wrong = 0;
+    for (; l < 1.0f; ++bits, std::memcpy(&l, &bits, 4)) {
+        while (k < mids.size() && mids[k] < l) ++k;
+        if (encodeSrgb8(l) != k && wrong++ < 5) FAIL_CHECK("l " << l << " encodes to " << int(encodeSrgb8(l)) << ", not " << k);
     }
-    for (int i = 1; i < 1000000; ++i) {
-        const float l = float(i) / 1000000.0f;
-        if (oneStep(l) != encodeSrgb8(l)) FAIL("l " << l);
+    REQUIRE(wrong == 0);
+    REQUIRE(k == 255);
+    // Below 2^-13: 0, at every power of two and a sample between.
+    for (int e = -149; e < -13; ++e) {
+        CHECK(encodeSrgb8(std::ldexp(1.0f, e)) == 0);
+        CHECK(encodeSrgb8(std::ldexp(1.9f, e)) == 0);
     }
 }
 
