@@ -45,8 +45,7 @@ struct DrawContext {
     bool whiteLights;       // view.lighting.whiteDirectional(): one-number terms (blinnPhong), else RGB (lightTerms)
     bool doubleSided = true; // false: the draw's back faces are culled whatever settings.cull says
     TexelAlpha texelAlpha;   // on only for a textured draw whose texture has alpha (activeTexelAlpha)
-    // ColorMode::Linear: texels decoded from sRGB, the colour encoded (encode below); the draw
-    // then has no span kernels.
+    // ColorMode::Linear: texels decoded from sRGB, the colour encoded (encode below).
     bool linear = false;
     float exposureScale = 1.0f;                 // 2^settings.exposure (linear only)
     const SurfaceMaterial* material = nullptr;  // the pbr program's maps and factors

@@ -47,31 +47,19 @@ bool kernelsCoverSpecular(const Specular& s) {
     return !s.on() || (s.shininess <= 1024.0f && s.shininess == float(int(s.shininess)));
 }
 
-// Whether the span kernels have an instantiation of this program at all.
-template <class Program>
-constexpr bool hasKernels() {
-    if constexpr (Program::kMode == ShadingMode::Pbr) return Program::kHasKernels;
-    else return true;
-}
-
 template <class Program>
 void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, Program program) {
     const DrawState state = programs::drawStateFor(d);
     KernelProgram<Program> withKernel{program};
     // Phong kernels test the shadow maps per pixel as the scalar program does (Kernels.inl's
     // shadowVisibility); flat and Gouraud light per triangle / vertex, unshadowed (Shadow.hpp).
-    // Linear light in the kernels: decoded texels and the sRGB encoder, without tone mapping or
-    // exposure (those draws, and normal-mapped pbr, fill with the scalar loop).
-    const bool kernelsCoverColour = !d.linear || (d.settings.toneMap == ToneMap::None && d.exposureScale == 1.0f);
     // Light from the sky is the scalar pbr program's (the kernels have no image light).
     const bool kernelsCoverLight = Program::kMode != ShadingMode::Pbr || d.view.ibl == nullptr;
-    if constexpr (hasKernels<Program>()) {
-        if (kernelsCoverColour && kernelsCoverLight && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
-            const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
-            withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
-            withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
-            withKernel.flushKernel = selectFlushKernel<Program>(d.settings.isa, key);
-        }
+    if (kernelsCoverLight && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
+        const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
+        withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
+        withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
+        withKernel.flushKernel = selectFlushKernel<Program>(d.settings.isa, key);
     }
     // The programs' vertex() reads the mesh, the view and (Gouraud) the specular constants, which
     // it names in vertexVariant(): draws of one mesh share their vertex stage inside a

@@ -56,14 +56,13 @@ inline Vec3 imageLight(const ImageLight& ibl, const PbrSurface& s, Vec3 n, Vec3 
 // in linear mode; the others are data and read as stored. Double-sided surfaces seen from
 // behind are lit on their back (the normal flipped toward the viewer, as the specification
 // asks); single-sided ones never show their back (culled).
-// The span kernels (Raster/Kernels/KernelsPbr*) cover PbrProgram<false> and PbrProgram<true>;
-// a normal-mapped draw (kTangents) fills with the scalar loop.
+// The span kernels (Raster/Kernels/Kernels*Pbr.cpp) cover all three variants.
 template <bool kMaps, bool kTangents = false>
 struct PbrProgram {
     static_assert(kMaps || !kTangents, "a normal map needs uvs");
     static constexpr ShadingMode kMode = ShadingMode::Pbr;
     static constexpr bool kIsTextured = kMaps;
-    static constexpr bool kHasKernels = !kTangents;
+    static constexpr bool kNormalMap = kTangents;
     static constexpr int kP = kMaps ? 2 : 0; // position kP..kP+2, normal kP+3..kP+5
     static constexpr int kT = kP + 6;        // tangent kT..kT+3 (kTangents)
     static constexpr int kVaryings = kT + (kTangents ? 4 : 0);

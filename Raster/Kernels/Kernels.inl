@@ -81,10 +81,47 @@ SR_SIMD_NOINLINE I packLinearBgra8(const Rgb& c) {
     return (iset(int(0xFF000000u)) | shiftLeft<16>(encodeSrgbLanes(c.r))) | (shiftLeft<8>(encodeSrgbLanes(c.g)) | encodeSrgbLanes(c.b));
 }
 
+// toneMap (ColorSpace.cpp) per lane, then packLinearBgra8: the exposure scale, then ACES or
+// Khronos PBR Neutral, the same operations in the same order (std::max / std::min / std::clamp as
+// the selects they are).
+SR_SIMD_NOINLINE I packToneMapped(const Rgb& linear, ToneMap op, float exposureScale) {
+    const F e = fset(exposureScale), zero = fzero(), one = fset(1.0f);
+    Rgb c{linear.r * e, linear.g * e, linear.b * e};
+    if (op == ToneMap::Aces) {
+        auto f = [&](F x) SR_SIMD_LAMBDA {
+            x = select(x < zero, zero, x);
+            const F v = x * (fset(2.51f) * x + fset(0.03f)) / (x * (fset(2.43f) * x + fset(0.59f)) + fset(0.14f));
+            return select(v < zero, zero, select(one < v, one, v));
+        };
+        c = {f(c.r), f(c.g), f(c.b)};
+    } else if (op == ToneMap::Neutral) {
+        constexpr float kStart = 0.8f - 0.04f, kDesaturation = 0.15f, d = 1.0f - kStart;
+        const F gb = select(c.b < c.g, c.b, c.g);
+        const F x = select(gb < c.r, gb, c.r);
+        const F offset = select(x < fset(0.08f), x - fset(6.25f) * x * x, fset(0.04f));
+        c = {c.r - offset, c.g - offset, c.b - offset};
+        const F gbMax = select(c.g < c.b, c.b, c.g);
+        const F peak = select(c.r < gbMax, gbMax, c.r);
+        const M on = peak >= fset(kStart); // false for NaN: left to the encoder's clamp
+        if (bits(on) != 0) {
+            const F newPeak = one - fset(d * d) / (peak + fset(d) - fset(kStart));
+            const F s = newPeak / peak;
+            Rgb m{c.r * s, c.g * s, c.b * s};
+            const F g = one - one / (fset(kDesaturation) * (peak - newPeak) + one);
+            m = {m.r + (newPeak - m.r) * g, m.g + (newPeak - m.g) * g, m.b + (newPeak - m.b) * g};
+            c = {select(on, m.r, c.r), select(on, m.g, c.g), select(on, m.b, c.b)};
+        }
+    }
+    return packLinearBgra8(c);
+}
+
 // programs::encode per lane: the draw's colour mode decides (one branch per group).
 template <class Prog>
 SR_SIMD_INLINE I encodeLanes(const Prog& p, const Rgb& c) {
-    return p.d->linear ? packLinearBgra8(c) : packBgra8(c);
+    const DrawContext& d = *p.d;
+    if (!d.linear) return packBgra8(c);
+    if (d.settings.toneMap == ToneMap::None && d.exposureScale == 1.0f) return packLinearBgra8(c);
+    return packToneMapped(c, d.settings.toneMap, d.exposureScale);
 }
 
 struct Terms {
@@ -769,6 +806,38 @@ SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* sha
     return sum;
 }
 
+// robustLength (Vec.cpp) for the lanes whose vector is finite and non-zero: the largest
+// |component| m, then m sqrt(sum (c / m)^2). Lanes with a zero, infinite or NaN component come
+// out NaN, 0 or infinite, which the callers reject as robustLength's 0 / NaN / Inf would be.
+SR_SIMD_INLINE F lengthLanes(const V3& a) {
+    const F m = fmax(fmax(fabs(a.x), fabs(a.y)), fabs(a.z));
+    const F x = a.x / m, y = a.y / m, z = a.z / m;
+    F sum = x * x;
+    sum = sum + y * y;
+    sum = sum + z * z;
+    return m * fsqrt(sum);
+}
+
+// programs::perturbNormal per lane: the tangent made orthogonal to n, the bitangent w (n x T), the
+// map's vector (2 c - 1, x and y scaled) in that frame, normalised; lanes whose frame or vector
+// is degenerate (a length not above 1e-12, or not finite) keep n.
+SR_SIMD_NOINLINE V3 perturbNormalLanes(const V3& n, const V3& t0, F w, const Rgb& texel, float scale) {
+    const F nt = dot3(n, t0);
+    const V3 tOrtho{t0.x - n.x * nt, t0.y - n.y * nt, t0.z - n.z * nt};
+    const F tl = lengthLanes(tOrtho);
+    const F tiny = fset(1e-12f), huge = fset(3.40282347e38f);
+    const M frameOk = (tl > tiny) & (tl <= huge);
+    const V3 t{tOrtho.x / tl, tOrtho.y / tl, tOrtho.z / tl};
+    const F sign = select(w < fzero(), fset(-1.0f), fset(1.0f));
+    const V3 b{(n.y * t.z - n.z * t.y) * sign, (n.z * t.x - n.x * t.z) * sign, (n.x * t.y - n.y * t.x) * sign};
+    const F two = fset(2.0f), one = fset(1.0f), s = fset(scale);
+    const F x = (texel.r * two - one) * s, y = (texel.g * two - one) * s, z = texel.b * two - one;
+    const V3 m{t.x * x + b.x * y + n.x * z, t.y * x + b.y * y + n.y * z, t.z * x + b.z * y + n.z * z};
+    const F ml = lengthLanes(m);
+    const M ok = frameOk & (ml > tiny) & (ml <= huge);
+    return {select(ok, m.x / ml, n.x), select(ok, m.y / ml, n.y), select(ok, m.z / ml, n.z)};
+}
+
 // PbrProgram::fragment for the lanes: the interpolated normal and view vector (the normal
 // flipped toward the viewer on a double-sided surface), the factors times the maps, the lights,
 // the emission, encoded.
@@ -812,6 +881,10 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
             eR = eR * c.r;
             eG = eG * c.g;
             eB = eB * c.b;
+        }
+        if constexpr (Prog::kNormalMap) {
+            constexpr int kT = Prog::kT;
+            n = perturbNormalLanes(n, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.normalMap, false), k.normalScale);
         }
     }
     const Rgb r = pbrLights(d.view.lighting, d.view.shadows, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z, v[kP],
@@ -1275,6 +1348,11 @@ template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false>> shadeRunsKernel(con
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true>> shadeRunsKernel(const KernelKey&);
 template FlushKernel<programs::SR_KERNEL_PROGRAM<false>> flushKernel(const KernelKey&);
 template FlushKernel<programs::SR_KERNEL_PROGRAM<true>> flushKernel(const KernelKey&);
+#ifdef SR_KERNEL_NORMAL_MAP_VARIANT // the textured program's normal-mapped variant too (pbr)
+template FillKernel<programs::SR_KERNEL_PROGRAM<true, true>> fillKernel(const KernelKey&);
+template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true, true>> shadeRunsKernel(const KernelKey&);
+template FlushKernel<programs::SR_KERNEL_PROGRAM<true, true>> flushKernel(const KernelKey&);
+#endif
 #ifdef SR_KERNEL_RGB_VARIANTS // the program's RGB-terms variant too (Gouraud under coloured lights)
 template FillKernel<programs::SR_KERNEL_PROGRAM<false, true>> fillKernel(const KernelKey&);
 template FillKernel<programs::SR_KERNEL_PROGRAM<true, true>> fillKernel(const KernelKey&);

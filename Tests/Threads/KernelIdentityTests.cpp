@@ -307,6 +307,51 @@ TEST_CASE("in linear light every span kernel is bit-identical to the scalar refe
     CHECK(totals.pixels > 50000 * long(ran));
 }
 
+TEST_CASE("tone mapping and exposure in the kernels are bit-identical to the scalar encoder", "[threads][simd][kernels][colour]") {
+    std::mt19937 rng(38u);
+    const Mesh mesh = oneTriangle();
+    FrameView view;
+    view.eye = {0.3f, 0.4f, 3.0f};
+    view.lighting.physical = true;
+    view.lighting.ambient = 0.0f;
+    // Bright enough that ACES saturates and PBR Neutral compresses its peaks (above 0.76).
+    view.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1)), {6.0f, 4.0f, 2.0f, 1.0f}),
+                            Light::point({0.5f, 1.0f, 2.0f}, {9.0f, 3.0f, 1.0f, 1.0f}, 0.0f)};
+    const Texture texture = randomTexture(rng, 13, 7);
+    PbrFactors factors;
+    factors.baseColor = {0.9f, 0.6f, 0.3f, 1.0f};
+    factors.metallic = 0.3f;
+    factors.roughness = 0.4f;
+    factors.emissive = {0.5f, 0.2f, 0.0f};
+    SurfaceMaterial material;
+    material.pbr = &factors;
+    material.texture = &texture;
+    Totals totals;
+    int ran = 0;
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+        if (!isaAvailable(isa)) continue;
+        ++ran;
+        for (ToneMap op : {ToneMap::None, ToneMap::Aces, ToneMap::Neutral})
+            for (float exposure : {1.0f, 0.35f, 3.0f}) {
+                if (op == ToneMap::None && exposure == 1.0f) continue; // the plain encoder: the linear test's
+                RenderSettings settings;
+                settings.colour = ColorMode::Linear;
+                settings.toneMap = op;
+                const KernelKey key{DepthMode::TestWrite, PerspectiveMode::Exact, TextureFilter::Bilinear, WrapMode::Repeat};
+                DrawContext d{view, settings, mesh, mesh.indices.data(), &texture, Color{0.9f, 0.7f, 0.5f, 1.0f}, Specular{},
+                              1.0f, false, true, {}};
+                d.linear = true;
+                d.exposureScale = exposure;
+                d.material = &material;
+                compareKernel<PbrProgram<true>>(isa, key, [&] { return PbrProgram<true>(&d); }, rng, totals);
+                compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&d); }, rng, totals);
+                compareKernel<UnlitProgram<false>>(isa, key, [&] { return UnlitProgram<false>(&d, encode(d, d.kd)); }, rng, totals);
+            }
+    }
+    REQUIRE(ran > 0);
+    CHECK(totals.pixels > 10000 * long(ran));
+}
+
 TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical to the scalar program",
           "[threads][simd][kernels][pbr]") {
     std::mt19937 rng(37u);
@@ -319,11 +364,13 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
                             Light::point({0.5f, 1.0f, 2.0f}, {4.0f, 3.0f, 1.0f, 1.0f}, 3.5f),
                             Light::spot({0.0f, 0.0f, 4.0f}, {0.1f, -0.2f, -1.0f}, {6.0f, 6.0f, 3.0f, 1.0f}, 0.2f, 0.6f, 9.0f)};
     const Texture base = randomTexture(rng, 13, 7), mr = randomTexture(rng, 32, 16), emissive = randomTexture(rng, 8, 8);
+    const Texture normals = randomTexture(rng, 16, 8);
     PbrFactors rough, polished;
     rough.baseColor = {0.8f, 0.5f, 0.3f, 1.0f};
     rough.metallic = 0.2f;
     rough.roughness = 0.9f;
     rough.emissive = {0.3f, 0.1f, 0.0f};
+    rough.normalScale = 0.7f;
     polished.baseColor = {1.0f, 0.8f, 0.4f, 1.0f};
     polished.metallic = 1.0f;
     polished.roughness = 0.03f; // below the smallest roughness evaluated
@@ -357,6 +404,14 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
                                     d.material = &material;
                                     compareKernel<PbrProgram<true>>(isa, key, [&] { return PbrProgram<true>(&d); }, rng, totals);
                                 }
+                                // Normal-mapped (random texels, random tangents and handedness among the varyings).
+                                SurfaceMaterial mapped = material;
+                                mapped.normalMap = &normals;
+                                DrawContext dn{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
+                                               Specular{}, 1.0f, false, true, {}};
+                                dn.linear = linear;
+                                dn.material = &mapped;
+                                compareKernel<PbrProgram<true, true>>(isa, key, [&] { return PbrProgram<true, true>(&dn); }, rng, totals);
                                 if (filter != TextureFilter::Nearest || wrap != WrapMode::Repeat) continue;
                                 SurfaceMaterial plain;
                                 plain.pbr = factors;
@@ -522,7 +577,7 @@ TEST_CASE("the Phong kernels' shadow-map test is bit-identical to the scalar pro
         }
     }
     REQUIRE(ran > 0);
-    CHECK(totals.pixels > 20000 * long(ran));
+    CHECK(totals.pixels > 10000 * long(ran));
 }
 
 TEST_CASE("the scalar ISA has no kernel: the reference loop fills", "[threads][simd][kernels]") {
