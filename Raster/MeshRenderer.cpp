@@ -112,13 +112,18 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& f
     if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong || mode == ShadingMode::Pbr))
         mode = ShadingMode::Flat;
     const bool pbr = mode == ShadingMode::Pbr && material.pbr != nullptr;
-    // The Blinn-Phong models see physical lights divided by pi (Lighting::physical).
+    // The Blinn-Phong models see physical lights divided by pi (Lighting::physical): the frame's
+    // copy of the view with those lights, or one made here.
     FrameView phongView;
     const FrameView* v = &view;
     if (!pbr && view.lighting.physical) {
-        phongView = view;
-        phongView.lighting = blinnPhongLighting(view.lighting);
-        v = &phongView;
+        if (view.blinnPhong) {
+            v = view.blinnPhong;
+        } else {
+            phongView = view;
+            phongView.lighting = blinnPhongLighting(view.lighting);
+            v = &phongView;
+        }
     }
     DrawContext d{*v,       settings, mesh, indices, textured ? material.texture : nullptr,
                   textured ? material.tint : material.kd, material.specular, material.alpha,

@@ -81,6 +81,10 @@ struct FrameView {
     const SceneShadows* shadows = nullptr;
     // Light from the sky (Ibl.hpp: --ibl), read by the pbr model only. Null: none.
     const ImageLight* ibl = nullptr;
+    // With physical lights: this view with the lights as the Blinn-Phong models see them
+    // (blinnPhongLighting), made once per frame by renderSceneFrame for the draws not shaded pbr.
+    // Null: drawMesh makes it for the draw.
+    const FrameView* blinnPhong = nullptr;
 };
 
 // The surface of one draw: a texture (used when the mesh has uvs) times `tint`, or the flat

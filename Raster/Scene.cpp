@@ -13,6 +13,7 @@
 #include "Raster/LineDraw.hpp"
 #include "Raster/Msaa.hpp"
 #include "Raster/Resolve.hpp"
+#include "Raster/Shading.hpp" // blinnPhongLighting
 #include "Raster/Shadow.hpp"
 
 namespace sr {
@@ -262,6 +263,13 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
         view.shadows = ctx.shadows.get();
     } else if (ctx.shadows) {
         ctx.shadows.reset();
+    }
+    // Physical lights as the Blinn-Phong draws see them, once for the frame (drawMesh).
+    FrameView blinnPhongView;
+    if (view.lighting.physical) {
+        blinnPhongView = view;
+        blinnPhongView.lighting = blinnPhongLighting(view.lighting);
+        view.blinnPhong = &blinnPhongView;
     }
     const int factor = ssaaFactor(settings.ssaa);
     assert(factor > 0 && "RenderSettings::ssaa must be 1, 4 or 16");

@@ -433,6 +433,30 @@ TEST_CASE("pbr scene: emissive adds exactly its value; gamma and linear differ a
     CHECK(found);
 }
 
+TEST_CASE("pbr scene drawn with the Blinn-Phong rungs: lit by the physical lights divided by pi", "[render][pbr]") {
+    const PbrScene s = makePbrScene();
+    for (ShadingMode mode : {ShadingMode::Phong, ShadingMode::Gouraud, ShadingMode::Flat}) {
+        INFO(shadingModeName(mode));
+        RenderSettings settings = s.settings;
+        settings.shading = mode;
+        const Image physical = renderPbr(s, settings);
+        // The same lights divided by pi, given as display-model lights.
+        PbrScene divided = s;
+        divided.view.lighting.physical = false;
+        for (Light& l : divided.view.lighting.lights) {
+            l.colour.r /= kPiF;
+            l.colour.g /= kPiF;
+            l.colour.b /= kPiF;
+        }
+        const Image expected = renderPbr(divided, settings);
+        CHECK(physical.rgba == expected.rgba);
+        // And not the undivided lights (which are pi times brighter).
+        PbrScene undivided = s;
+        undivided.view.lighting.physical = false;
+        CHECK(physical.rgba != renderPbr(undivided, settings).rgba);
+    }
+}
+
 TEST_CASE("pbr scene: no NaN or black holes from extreme materials (roughness 0, metallic 1, NaN factors)",
           "[render][pbr]") {
     PbrScene s = makePbrScene();
