@@ -19,15 +19,28 @@
 // N.V is clamped to 1e-4 (a viewer at grazing, or just behind an interpolated normal, still sees
 // the lit surface), V.H and N.H to 0; where N.L <= 0 the result is 0 (no light on the side the
 // surface does not face). A NaN roughness or metallic reads as the end of its range it fails.
+// The material inputs as the BRDF reads them: roughness clamped to [kMinRoughness, 1], metallic
+// to [0, 1], a NaN read as the end of the range it fails (the lower one). Shared with the image
+// light (PbrProgram.hpp's imageLight).
+template <class R>
+inline R brdfRoughness(R roughness) {
+    const R minRoughness = splatAs(roughness, kMinRoughness);
+    return selectOf(roughness >= minRoughness, minOf(roughness, splatAs(roughness, 1.0f)), minRoughness);
+}
+template <class R>
+inline R brdfMetallic(R metallic) {
+    const R zero = splatAs(metallic, 0.0f);
+    return selectOf(metallic > zero, minOf(metallic, splatAs(metallic, 1.0f)), zero);
+}
+
 template <class R>
 inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRaw, R roughnessIn, R metallicIn,
                             const R base[3], R out[3]) {
     const R zero = splatAs(nDotL, 0.0f), one = splatAs(nDotL, 1.0f);
     const R nDotV = maxOf(nDotVRaw, splatAs(nDotL, 1e-4f));
     const R nDotH = maxOf(nDotHRaw, zero), vDotH = maxOf(vDotHRaw, zero);
-    const R minRoughness = splatAs(nDotL, kMinRoughness);
-    const R roughness = selectOf(roughnessIn >= minRoughness, minOf(roughnessIn, one), minRoughness);
-    const R metallic = selectOf(metallicIn > zero, minOf(metallicIn, one), zero);
+    const R roughness = brdfRoughness(roughnessIn);
+    const R metallic = brdfMetallic(metallicIn);
     const R alpha = roughness * roughness;
     const R a2 = alpha * alpha;
     // Schlick's weight (1 - V.H)^5, 1 - V.H clamped to [0, 1] (std::clamp's order of tests).

@@ -33,8 +33,7 @@ inline Vec3 perturbNormal(Vec3 n, Vec4 tangent, Color texel, float scale) {
 // The light a sky sends toward v from a surface (N, V unit): Lambert's c_diff x E(n) / pi plus
 // the split sum's prefiltered radiance along R = 2 (N.V) N - V times F0 a + b (Ibl.hpp).
 inline Vec3 imageLight(const ImageLight& ibl, const PbrSurface& s, Vec3 n, Vec3 v) {
-    const float roughness = s.roughness >= kMinRoughness ? std::min(s.roughness, 1.0f) : kMinRoughness;
-    const float metallic = s.metallic > 0.0f ? std::min(s.metallic, 1.0f) : 0.0f;
+    const float roughness = brdfRoughness(s.roughness), metallic = brdfMetallic(s.metallic);
     const float nDotV = std::max(dot(n, v), 1e-4f);
     const Vec3 r = n * (2.0f * dot(n, v)) - v;
     float a = 0.0f, b = 0.0f;

@@ -179,16 +179,29 @@ inline int lodWeight(float frac) { return int(frac * 256.0f); }
 // --- Fast paths ---------------------------------------------------------------------------------
 // The specialised GL_LINEAR / GL_NEAREST loops live in a struct with access to Level.
 struct TextureSampling {
+    // GL_LINEAR's 2x2 texels of a level (wrapped columns x0, x1 and rows y0, y1) and the 8-bit
+    // weights of x1 and y1.
+    struct Taps {
+        int x0, x1, y0, y1, wx, wy;
+    };
     template <WrapMode kWrap, class Level>
-    static Raw bilinear(const Level& l, Vec2 uv) {
+    static Taps bilinearTaps(const Level& l, Vec2 uv) {
         const LinearTaps tx = linearTaps(uv.x, l.width, kWrap);
         const LinearTaps ty = linearTaps(uv.y, l.height, kWrap);
-        int x0, x1, y0, y1;
-        Wrap<kWrap>::pair(tx.i0, l.width, l.maskX, x0, x1);
-        Wrap<kWrap>::pair(ty.i0, l.height, l.maskY, y0, y1);
-        const std::uint32_t* row0 = l.row(y0);
-        const std::uint32_t* row1 = l.row(y1);
-        return blend2x2(row0[x0], row0[x1], row1[x0], row1[x1], tx.w, ty.w);
+        Taps t;
+        Wrap<kWrap>::pair(tx.i0, l.width, l.maskX, t.x0, t.x1);
+        Wrap<kWrap>::pair(ty.i0, l.height, l.maskY, t.y0, t.y1);
+        t.wx = tx.w;
+        t.wy = ty.w;
+        return t;
+    }
+
+    template <WrapMode kWrap, class Level>
+    static Raw bilinear(const Level& l, Vec2 uv) {
+        const Taps t = bilinearTaps<kWrap>(l, uv);
+        const std::uint32_t* row0 = l.row(t.y0);
+        const std::uint32_t* row1 = l.row(t.y1);
+        return blend2x2(row0[t.x0], row0[t.x1], row1[t.x0], row1[t.x1], t.wx, t.wy);
     }
 
     template <WrapMode kWrap, class Level>
@@ -219,15 +232,11 @@ struct TextureSampling {
     }
     template <WrapMode kWrap>
     static Color bilinearDecoded(const Texture::LevelView& l, Vec2 uv) {
-        const LinearTaps tx = linearTaps(uv.x, l.width, kWrap);
-        const LinearTaps ty = linearTaps(uv.y, l.height, kWrap);
-        int x0, x1, y0, y1;
-        Wrap<kWrap>::pair(tx.i0, l.width, l.maskX, x0, x1);
-        Wrap<kWrap>::pair(ty.i0, l.height, l.maskY, y0, y1);
+        const Taps t = bilinearTaps<kWrap>(l, uv);
         auto at = [&](int x, int y) { return l.decoded + 2 * (std::size_t(y) * std::size_t(l.stride) + std::size_t(x)); };
-        const std::uint32_t *t00 = at(x0, y0), *t10 = at(x1, y0), *t01 = at(x0, y1), *t11 = at(x1, y1);
-        const std::uint32_t ax = std::uint32_t(256 - tx.w), bx = std::uint32_t(tx.w);
-        const float ay = float(256 - ty.w), by = float(ty.w);
+        const std::uint32_t *t00 = at(t.x0, t.y0), *t10 = at(t.x1, t.y0), *t01 = at(t.x0, t.y1), *t11 = at(t.x1, t.y1);
+        const std::uint32_t ax = std::uint32_t(256 - t.wx), bx = std::uint32_t(t.wx);
+        const float ay = float(256 - t.wy), by = float(t.wy);
         float c[4];
         for (int k = 0; k < 4; ++k) {
             const int word = k >> 1, sh = 16 * (k & 1);
