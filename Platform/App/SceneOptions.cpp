@@ -34,7 +34,14 @@ std::optional<int> parseInt(const std::string& text) {
 
 } // namespace
 
-QualitySettings qualitySettings(Quality quality) {
+QualitySettings qualitySettings(Quality quality, bool physical) {
+    if (physical) {
+        switch (quality) {
+        case Quality::Fast: return {1, 1, TextureFilter::Nearest, ShadingMode::Pbr, PerspectiveMode::Exact};
+        case Quality::Balanced: return {1, 4, TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
+        case Quality::Accurate: return {16, 1, TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
+        }
+    }
     switch (quality) {
     case Quality::Fast: return {1, 1, TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Exact};
     case Quality::Balanced: return {4, 1, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
@@ -274,9 +281,9 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     return FlagResult::Consumed;
 }
 
-void applyQuality(SceneOptions& o, Quality quality) {
+void applyQuality(SceneOptions& o, Quality quality, bool physical) {
     o.quality = quality;
-    const QualitySettings p = qualitySettings(quality);
+    const QualitySettings p = qualitySettings(quality, physical);
     if (!o.explicitSsaa && !o.explicitMsaa) {
         o.ssaa = p.ssaa;
         o.msaa = p.msaa;

@@ -36,9 +36,11 @@ struct QualitySettings {
 };
 
 // fast: 1 sample, nearest, Gouraud, exact. balanced: 4 samples (2x2), trilinear, Phong, exact.
-// accurate: 16 samples (4x4), trilinear, Phong, exact - the report's ground truth. Each is on the
-// measured Pareto front of docs/reports (docs/PERFORMANCE.md says where and why).
-QualitySettings qualitySettings(Quality quality);
+// accurate: 16 samples (4x4), trilinear, Phong, exact - the report's ground truth. In a physical
+// (glTF) scene, whose model is pbr in linear light: fast: 1 sample, nearest, pbr, exact;
+// balanced: MSAA 4, trilinear, pbr, exact; accurate: 16 samples, trilinear, pbr, exact. Each is on
+// or next to the measured Pareto front of docs/reports (docs/PERFORMANCE.md says where and why).
+QualitySettings qualitySettings(Quality quality, bool physical = false);
 const char* qualityName(Quality quality);
 std::optional<Quality> parseQuality(const std::string& text);
 
@@ -109,7 +111,8 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
                           std::string& error);
 
 // Sets the preset's knobs in `options`, except those a flag set explicitly; records the preset.
-void applyQuality(SceneOptions& options, Quality quality);
+// `physical`: the physical scene's preset (applySceneDefaults applies it once the scene is known).
+void applyQuality(SceneOptions& options, Quality quality, bool physical = false);
 
 // Checks the combination (e.g. width/height limits); returns an error line or nullopt.
 std::optional<std::string> validateSceneOptions(const SceneOptions& options);

@@ -11,6 +11,7 @@
 #include "Math/Conventions.hpp"
 #include "Math/DoubleMath.hpp"
 #include "Math/Transform.hpp"
+#include "Raster/Msaa.hpp" // msaaFits
 #include "Raster/Camera.hpp"
 #include "Resources/DefaultScene.hpp"
 #include "Resources/Image.hpp"
@@ -229,6 +230,13 @@ std::optional<std::string> applySceneDefaults(SceneOptions& o, const LoadedScene
         return std::nullopt;
     }
     if (!o.colour) o.colour = ColorMode::Linear;
+    if (o.quality) {
+        applyQuality(o, *o.quality, true); // the physical scene's preset
+        if (!msaaFits(o.width, o.height, o.msaa))
+            return "--quality " + std::string(qualityName(*o.quality)) + " (MSAA " + std::to_string(o.msaa) + " in a glTF scene) at " +
+                   std::to_string(o.width) + "x" + std::to_string(o.height) +
+                   " needs more samples than the limit: use a smaller size or --ssaa";
+    }
     if (!o.explicitShading && o.shading == ShadingMode::Phong) o.shading = ShadingMode::Pbr;
     return std::nullopt;
 }

@@ -77,11 +77,9 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool 
     }
     // Mark the presets (untextured scenes: the filter does not count).
     for (app::Quality q : {app::Quality::Fast, app::Quality::Balanced, app::Quality::Accurate}) {
-        const app::QualitySettings qs = app::qualitySettings(q);
-        // A physical scene is shaded pbr where a preset says Phong (applySceneDefaults).
-        const ShadingMode presetShading = physical && qs.shading == ShadingMode::Phong ? ShadingMode::Pbr : qs.shading;
+        const app::QualitySettings qs = app::qualitySettings(q, physical);
         for (Setting& s : out)
-            if (s.settings.ssaa == qs.ssaa && s.settings.msaa == qs.msaa && s.settings.shading == presetShading &&
+            if (s.settings.ssaa == qs.ssaa && s.settings.msaa == qs.msaa && s.settings.shading == qs.shading &&
                 s.settings.colour == base.colour &&
                 s.settings.perspective == qs.perspective && (!textured || s.settings.filter == qs.filter)) {
                 s.preset = q;

@@ -209,3 +209,45 @@ TEST_CASE("a file's lights replace --light's one (with a warning if --light was 
     CHECK(builtIn.value().lights[1].type == LightType::Point);
     CHECK(builtIn.value().warnings.empty());
 }
+
+TEST_CASE("a glTF scene's --quality presets are its own model's: pbr in linear light, MSAA 4 for balanced; explicit flags win",
+          "[platform][quality][pbr]") {
+    auto resolve = [](std::vector<std::string> args, bool physical) {
+        SceneOptions o;
+        std::string error;
+        for (std::size_t i = 0; i < args.size(); ++i) REQUIRE(parseSceneFlag(args, i, o, error) == FlagResult::Consumed);
+        LoadedScene s;
+        s.physical = physical;
+        s.builtIn = !physical;
+        REQUIRE_FALSE(applySceneDefaults(o, s).has_value());
+        return o;
+    };
+    const SceneOptions fast = resolve({"--quality", "fast"}, true);
+    CHECK(fast.ssaa == 1);
+    CHECK(fast.msaa == 1);
+    CHECK(fast.filter == TextureFilter::Nearest);
+    CHECK(fast.shading == ShadingMode::Pbr);
+    CHECK(fast.colour == ColorMode::Linear);
+    const SceneOptions balanced = resolve({"--quality", "balanced"}, true);
+    CHECK(balanced.ssaa == 1);
+    CHECK(balanced.msaa == 4);
+    CHECK(balanced.filter == TextureFilter::Trilinear);
+    CHECK(balanced.shading == ShadingMode::Pbr);
+    const SceneOptions accurate = resolve({"--quality", "accurate"}, true);
+    CHECK(accurate.ssaa == 16);
+    CHECK(accurate.msaa == 1);
+    CHECK(accurate.shading == ShadingMode::Pbr);
+    // Explicit flags win, before or after the preset.
+    const SceneOptions mixed = resolve({"--shading", "gouraud", "--quality", "balanced", "--ssaa", "4"}, true);
+    CHECK(mixed.shading == ShadingMode::Gouraud);
+    CHECK(mixed.ssaa == 4);
+    CHECK(mixed.msaa == 1);
+    CHECK(mixed.filter == TextureFilter::Trilinear);
+    // The built-in scene (and OBJ) keep the display-model presets.
+    const SceneOptions plainFast = resolve({"--quality", "fast"}, false);
+    CHECK(plainFast.shading == ShadingMode::Gouraud);
+    const SceneOptions plainBalanced = resolve({"--quality", "balanced"}, false);
+    CHECK(plainBalanced.ssaa == 4);
+    CHECK(plainBalanced.msaa == 1);
+    CHECK(plainBalanced.shading == ShadingMode::Phong);
+}
