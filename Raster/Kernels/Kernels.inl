@@ -664,13 +664,31 @@ SR_SIMD_INLINE Rgb trilinearDecodedLanes(const Texture& texture, F u, F v, F lod
     return out;
 }
 
-// The colour of the lanes from `texture` with the filter and wrap at level of detail `lod`
-// (trilinear only), the lanes off the vector path (NaN / Inf / huge uv) redone by the scalar
-// sampler. `linear`: texels decoded from sRGB (Texture::sampleSrgb). Out of line: one copy per
-// filter and wrap that every kernel of the ISA calls (a call per group of lanes), instead of a
-// copy inlined into each kernel for each map, wrap and colour mode.
+// The lanes off the vector path (NaN / Inf / huge uv) of a sample, redone by the scalar sampler:
+// rare, so out of line (one copy per filter and wrap).
 template <TextureFilter kFilter, WrapMode kWrap>
-SR_SIMD_NOINLINE Rgb sampleLanes(const Texture& texture, bool linear, F u, F v, F lod) {
+SR_SIMD_NOINLINE void redoOffPathLanes(const Texture& texture, bool linear, F u, F v, F lod, M good, Rgb& kd) {
+    alignas(64) float us[kLanes], vs[kLanes], lods[kLanes], r[kLanes], g[kLanes], b[kLanes];
+    fstore(us, u);
+    fstore(vs, v);
+    fstore(lods, lod);
+    fstore(r, kd.r);
+    fstore(g, kd.g);
+    fstore(b, kd.b);
+    for (int i = 0, m = bits(good); i < kLanes; ++i) {
+        if (m & (1 << i)) continue;
+        const Color c = linear ? texture.sampleSrgb({us[i], vs[i]}, lods[i], kFilter, kWrap) : texture.sample({us[i], vs[i]}, lods[i], kFilter, kWrap);
+        r[i] = c.r;
+        g[i] = c.g;
+        b[i] = c.b;
+    }
+    kd = {fload(r), fload(g), fload(b)};
+}
+
+// The colour of the lanes from `texture` with the filter and wrap at level of detail `lod`
+// (trilinear only); `linear`: texels decoded from sRGB (Texture::sampleSrgb).
+template <TextureFilter kFilter, WrapMode kWrap>
+SR_SIMD_INLINE Rgb sampleLanes(const Texture& texture, bool linear, F u, F v, F lod) {
     const M good = onVectorPath(u) & onVectorPath(v);
     const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
     Rgb kd;
@@ -703,25 +721,17 @@ SR_SIMD_NOINLINE Rgb sampleLanes(const Texture& texture, bool linear, F u, F v, 
     } else {
         kd = linear ? trilinearDecodedLanes<kWrap>(texture, uSafe, vSafe, lod) : trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
     }
-    if (SR_UNLIKELY(bits(good) != bits(mAll()))) {
-        alignas(64) float us[kLanes], vs[kLanes], lods[kLanes], r[kLanes], g[kLanes], b[kLanes];
-        fstore(us, u);
-        fstore(vs, v);
-        fstore(lods, lod);
-        fstore(r, kd.r);
-        fstore(g, kd.g);
-        fstore(b, kd.b);
-        for (int i = 0, m = bits(good); i < kLanes; ++i) {
-            if (m & (1 << i)) continue;
-            const Color c = linear ? texture.sampleSrgb({us[i], vs[i]}, lods[i], kFilter, kWrap)
-                                   : texture.sample({us[i], vs[i]}, lods[i], kFilter, kWrap);
-            r[i] = c.r;
-            g[i] = c.g;
-            b[i] = c.b;
-        }
-        kd = {fload(r), fload(g), fload(b)};
-    }
+    if (SR_UNLIKELY(bits(good) != bits(mAll()))) redoOffPathLanes<kFilter, kWrap>(texture, linear, u, v, lod, good, kd);
     return kd;
+}
+
+// sampleLanes out of line, one copy per filter and wrap (a call per group of lanes): what every
+// kernel would otherwise copy for each map, wrap and colour mode. Only the Blinn-Phong programs'
+// nearest and bilinear on display values are inlined (sampleMap): the cheapest filters, where a
+// call (every vector register is the caller's to save across it) costs most in proportion.
+template <TextureFilter kFilter, WrapMode kWrap>
+SR_SIMD_NOINLINE Rgb sampleLanesOutOfLine(const Texture& texture, bool linear, F u, F v, F lod) {
+    return sampleLanes<kFilter, kWrap>(texture, linear, u, v, lod);
 }
 
 // sampleLanes for the draw: the lanes' level of detail (trilinear: the affine triangle's
@@ -738,12 +748,19 @@ SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear,
         (void)invW;
         (void)triangleLod;
     }
+    auto sample = [&](auto wrap) SR_SIMD_LAMBDA {
+        constexpr WrapMode kWrap = decltype(wrap)::value;
+        if constexpr (kFilter != TextureFilter::Trilinear && Prog::kMode != ShadingMode::Pbr) {
+            if (!linear) return sampleLanes<kFilter, kWrap>(texture, false, u, v, lod);
+        }
+        return sampleLanesOutOfLine<kFilter, kWrap>(texture, linear, u, v, lod);
+    };
     switch (p.d->settings.wrap) {
-    case WrapMode::Clamp: return sampleLanes<kFilter, WrapMode::Clamp>(texture, linear, u, v, lod);
-    case WrapMode::Mirror: return sampleLanes<kFilter, WrapMode::Mirror>(texture, linear, u, v, lod);
+    case WrapMode::Clamp: return sample(std::integral_constant<WrapMode, WrapMode::Clamp>{});
+    case WrapMode::Mirror: return sample(std::integral_constant<WrapMode, WrapMode::Mirror>{});
     case WrapMode::Repeat: break;
     }
-    return sampleLanes<kFilter, WrapMode::Repeat>(texture, linear, u, v, lod);
+    return sample(std::integral_constant<WrapMode, WrapMode::Repeat>{});
 }
 // The draw's texture (programs::sampleTexel).
 template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
