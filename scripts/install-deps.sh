@@ -8,7 +8,8 @@ build_pkgs=(cmake ninja-build g++ catch2 libstb-dev libtinyobjloader-dev libtiny
 wine_pkgs=(wine wine64)
 x11_pkgs=(xvfb xdotool imagemagick x11-utils openbox)
 test_pkgs=(clang libclang-rt-14-dev   # libFuzzer for the fuzz targets
-           assimp-utils assimp-testmodels)   # glTF test files and an independent loader to check ours
+           assimp-utils assimp-testmodels   # glTF test files and an independent loader to check ours
+           glmark2-data)                    # the bunny (bunny.obj), a real model the loader tests read
 
 want=()
 for what in "${@:-test}"; do
