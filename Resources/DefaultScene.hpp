@@ -2,8 +2,8 @@
 #pragma once
 
 #include "Math/Vec.hpp"
-#include "Raster/Scene.hpp"
-#include "Raster/Shading.hpp"
+#include "Raster/Frame/Scene.hpp"
+#include "Raster/Shade/Shading.hpp"
 
 namespace sr {
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cstring>
 
-#include "Raster/FrameBuffer.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
 #include "Resources/FileIO.hpp"
 #include "stb_image.h"
 #include "stb_image_write.h"

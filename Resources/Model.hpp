@@ -9,11 +9,11 @@
 
 #include "Math/Color.hpp"
 #include "Math/Vec.hpp"
-#include "Raster/Blend.hpp" // TexelAlpha
-#include "Raster/Brdf.hpp"  // PbrFactors
-#include "Raster/Mesh.hpp"
-#include "Raster/Shading.hpp" // Light
-#include "Raster/Texture.hpp" // WrapMode, TextureFilter
+#include "Raster/Fill/Blend.hpp" // TexelAlpha
+#include "Raster/Geometry/Mesh.hpp"
+#include "Raster/Shade/Brdf.hpp"  // PbrFactors
+#include "Raster/Shade/Shading.hpp" // Light
+#include "Raster/Texture/Texture.hpp" // WrapMode, TextureFilter
 #include "Resources/Image.hpp"
 
 namespace sr {
@@ -33,7 +33,7 @@ struct Material {
     float shininess = 1.0f;
     float alpha = 1.0f; // opacity: MTL d (or 1 - Tr); glTF baseColorFactor alpha under BLEND, 0 or 1 under MASK
     // glTF MASK / BLEND with a base colour texture: the per-fragment rule, used when the texture
-    // has alpha (Raster/Blend.hpp; `alpha` above is then the rule for an opaque texture).
+    // has alpha (Raster/Fill/Blend.hpp; `alpha` above is then the rule for an opaque texture).
     TexelAlpha texelAlpha;
     bool doubleSided = true; // glTF doubleSided (its default: false, back faces culled whatever --cull says); OBJ: true
     // glTF: the base colour texture's sampler, where it says (the draw's wrap and filter unless

@@ -6,7 +6,7 @@
 
 #include "Math/Color.hpp"
 #include "Math/Mat4.hpp"
-#include "Raster/Mesh.hpp"
+#include "Raster/Geometry/Mesh.hpp"
 #include "Resources/Image.hpp"
 
 namespace sr {

@@ -18,7 +18,7 @@ E next(E value, int count) {
 } // namespace
 
 Camera cameraFromSetup(const CameraSetup& setup) {
-    // forward() = (-sin(yaw) cos(pitch), sin(pitch), -cos(yaw) cos(pitch)) (Raster/Camera.hpp),
+    // forward() = (-sin(yaw) cos(pitch), sin(pitch), -cos(yaw) cos(pitch)) (Raster/Geometry/Camera.hpp),
     // so yaw = atan2(-f.x, -f.z) and pitch = asin(f.y) for the unit direction f.
     const Vec3 f = normalize(setup.target - setup.eye);
     float yaw = 0.0f, pitch = 0.0f;

@@ -9,8 +9,8 @@
 
 #include "Platform/App/Input.hpp"
 #include "Platform/App/SceneSetup.hpp"
-#include "Raster/Camera.hpp"
-#include "Raster/RenderSettings.hpp"
+#include "Raster/Frame/RenderSettings.hpp"
+#include "Raster/Geometry/Camera.hpp"
 
 namespace sr::app {
 

@@ -5,7 +5,7 @@
 #include <ctime>
 #include <string>
 
-#include "Raster/FrameBuffer.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
 #include "Resources/Result.hpp"
 
 namespace sr::app {

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "Raster/Camera.hpp"
-#include "Raster/FrameBuffer.hpp"
-#include "Raster/Msaa.hpp"
-#include "Raster/Resolve.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
+#include "Raster/Frame/Msaa.hpp"
+#include "Raster/Frame/Resolve.hpp"
+#include "Raster/Geometry/Camera.hpp"
 
 namespace sr::app {
 namespace {

@@ -10,14 +10,14 @@
 
 #include "Math/Color.hpp"
 #include "Math/Vec.hpp"
-#include "Raster/Kernels/Isa.hpp"
-#include "Raster/ColorSpace.hpp"
-#include "Raster/Cull.hpp"
-#include "Raster/Shading.hpp"
-#include "Raster/Shadow.hpp"
-#include "Raster/Sky.hpp"
-#include "Raster/Texture.hpp"
-#include "Raster/PipelineModes.hpp" // PerspectiveMode
+#include "Raster/Fill/Kernels/Isa.hpp"
+#include "Raster/Frame/Sky.hpp"
+#include "Raster/Geometry/Cull.hpp"
+#include "Raster/Setup/PipelineModes.hpp" // PerspectiveMode
+#include "Raster/Shade/ColorSpace.hpp"
+#include "Raster/Shade/Shading.hpp"
+#include "Raster/Shade/Shadow.hpp"
+#include "Raster/Texture/Texture.hpp"
 
 namespace sr::app {
 
@@ -70,8 +70,8 @@ struct SceneOptions {
     TextureFilter filter = TextureFilter::Bilinear;
     WrapMode wrap = WrapMode::Repeat;
     PerspectiveMode perspective = PerspectiveMode::Exact;
-    int ssaa = 1;        // --ssaa: supersampling samples per pixel, 1, 4 or 16 (Raster/Resolve.hpp)
-    int msaa = 1;        // --msaa: multisampling samples per pixel, 1, 2, 4 or 8 (Raster/Msaa.hpp)
+    int ssaa = 1;        // --ssaa: supersampling samples per pixel, 1, 4 or 16 (Raster/Frame/Resolve.hpp)
+    int msaa = 1;        // --msaa: multisampling samples per pixel, 1, 2, 4 or 8 (Raster/Frame/Msaa.hpp)
     Isa isa = bestIsa(); // --isa: which span kernels fill (auto = the widest this CPU has)
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
     MaterialRule materials = MaterialRule::Mtl; // --materials
@@ -79,7 +79,7 @@ struct SceneOptions {
     bool explicitUp = false, explicitFov = false; // --up / --fov given (they override --camera's)
     bool wireframe = false;
     bool outline = false; // --outline: the selection outline of the draw at the image centre
-    // --shadows / --no-shadows, --shadow-size N, --shadow-pcf K, --shadow-bias C,S (Raster/Shadow.hpp)
+    // --shadows / --no-shadows, --shadow-size N, --shadow-pcf K, --shadow-bias C,S (Raster/Shade/Shadow.hpp)
     ShadowSettings shadows;
     std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
@@ -91,9 +91,9 @@ struct SceneOptions {
     Sky::Kind sky = Sky::Kind::None;
     std::string skybox;
     // --color linear|gamma (unset: the scene's own convention, applySceneDefaults), --tonemap,
-    // --exposure EV (linear only: Raster/ColorSpace.hpp).
+    // --exposure EV (linear only: Raster/Shade/ColorSpace.hpp).
     std::optional<ColorMode> colour;
-    bool ibl = false; // --ibl: the sky lights pbr surfaces (Raster/Ibl.hpp)
+    bool ibl = false; // --ibl: the sky lights pbr surfaces (Raster/Shade/Ibl.hpp)
     ToneMap toneMap = ToneMap::None;
     float exposure = 0.0f;
 };

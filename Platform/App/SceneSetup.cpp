@@ -11,11 +11,11 @@
 #include "Math/Conventions.hpp"
 #include "Math/DoubleMath.hpp"
 #include "Math/Transform.hpp"
-#include "Raster/Msaa.hpp" // msaaFits
-#include "Raster/Camera.hpp"
+#include "Raster/Frame/Msaa.hpp" // msaaFits
+#include "Raster/Geometry/Camera.hpp"
 #include "Resources/DefaultScene.hpp"
-#include "Resources/Image.hpp"
 #include "Resources/GltfLoader.hpp"
+#include "Resources/Image.hpp"
 #include "Resources/Skybox.hpp"
 
 namespace sr::app {

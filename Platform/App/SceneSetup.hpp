@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "Platform/App/SceneOptions.hpp"
-#include "Raster/Ibl.hpp"
-#include "Raster/RenderSettings.hpp"
-#include "Raster/Scene.hpp"
+#include "Raster/Frame/RenderScene.hpp"
+#include "Raster/Frame/RenderSettings.hpp"
+#include "Raster/Shade/Ibl.hpp"
 #include "Resources/Result.hpp"
 
 namespace sr::app {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "Platform/App/SceneSetup.hpp"
-#include "Raster/FrameBuffer.hpp"
-#include "Raster/RenderContext.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
+#include "Raster/Frame/RenderContext.hpp"
 
 namespace sr::headless {
 

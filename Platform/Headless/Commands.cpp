@@ -10,7 +10,7 @@
 #include "Platform/Headless/Flight.hpp"
 #include "Platform/Headless/Json.hpp"
 #include "Platform/Headless/Timing.hpp"
-#include "Raster/Shadow.hpp"
+#include "Raster/Frame/ShadowPass.hpp"
 #include "Resources/Image.hpp"
 
 namespace sr::headless {

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "Raster/FrameBuffer.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
 
 namespace sr::headless {
 

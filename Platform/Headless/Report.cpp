@@ -13,7 +13,7 @@
 #include "Platform/Headless/Commands.hpp"
 #include "Platform/Headless/ImageCompare.hpp"
 #include "Platform/Headless/Timing.hpp"
-#include "Raster/Resolve.hpp"
+#include "Raster/Frame/Resolve.hpp"
 #include "Resources/FileIO.hpp"
 
 namespace sr::headless {

@@ -2,7 +2,7 @@
 #pragma once
 
 #include "Platform/Win32/Win32Include.hpp"
-#include "Raster/FrameBuffer.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
 
 namespace sr::win32 {
 

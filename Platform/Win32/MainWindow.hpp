@@ -8,8 +8,8 @@
 #include "Platform/App/SceneSetup.hpp"
 #include "Platform/Win32/GdiPresenter.hpp"
 #include "Platform/Win32/Win32Include.hpp"
-#include "Raster/FrameBuffer.hpp"
-#include "Raster/RenderContext.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
+#include "Raster/Frame/RenderContext.hpp"
 
 #include <chrono>
 #include <string>

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "Math/Mat4.hpp"
-#include "Raster/Camera.hpp"
+#include "Raster/Geometry/Camera.hpp"
 
 using namespace sr;
 

@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "PipelineTestUtil.hpp"
-#include "Raster/Clipper.hpp"
-#include "Raster/RasterLimits.hpp"
-#include "Raster/Viewport.hpp"
+#include "Raster/Geometry/Clipper.hpp"
+#include "Raster/Geometry/Viewport.hpp"
+#include "Raster/Setup/RasterLimits.hpp"
 
 using namespace sr;
 using namespace srtest;

@@ -6,10 +6,10 @@
 #include <string>
 
 #include "PipelineTestUtil.hpp"
-#include "Raster/Clipper.hpp"
-#include "Raster/Cull.hpp"
-#include "Raster/FixedPoint.hpp"
-#include "Raster/Viewport.hpp"
+#include "Raster/Geometry/Clipper.hpp"
+#include "Raster/Geometry/Cull.hpp"
+#include "Raster/Geometry/Viewport.hpp"
+#include "Raster/Setup/FixedPoint.hpp"
 
 using namespace sr;
 using namespace srtest;

@@ -5,8 +5,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "Raster/Clipper.hpp"
-#include "Raster/Viewport.hpp"
+#include "Raster/Geometry/Clipper.hpp"
+#include "Raster/Geometry/Viewport.hpp"
 
 namespace srtest {
 

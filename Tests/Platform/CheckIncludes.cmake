@@ -2,11 +2,11 @@
 #   -DSR_CXX=<compiler>      GCC or Clang (the include tree comes from -H)
 #   -DSR_STD=<17|20>         the project's C++ standard
 #   -DSR_SOURCE_ROOT=<repo>  include root
-#   -DSR_HEADER=<path>       the header, relative to the root (e.g. Raster/RenderSettings.hpp)
+#   -DSR_HEADER=<path>       the header, relative to the root (e.g. Raster/Frame/RenderSettings.hpp)
 #   -DSR_WORK_DIR=<dir>      scratch folder
 # Compiles a .cpp that includes only SR_HEADER and fails (listing the chains) when its include tree
 # names the span loops (ScanlineFill.hpp), the draw templates (Pipeline.hpp) or any intrinsics
-# header (*intrin.h): the Platform files include Raster/RenderSettings.hpp, and the span loops
+# header (*intrin.h): the Platform files include Raster/Frame/RenderSettings.hpp, and the span loops
 # and the intrinsics belong to the renderer's inside, not to every file that names a setting.
 cmake_minimum_required(VERSION 3.25)
 

@@ -79,8 +79,8 @@ sr_expect_failure(removed_source "in CMake target sr_math but not in Math/Math.v
 
 # A file in a .vcxproj that the CMake target does not have.
 function(sr_mutate_extra_source dir)
-  sr_mutate(${dir} Raster/Raster.vcxproj "<ClInclude Include=\"FrameBuffer.hpp\" />"
-            "<ClInclude Include=\"FrameBuffer.hpp\" />\n    <ClInclude Include=\"Stale.hpp\" />")
+  sr_mutate(${dir} Raster/Raster.vcxproj "<ClInclude Include=\"Pipeline.hpp\" />"
+            "<ClInclude Include=\"Pipeline.hpp\" />\n    <ClInclude Include=\"Stale.hpp\" />")
 endfunction()
 sr_expect_failure(extra_source "in Raster/Raster.vcxproj but not in CMake target sr_raster:[^\n]*\n *- Raster/Stale.hpp")
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "Raster/FrameBuffer.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
 
 using namespace sr;
 

@@ -11,9 +11,9 @@
 #include <string>
 #include <utility>
 
+#include "Raster/Fill/Line.hpp"
 #include "RasterTestUtil.hpp"
 #include "ReferenceLine.hpp"
-#include "Raster/Line.hpp"
 
 using namespace sr;
 using namespace sr::test;

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "Raster/Fill/Line.hpp"
 #include "RasterTestUtil.hpp"
-#include "Raster/Line.hpp"
 
 using namespace sr;
 using namespace sr::test;

@@ -1,4 +1,4 @@
-// Multisampled coverage (Raster/MsaaFill.hpp): per sample equal to the reference rasterizer's edge
+// Multisampled coverage (Raster/Fill/MsaaFill.hpp): per sample equal to the reference rasterizer's edge
 // functions at the sample points, shading once per covered pixel, and watertight per sample.
 #include "TestFramework.hpp"
 
@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "Raster/Msaa.hpp"
-#include "Raster/MsaaFill.hpp"
+#include "Raster/Fill/MsaaFill.hpp"
+#include "Raster/Frame/Msaa.hpp"
 #include "RasterTestUtil.hpp"
 #include "ReferenceRasterizer.hpp"
 

@@ -5,9 +5,9 @@
 #include <random>
 #include <vector>
 
-#include "Raster/ScanlineFill.hpp"
-#include "Raster/TriangleSetup.hpp"
-#include "Raster/Vertex.hpp"
+#include "Raster/Fill/ScanlineFill.hpp"
+#include "Raster/Geometry/Vertex.hpp"
+#include "Raster/Setup/TriangleSetup.hpp"
 
 namespace sr::test {
 

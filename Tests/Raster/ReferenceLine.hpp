@@ -4,7 +4,7 @@
 #include <set>
 #include <utility>
 
-#include "Raster/ScanlineFill.hpp"
+#include "Raster/Fill/ScanlineFill.hpp"
 
 namespace sr::ref {
 
@@ -15,7 +15,7 @@ using PixelSet = std::set<std::pair<int, int>>; // (x, y)
 // band (|v| <= 16384) the whole segment's snapped ends; otherwise the ends of its exact clip to
 // the scissor grown by one pixel, snapped exactly. Then rules 2-3 in int64 for those ends. Every
 // step is exact (arbitrary-precision integers and rationals written here, sharing nothing with
-// Raster/LineClip), and nothing is ever rounded.
+// Raster/Geometry/LineClip), and nothing is ever rounded.
 PixelSet linePixels(const Scissor& s, float ax, float ay, float bx, float by);
 
 } // namespace sr::ref

@@ -5,12 +5,12 @@
 #include <cstdint>
 #include <vector>
 
-#include "Raster/Vertex.hpp"
+#include "Raster/Geometry/Vertex.hpp"
 
 namespace sr::ref {
 
 // Snapping as the contract states it (Conventions.hpp, RasterLimits.hpp): the nearest multiple of
-// 1/256, ties towards +infinity. Written independently of Raster/FixedPoint.hpp on purpose.
+// 1/256, ties towards +infinity. Written independently of Raster/Setup/FixedPoint.hpp on purpose.
 std::int64_t snap(float v);
 
 // Pixel indices y * width + x (ascending) whose centres the triangle covers under the D3D10

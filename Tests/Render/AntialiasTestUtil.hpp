@@ -7,8 +7,8 @@
 #include <utility>
 #include <vector>
 
-#include "Raster/RenderContext.hpp"
-#include "Raster/Scene.hpp"
+#include "Raster/Frame/RenderContext.hpp"
+#include "Raster/Frame/RenderScene.hpp"
 #include "TestFramework.hpp"
 
 namespace sr::test {

@@ -5,10 +5,10 @@
 #include <cassert>
 #include <cmath>
 
+#include "Raster/Frame/RenderScene.hpp"
+#include "Raster/Frame/RenderSettings.hpp"
 #include "Raster/Pipeline.hpp"
-#include "Raster/RenderSettings.hpp"
-#include "Raster/Scene.hpp"
-#include "Raster/TextureLod.hpp"
+#include "Raster/Texture/TextureLod.hpp"
 
 namespace sr::test {
 

@@ -2,9 +2,9 @@
 #include "TestFramework.hpp"
 
 #include "Platform/App/SceneSetup.hpp"
-#include "Raster/Line.hpp"
-#include "Raster/LineDraw.hpp"
-#include "Raster/Viewport.hpp"
+#include "Raster/Fill/Line.hpp"
+#include "Raster/Frame/LineDraw.hpp"
+#include "Raster/Geometry/Viewport.hpp"
 
 using namespace sr;
 

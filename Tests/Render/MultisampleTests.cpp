@@ -1,4 +1,4 @@
-// Multisampling (Raster/Msaa.hpp, MsaaFill.hpp, renderSceneFrame with msaa > 1): the resolve, the
+// Multisampling (Raster/Frame/Msaa.hpp, MsaaFill.hpp, renderSceneFrame with msaa > 1): the resolve, the
 // resolved coverage of edges against the exact area, depth per sample, shading at the centroid,
 // lines, threads, kernels against the scalar reference, memory.
 #include "TestFramework.hpp"
@@ -11,13 +11,13 @@
 
 #include "AntialiasTestUtil.hpp"
 #include "Platform/App/SceneSetup.hpp"
-#include "Raster/Kernels/Isa.hpp"
-#include "Raster/Line.hpp"
-#include "Raster/Msaa.hpp"
-#include "Raster/MsaaFill.hpp"
+#include "Raster/Fill/Kernels/Isa.hpp"
+#include "Raster/Fill/Line.hpp"
+#include "Raster/Fill/MsaaFill.hpp"
+#include "Raster/Frame/Msaa.hpp"
+#include "Raster/Frame/RenderContext.hpp"
+#include "Raster/Frame/RenderScene.hpp"
 #include "Raster/Pipeline.hpp"
-#include "Raster/RenderContext.hpp"
-#include "Raster/Scene.hpp"
 
 using namespace sr;
 using namespace sr::test;

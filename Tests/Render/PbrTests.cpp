@@ -9,17 +9,17 @@
 
 #include "Math/Conventions.hpp"
 #include "Math/Transform.hpp"
-#include "Raster/Brdf.hpp"
-#include "Raster/ColorSpace.hpp"
-#include "Raster/MeshRenderer.hpp"
-#include "Raster/PbrProgram.hpp"
-#include "Raster/Ibl.hpp"
-#include "Raster/Msaa.hpp"
-#include "Raster/Resolve.hpp"
-#include "Raster/Scene.hpp"
+#include "Raster/Frame/MeshRenderer.hpp"
+#include "Raster/Frame/Msaa.hpp"
+#include "Raster/Frame/RenderScene.hpp"
+#include "Raster/Frame/Resolve.hpp"
+#include "Raster/Shade/Brdf.hpp"
+#include "Raster/Shade/ColorSpace.hpp"
+#include "Raster/Shade/Ibl.hpp"
+#include "Raster/Shade/PbrProgram.hpp"
+#include "RenderTestUtil.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/Primitives.hpp"
-#include "RenderTestUtil.hpp"
 
 using namespace sr;
 

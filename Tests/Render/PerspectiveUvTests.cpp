@@ -7,9 +7,9 @@
 #include <vector>
 
 #include "Math/DoubleMath.hpp"
-#include "Raster/FixedPoint.hpp"
+#include "Raster/Geometry/Viewport.hpp"
 #include "Raster/Pipeline.hpp"
-#include "Raster/Viewport.hpp"
+#include "Raster/Setup/FixedPoint.hpp"
 
 using namespace sr;
 

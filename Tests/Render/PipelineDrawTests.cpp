@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "Math/Transform.hpp"
-#include "Raster/Camera.hpp"
+#include "Raster/Geometry/Camera.hpp"
 #include "RenderTestUtil.hpp"
 
 using namespace sr;

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "Math/Mat4.hpp"
-#include "Raster/Mesh.hpp"
+#include "Raster/Geometry/Mesh.hpp"
 #include "Raster/Pipeline.hpp"
 
 namespace sr::test {

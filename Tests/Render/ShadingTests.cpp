@@ -1,12 +1,12 @@
-// Blinn-Phong (Raster/Shading.hpp) against values worked out by hand, and one lit quad end to end.
+// Blinn-Phong (Raster/Shade/Shading.hpp) against values worked out by hand, and one lit quad end to end.
 #include "TestFramework.hpp"
 
 #include <cmath>
 #include <cstdint>
 
 #include "Math/Transform.hpp"
-#include "Raster/MeshRenderer.hpp"
-#include "Raster/Shading.hpp"
+#include "Raster/Frame/MeshRenderer.hpp"
+#include "Raster/Shade/Shading.hpp"
 
 using namespace sr;
 

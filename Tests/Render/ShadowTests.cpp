@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "Platform/App/SceneSetup.hpp"
-#include "Raster/Shadow.hpp"
+#include "Raster/Shade/Shadow.hpp"
 
 using namespace sr;
 

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "Platform/App/SceneSetup.hpp"
-#include "Raster/Blend.hpp"
-#include "Raster/Msaa.hpp"
-#include "Raster/Sky.hpp"
+#include "Raster/Fill/Blend.hpp"
+#include "Raster/Frame/Msaa.hpp"
+#include "Raster/Frame/Sky.hpp"
 
 using namespace sr;
 

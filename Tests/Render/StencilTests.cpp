@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "Platform/App/SceneSetup.hpp"
-#include "Raster/Stencil.hpp"
+#include "Raster/Fill/Stencil.hpp"
 
 using namespace sr;
 

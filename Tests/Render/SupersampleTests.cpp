@@ -1,4 +1,4 @@
-// Supersampling (Raster/Resolve.hpp, renderSceneFrame): the resolve against a plain reference,
+// Supersampling (Raster/Frame/Resolve.hpp, renderSceneFrame): the resolve against a plain reference,
 // resolved coverage against the analytic area of a triangle, threads, memory.
 #include "TestFramework.hpp"
 
@@ -8,11 +8,11 @@
 #include <random>
 #include <vector>
 
-#include "Raster/RenderContext.hpp"
-#include "Raster/Resolve.hpp"
-#include "Platform/App/SceneSetup.hpp"
-#include "Raster/Scene.hpp"
 #include "AntialiasTestUtil.hpp"
+#include "Platform/App/SceneSetup.hpp"
+#include "Raster/Frame/RenderContext.hpp"
+#include "Raster/Frame/RenderScene.hpp"
+#include "Raster/Frame/Resolve.hpp"
 
 using namespace sr;
 using namespace sr::test;

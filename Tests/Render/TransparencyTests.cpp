@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "Platform/App/SceneSetup.hpp"
-#include "Raster/Blend.hpp"
+#include "Raster/Fill/Blend.hpp"
 #include "Resources/ObjTestUtil.hpp" // Tests/Resources: the OBJ tests' temporary files
 
 using namespace sr;

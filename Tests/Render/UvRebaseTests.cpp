@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "Math/Transform.hpp"
-#include "Raster/Kernels/Isa.hpp"
-#include "Raster/MeshRenderer.hpp"
+#include "Raster/Fill/Kernels/Isa.hpp"
+#include "Raster/Frame/MeshRenderer.hpp"
 #include "Raster/Pipeline.hpp"
 
 using namespace sr;

@@ -6,11 +6,11 @@
 #include <filesystem>
 #include <string>
 
-#include "Raster/FrameBuffer.hpp"
+#include "ObjTestUtil.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
 #include "Resources/FileIO.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/Skybox.hpp"
-#include "ObjTestUtil.hpp"
 
 using namespace sr;
 

@@ -10,7 +10,7 @@
 
 #include "Math/Transform.hpp"
 #include "Raster/Pipeline.hpp"
-#include "Raster/TextureLod.hpp"
+#include "Raster/Texture/TextureLod.hpp"
 #include "TextureTestUtil.hpp"
 
 using namespace sr;

@@ -11,7 +11,7 @@ namespace sr::test {
 namespace {
 
 // --- Coordinate reduction (Texture.hpp's coordinate policies; OpenGL 4.5 core, 8.14.2) ----------
-// The same rules as reduceCoordinate in Raster/TextureSampling.cpp, written with std::floor (exact
+// The same rules as reduceCoordinate in Raster/Texture/TextureSampling.cpp, written with std::floor (exact
 // for every double, as the library's floorExact): false when u has no position (NaN; +-Inf under
 // Repeat / Mirror), which selects texel 0 with weight 1 on that axis.
 bool reduceCoordinate(float u, WrapMode wrap, double& out) {

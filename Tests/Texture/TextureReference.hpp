@@ -1,9 +1,9 @@
-// The straightforward reference sampler the fast paths of Raster/TextureSampling.cpp are tested against.
+// The straightforward reference sampler the fast paths of Raster/Texture/TextureSampling.cpp are tested against.
 #pragma once
 
 #include "Math/Color.hpp"
 #include "Math/Vec.hpp"
-#include "Raster/Texture.hpp"
+#include "Raster/Texture/Texture.hpp"
 
 namespace sr::test {
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "Raster/ColorSpace.hpp"
+#include "Raster/Shade/ColorSpace.hpp"
 #include "TextureReference.hpp"
 #include "TextureTestUtil.hpp"
 

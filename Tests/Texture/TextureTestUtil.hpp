@@ -11,7 +11,7 @@
 #include "TestFramework.hpp"
 
 #include "Math/Color.hpp"
-#include "Raster/Texture.hpp"
+#include "Raster/Texture/Texture.hpp"
 
 namespace sr::test {
 

@@ -7,10 +7,10 @@
 #include <random>
 
 #include "Math/Vec.hpp"
-#include "Raster/Clipper.hpp"
-#include "Raster/Cull.hpp"
-#include "Raster/ScanlineFill.hpp"
-#include "Raster/TriangleSetup.hpp"
+#include "Raster/Fill/ScanlineFill.hpp"
+#include "Raster/Geometry/Clipper.hpp"
+#include "Raster/Geometry/Cull.hpp"
+#include "Raster/Setup/TriangleSetup.hpp"
 
 using namespace sr;
 

@@ -9,12 +9,12 @@
 #include <string>
 #include <vector>
 
-#include "Raster/Kernels/KernelTable.hpp"
-#include "Raster/MeshPrograms.hpp"
-#include "Raster/PbrProgram.hpp"
-#include "Raster/ScanlineFill.hpp" // fillTriangle, the reference
 #include "Math/Transform.hpp"
-#include "Raster/Shadow.hpp"
+#include "Raster/Fill/Kernels/KernelTable.hpp"
+#include "Raster/Fill/ScanlineFill.hpp" // fillTriangle, the reference
+#include "Raster/Shade/MeshPrograms.hpp"
+#include "Raster/Shade/PbrProgram.hpp"
+#include "Raster/Shade/Shadow.hpp"
 
 using namespace sr;
 

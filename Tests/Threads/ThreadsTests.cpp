@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "Platform/App/SceneSetup.hpp"
+#include "Raster/Frame/ThreadPool.hpp"
 #include "Raster/Pipeline.hpp"
-#include "Raster/ThreadPool.hpp"
 
 using namespace sr;
 

@@ -7,9 +7,9 @@
 #include <thread>
 #include <vector>
 
-#include "Raster/FrameBuffer.hpp"
-#include "Raster/ScanlineFill.hpp"
-#include "Raster/TriangleSetup.hpp"
+#include "Raster/Fill/ScanlineFill.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
+#include "Raster/Setup/TriangleSetup.hpp"
 
 using namespace sr;
 

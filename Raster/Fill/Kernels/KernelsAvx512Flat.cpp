@@ -1,0 +1,3 @@
+// The AVX512 span kernels of the flat programs, untextured and textured (see Kernels.inl).
+#define SR_KERNEL_PROGRAM FlatProgram
+#include "Raster/Fill/Kernels/KernelsAvx512.inl"

@@ -1,0 +1,3 @@
+// The AVX512 span kernels of the unlit programs, untextured and textured (see Kernels.inl).
+#define SR_KERNEL_PROGRAM UnlitProgram
+#include "Raster/Fill/Kernels/KernelsAvx512.inl"

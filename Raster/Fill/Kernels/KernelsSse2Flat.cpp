@@ -1,0 +1,3 @@
+// The SSE2 span kernels of the flat programs, untextured and textured (see Kernels.inl).
+#define SR_KERNEL_PROGRAM FlatProgram
+#include "Raster/Fill/Kernels/KernelsSse2.inl"

@@ -1,0 +1,3 @@
+// The SSE2 span kernels of the phong programs, untextured and textured (see Kernels.inl).
+#define SR_KERNEL_PROGRAM PhongProgram
+#include "Raster/Fill/Kernels/KernelsSse2.inl"

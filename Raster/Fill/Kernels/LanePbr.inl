@@ -1,0 +1,143 @@
+// The metallic-roughness program lane by lane (PbrProgram::fragment, Brdf.hpp): lights, normal maps.
+// Part of the span kernels: included by Kernels.inl inside its ISA namespace (see there).
+
+// --- The pbr program (PbrProgram::fragment, Brdf.hpp), lane by lane -------------------------
+// brdfCosineTerms compiled for this ISA (the scalar reference's source, Brdf.hpp).
+#include "Raster/Shade/BrdfTerms.inl"
+
+// The radiance at the lanes' points (px, py, pz) with unit normals n and view vectors v:
+// pbrRadiance's loop over the lights (lightAt's direction and factor as lightsRgb computes
+// them, the shadow maps' lit fraction, brdfCosineTerms), the same operations in the same
+// order. Lanes whose light or half vector is off normalize's fast path lose `ok`.
+SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* shadows, F baseR, F baseG, F baseB, F metallic,
+                               F roughness, F nx, F ny, F nz, F px, F py, F pz, F vx, F vy, F vz, M& ok) {
+    const V3 n{nx, ny, nz}, p{px, py, pz}, v{vx, vy, vz};
+    const F base[3] = {baseR, baseG, baseB};
+    Rgb sum{fzero(), fzero(), fzero()};
+    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
+        const Light& light = lighting.lights[i];
+        V3 l;
+        F a = fset(1.0f);
+        if (light.type == LightType::Directional) {
+            l = {fset(light.toLight.x), fset(light.toLight.y), fset(light.toLight.z)};
+        } else {
+            const V3 d{fset(light.position.x) - p.x, fset(light.position.y) - p.y, fset(light.position.z) - p.z};
+            const F d2 = dot3(d, d);
+            l = normalizeFast(d, ok);
+            a = fset(1.0f) / fmax(fset(kMinLightDistance2), d2);
+            if (light.range > 0.0f) {
+                const F q = d2 / fset(light.range * light.range);
+                a = a * clampLanes(fset(1.0f) - q * q, fzero(), fset(1.0f));
+            }
+            if (light.type == LightType::Spot) {
+                const V3 s{fset(light.spotDirection.x), fset(light.spotDirection.y), fset(light.spotDirection.z)};
+                const F c = clampLanes((fzero() - dot3(s, l)) * fset(light.coneScale) + fset(light.coneOffset), fzero(),
+                                       fset(1.0f));
+                a = a * (c * c);
+            }
+        }
+        const F ndl = dot3(n, l);
+        const M lit = (a > fzero()) & (ndl > fzero());
+        if (bits(lit) == 0) continue;
+        if (shadows) {
+            const F seen = shadowVisibility(*shadows, i, p, n, l, lit & ok);
+            a = select(seen < fset(1.0f), a * seen, a);
+        }
+        M hOk = ok;
+        const V3 h = normalizeFast({l.x + v.x, l.y + v.y, l.z + v.z}, hOk);
+        ok = (lit & hOk) | andNot(ok, lit);
+        const V3 nxh{n.y * h.z - n.z * h.y, n.z * h.x - n.x * h.z, n.x * h.y - n.y * h.x}; // cross(n, h)
+        F f[3];
+        brdfCosineTerms(ndl, dot3(n, v), dot3(n, h), dot3(nxh, nxh), dot3(v, h), roughness, metallic, base, f);
+        sum.r = select(lit, sum.r + f[0] * fset(light.colour.r) * a, sum.r);
+        sum.g = select(lit, sum.g + f[1] * fset(light.colour.g) * a, sum.g);
+        sum.b = select(lit, sum.b + f[2] * fset(light.colour.b) * a, sum.b);
+    }
+    return sum;
+}
+
+// robustLength (Vec.cpp) for the lanes whose vector is finite and non-zero: the largest
+// |component| m, then m sqrt(sum (c / m)^2). Lanes with a zero, infinite or NaN component come
+// out NaN, 0 or infinite, which the callers reject as robustLength's 0 / NaN / Inf would be.
+SR_SIMD_INLINE F lengthLanes(const V3& a) {
+    const F m = fmax(fmax(fabs(a.x), fabs(a.y)), fabs(a.z));
+    const F x = a.x / m, y = a.y / m, z = a.z / m;
+    F sum = x * x;
+    sum = sum + y * y;
+    sum = sum + z * z;
+    return m * fsqrt(sum);
+}
+
+// programs::perturbNormal per lane: the tangent made orthogonal to n, the bitangent w (n x T), the
+// map's vector (2 c - 1, x and y scaled) in that frame, normalised; lanes whose frame or vector
+// is degenerate (a length not above 1e-12, or not finite) keep n.
+SR_SIMD_NOINLINE V3 perturbNormalLanes(const V3& n, const V3& t0, F w, const Rgb& texel, float scale) {
+    const F nt = dot3(n, t0);
+    const V3 tOrtho{t0.x - n.x * nt, t0.y - n.y * nt, t0.z - n.z * nt};
+    const F tl = lengthLanes(tOrtho);
+    const F tiny = fset(1e-12f), huge = fset(3.40282347e38f);
+    const M frameOk = (tl > tiny) & (tl <= huge);
+    const V3 t{tOrtho.x / tl, tOrtho.y / tl, tOrtho.z / tl};
+    const F sign = select(w < fzero(), fset(-1.0f), fset(1.0f));
+    const V3 b{(n.y * t.z - n.z * t.y) * sign, (n.z * t.x - n.x * t.z) * sign, (n.x * t.y - n.y * t.x) * sign};
+    const F two = fset(2.0f), one = fset(1.0f), s = fset(scale);
+    const F x = (texel.r * two - one) * s, y = (texel.g * two - one) * s, z = texel.b * two - one;
+    const V3 m{t.x * x + b.x * y + n.x * z, t.y * x + b.y * y + n.y * z, t.z * x + b.z * y + n.z * z};
+    const F ml = lengthLanes(m);
+    const M ok = frameOk & (ml > tiny) & (ml <= huge);
+    return {select(ok, m.x / ml, n.x), select(ok, m.y / ml, n.y), select(ok, m.z / ml, n.z)};
+}
+
+// PbrProgram::fragment for the lanes: the interpolated normal and view vector (the normal
+// flipped toward the viewer on a double-sided surface), the factors times the maps, the lights,
+// the emission, encoded.
+template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
+SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
+    const DrawContext& d = *p.d;
+    const SurfaceMaterial& m = *d.material;
+    const PbrFactors& k = *m.pbr;
+    constexpr int kP = Prog::kP;
+    V3 n = normalizeFast({v[kP + 3], v[kP + 4], v[kP + 5]}, ok);
+    const Vec3 eye = d.view.eye;
+    const V3 toEye = normalizeFast({fset(eye.x) - v[kP], fset(eye.y) - v[kP + 1], fset(eye.z) - v[kP + 2]}, ok);
+    if (d.doubleSided) {
+        const M back = dot3(n, toEye) < fzero();
+        const F minus = fset(-1.0f);
+        n = {select(back, minus * n.x, n.x), select(back, minus * n.y, n.y), select(back, minus * n.z, n.z)};
+    }
+    F baseR = fset(k.baseColor.r), baseG = fset(k.baseColor.g), baseB = fset(k.baseColor.b);
+    F metallic = fset(k.metallic), roughness = fset(k.roughness);
+    F eR = fset(k.emissive.x), eG = fset(k.emissive.y), eB = fset(k.emissive.z);
+    if constexpr (Prog::kIsTextured) {
+        // Each map at its own level of detail (PbrProgram::sampleMap).
+        auto mapLanes = [&](const Texture& map, bool colour) SR_SIMD_LAMBDA {
+            F lod = fzero();
+            if constexpr (kPersp == PerspectiveMode::Affine && kFilter == TextureFilter::Trilinear) lod = fset(affineMipLevel(p, map));
+            return sampleMap<kPersp, kFilter>(p, map, colour && d.linear, v[0], v[1], invW, lod);
+        };
+        if (m.texture) {
+            const Rgb c = mapLanes(*m.texture, true);
+            baseR = baseR * c.r;
+            baseG = baseG * c.g;
+            baseB = baseB * c.b;
+        }
+        if (m.metallicRoughness) {
+            const Rgb c = mapLanes(*m.metallicRoughness, false);
+            roughness = roughness * c.g;
+            metallic = metallic * c.b;
+        }
+        if (m.emissive && (k.emissive.x > 0.0f || k.emissive.y > 0.0f || k.emissive.z > 0.0f)) {
+            const Rgb c = mapLanes(*m.emissive, true);
+            eR = eR * c.r;
+            eG = eG * c.g;
+            eB = eB * c.b;
+        }
+        if constexpr (Prog::kNormalMap) {
+            constexpr int kT = Prog::kT;
+            n = perturbNormalLanes(n, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.normalMap, false), k.normalScale);
+        }
+    }
+    const Rgb r = pbrLights(d.view.lighting, d.view.shadows, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z, v[kP],
+                            v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok);
+    return {r.r + eR, r.g + eG, r.b + eB};
+}

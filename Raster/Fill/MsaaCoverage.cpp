@@ -1,0 +1,531 @@
+// The multisampled fill's coverage and depth stage (MsaaFill.hpp): which samples of which pixels
+// a triangle covers, which of them pass the depth test, and the pixels to shade.
+#include "Raster/Fill/MsaaFill.hpp"
+#include "Raster/Fill/Prefetch.hpp"
+
+#include <algorithm>
+#include <cassert>
+
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#define SR_MSAA_SSE2 1
+#else
+#define SR_MSAA_SSE2 0
+#endif
+
+namespace sr {
+namespace {
+
+// The centroid of the samples in a coverage mask, as an offset from the pixel centre in pixels
+// (the mean of their pattern offsets; (0, 0) for an empty mask).
+struct Centroid {
+    double dx = 0.0, dy = 0.0;
+};
+template <int kN>
+const Centroid* centroidTable() {
+    static const auto table = [] {
+        std::vector<Centroid> t(std::size_t(1) << kN);
+        const SampleOffset* pattern = msaaPattern(kN);
+        for (unsigned mask = 1; mask < t.size(); ++mask) {
+            double sx = 0.0, sy = 0.0;
+            int count = 0;
+            for (int k = 0; k < kN; ++k) {
+                if (!(mask & (1u << k))) continue;
+                sx += pattern[k].x;
+                sy += pattern[k].y;
+                ++count;
+            }
+            t[mask] = {sx / (count * double(kSubPixelScale)), sy / (count * double(kSubPixelScale))};
+        }
+        return t;
+    }();
+    return table.data();
+}
+
+// Samples per 64-byte cache line (colour and depth samples are 4 bytes each).
+constexpr std::size_t kLine = 64 / sizeof(float);
+static_assert(sizeof(Pixel) == sizeof(float), "a colour and a depth sample are the same size");
+
+// Append a row or run record by storing its fields in place: a braced `push_back({...})` would
+// build the record on the stack with narrow stores and copy it with one wide load, which cannot
+// be forwarded from them and so waits behind every older store (the sample writes and their
+// cache misses included).
+void addRow(MsaaScratch& scratch, int y, int lo, int hi, std::size_t offset) {
+    MsaaScratch::Row& row = scratch.rows.emplace_back();
+    row.y = y;
+    row.lo = lo;
+    row.hi = hi;
+    row.offset = offset;
+}
+void addRun(MsaaScratch& scratch, int y, int x0, int x1, double dx, double dy) {
+    SpanRun& run = scratch.runs.emplace_back();
+    run.y = y;
+    run.x0 = x0;
+    run.x1 = x1;
+    run.dx = dx;
+    run.dy = dy;
+}
+
+// Room for `count` masks in the scratch rows.
+void reserveMasks(MsaaScratch& scratch, std::size_t count) {
+    if (scratch.covered.size() < count) {
+        scratch.covered.resize(2 * count);
+        scratch.passed.resize(2 * count);
+    }
+}
+
+#if SR_MSAA_SSE2
+// All ones in the 32-bit lanes whose bit is set in `bits` (0..15).
+inline __m128i laneMask(unsigned bits) {
+    return _mm_cmpeq_epi32(_mm_and_si128(_mm_set1_epi32(int(bits)), _mm_setr_epi32(1, 2, 4, 8)), _mm_setr_epi32(1, 2, 4, 8));
+}
+#endif
+
+// The depth test of one row's covered samples, pixels [lo, hi) with masks covered[x - lo]:
+// writes passed[x - lo]. Depth of sample k: the plane at the sample point of pixel `lo` in
+// double, then + (x - lo) ddx in double, rounded once to float (so every path gets the same
+// floats: the stored depths do not depend on how coverage was found).
+// `decided(x, pass, cover)` is called for every pixel of the row, left to right, once its
+// passing samples are known (RunList: the pixels to shade, listed in the same pass).
+template <int kN, DepthMode kDepth, bool kVector, class Decided>
+void depthTestRow(const TriangleSetup& t, const SampleOffset* pattern, float* depth, int y, int lo, int hi,
+                  const std::uint8_t* covered, std::uint8_t* passed, Decided&& decided) {
+    if constexpr (kDepth == DepthMode::Off) {
+        (void)t, (void)pattern, (void)depth, (void)y;
+        for (int x = lo; x < hi; ++x) {
+            passed[x - lo] = covered[x - lo];
+            decided(x, covered[x - lo], covered[x - lo]);
+        }
+    } else {
+        const double ddx = t.ddx[kPlaneZ];
+        double zStart[kN];
+        for (int k = 0; k < kN; ++k)
+            zStart[k] = t.planeAt(kPlaneZ, lo + 0.5 + double(pattern[k].x) / kSubPixelScale,
+                                  y + 0.5 + double(pattern[k].y) / kSubPixelScale);
+        for (int x = lo; x < hi; ++x) {
+            const unsigned cover = covered[x - lo];
+            if (cover == 0) {
+                passed[x - lo] = 0;
+                decided(x, 0u, 0u);
+                continue;
+            }
+            float* stored = depth + std::size_t(x) * kN;
+            const double step = double(x - lo);
+            unsigned pass = 0;
+#if SR_MSAA_SSE2
+            if constexpr (kVector && kN >= 4) {
+                // Four samples at a time: the same double multiply and add, rounded once to
+                // float (cvtpd2ps rounds as the scalar conversion does), compared, kept by lane.
+                const __m128d slope = _mm_set1_pd(ddx), steps = _mm_set1_pd(step);
+                for (int g = 0; g < kN / 4; ++g) {
+                    const __m128 low = _mm_cvtpd_ps(_mm_add_pd(_mm_loadu_pd(zStart + 4 * g), _mm_mul_pd(slope, steps)));
+                    const __m128 high = _mm_cvtpd_ps(_mm_add_pd(_mm_loadu_pd(zStart + 4 * g + 2), _mm_mul_pd(slope, steps)));
+                    const __m128 z = _mm_movelh_ps(low, high);
+                    const __m128 old = _mm_loadu_ps(stored + 4 * g);
+                    const unsigned nearer = unsigned(_mm_movemask_ps(_mm_cmpgt_ps(z, old)));
+                    const unsigned ok = nearer & (cover >> (4 * g)) & 0xFu;
+                    if constexpr (kDepth == DepthMode::TestWrite) {
+                        if (ok != 0) {
+                            const __m128 keep = _mm_castsi128_ps(laneMask(ok));
+                            _mm_storeu_ps(stored + 4 * g, _mm_or_ps(_mm_and_ps(keep, z), _mm_andnot_ps(keep, old)));
+                        }
+                    }
+                    pass |= ok << (4 * g);
+                }
+                passed[x - lo] = std::uint8_t(pass);
+                decided(x, pass, cover);
+                continue;
+            }
+#endif
+            for (int k = 0; k < kN; ++k) {
+                const float z = float(zStart[k] + ddx * step);
+                const bool ok = (cover >> k & 1u) && z > stored[k];
+                if constexpr (kDepth == DepthMode::TestWrite) stored[k] = ok ? z : stored[k];
+                pass |= unsigned(ok) << k;
+            }
+            passed[x - lo] = std::uint8_t(pass);
+            decided(x, pass, cover);
+        }
+    }
+}
+
+// Lists row y's pixels to shade: runs of pixels whose centre is covered (pixels [c0, c1)),
+// shaded at the centre, and every other pixel with a sample that passed on its own, at the
+// centroid of its covered samples.
+template <int kN>
+void listRuns(MsaaScratch& scratch, int y, int lo, int hi, int c0, int c1, const std::uint8_t* covered,
+              const std::uint8_t* passed) {
+    const Centroid* centroids = centroidTable<kN>();
+    c0 = std::max(c0, lo);
+    c1 = std::min(c1, hi);
+    for (int x = lo; x < hi;) {
+        if (passed[x - lo] == 0) {
+            ++x;
+        } else if (x >= c0 && x < c1) {
+            const int from = x;
+            while (x < c1 && passed[x - lo] != 0) ++x;
+            addRun(scratch, y, from, x, 0.0, 0.0);
+        } else {
+            const Centroid& m = centroids[covered[x - lo]];
+            addRun(scratch, y, x, x + 1, m.dx, m.dy);
+            ++x;
+        }
+    }
+}
+
+// listRuns' list built pixel by pixel, left to right, as the depth test decides each pixel (the
+// Auto method: one pass over the row instead of two; the Reference method keeps listRuns, and
+// the test compares them).
+template <int kN>
+struct RunList {
+    MsaaScratch& scratch;
+    const Centroid* centroids = centroidTable<kN>();
+    int y = 0, c0 = 0, c1 = 0;
+    int from = -1; // the open run's first pixel (-1: none)
+
+    RunList(MsaaScratch& s, int row, int lo, int hi, int centre0, int centre1)
+        : scratch(s), y(row), c0(std::max(centre0, lo)), c1(std::min(centre1, hi)) {}
+    void operator()(int x, unsigned pass, unsigned cover) {
+        if (pass != 0 && x >= c0 && x < c1) {
+            if (from < 0) from = x;
+            return;
+        }
+        close(x);
+        if (pass != 0) {
+            const Centroid& m = centroids[cover];
+            addRun(scratch, y, x, x + 1, m.dx, m.dy);
+        }
+    }
+    void close(int x) {
+        if (from < 0) return;
+        addRun(scratch, y, from, x, 0.0, 0.0);
+        from = -1;
+    }
+};
+
+// The row's depth test and its pixels to shade: in one pass (Auto, kVector) or the depth test
+// then listRuns (Reference).
+template <int kN, DepthMode kDepth, bool kVector>
+void testAndListRow(const TriangleSetup& t, const SampleOffset* pattern, float* depth, MsaaScratch& scratch, int y,
+                    int lo, int hi, int c0, int c1, const std::uint8_t* covered, std::uint8_t* passed) {
+    if constexpr (kVector) {
+        RunList<kN> runs(scratch, y, lo, hi, c0, c1);
+        depthTestRow<kN, kDepth, true>(t, pattern, depth, y, lo, hi, covered, passed, runs);
+        runs.close(hi);
+    } else {
+        depthTestRow<kN, kDepth, false>(t, pattern, depth, y, lo, hi, covered, passed, [](int, unsigned, unsigned) {});
+        listRuns<kN>(scratch, y, lo, hi, c0, c1, covered, passed);
+    }
+}
+
+// --- Large triangles: exact edge walks, one per sample and one for the centre ------------------
+template <int kN, DepthMode kDepth, bool kVector>
+void coverByWalks(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, int rowBegin, int rowEnd,
+                  MsaaScratch& scratch) {
+    constexpr int n = kN;
+    const SampleOffset* pattern = msaaPattern(n);
+    // The span of every sample (and of the centre, entry n) on every row.
+    const int stride = 2 * (n + 1);
+    scratch.spans.assign(std::size_t(rowEnd - rowBegin) * std::size_t(stride), 0); // [0, 0): empty
+    for (int k = 0; k <= n; ++k) {
+        const SpanCoverage c = k < n ? sampleCoverage(t, pattern[k].x, pattern[k].y) : sampleCoverage(t, 0, 0);
+        const Scissor rows{s.x0, rowBegin, s.x1, rowEnd};
+        forEachSpan(c, rows, [&](int y, int x0, int x1) {
+            int* span = scratch.spans.data() + std::size_t(y - rowBegin) * std::size_t(stride) + 2 * k;
+            span[0] = x0;
+            span[1] = x1;
+        });
+    }
+    std::size_t used = 0;
+    for (int y = rowBegin; y < rowEnd; ++y) {
+        const int* spans = scratch.spans.data() + std::size_t(y - rowBegin) * std::size_t(stride);
+        int lo = s.x1, hi = s.x0;
+        for (int k = 0; k < n; ++k) {
+            if (spans[2 * k] >= spans[2 * k + 1]) continue;
+            lo = std::min(lo, spans[2 * k]);
+            hi = std::max(hi, spans[2 * k + 1]);
+        }
+        if (lo >= hi) continue;
+        const std::size_t width = std::size_t(hi - lo);
+        reserveMasks(scratch, used + width);
+        std::uint8_t* covered = scratch.covered.data() + used;
+        std::uint8_t* passed = scratch.passed.data() + used;
+        addRow(scratch, y, lo, hi, used);
+        used += width;
+        // Every sample is covered in the spans' intersection [inner0, inner1); the few pixels
+        // at either end are tested sample by sample.
+        int inner0 = lo, inner1 = hi;
+        for (int k = 0; k < n; ++k) {
+            inner0 = std::max(inner0, spans[2 * k]);
+            inner1 = std::min(inner1, spans[2 * k + 1]);
+        }
+        if (inner0 >= inner1) inner0 = inner1 = hi;
+        auto maskAt = [&](int x) {
+            unsigned mask = 0;
+            for (int k = 0; k < n; ++k) mask |= unsigned(x >= spans[2 * k] && x < spans[2 * k + 1]) << k;
+            return std::uint8_t(mask);
+        };
+        for (int x = lo; x < inner0; ++x) covered[x - lo] = maskAt(x);
+        std::fill(covered + (inner0 - lo), covered + (inner1 - lo), std::uint8_t((1u << n) - 1u));
+        for (int x = inner1; x < hi; ++x) covered[x - lo] = maskAt(x);
+        target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
+        testAndListRow<kN, kDepth, kVector>(t, pattern, target.depthRow(y), scratch, y, lo, hi, spans[2 * n],
+                                            spans[2 * n + 1], covered, passed);
+    }
+}
+
+// --- Small triangles: edge functions over the bounding box, a pixel's samples at once ----------
+// (msaaSmallTriangle: every edge value, step and sample offset over the box is exact in int32.)
+
+// Index of the lowest / highest set bit of a non-zero word.
+inline int lowestBit(std::uint32_t v) {
+    assert(v != 0);
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctz(v);
+#else
+    int i = 0;
+    for (; !(v & 1u); v >>= 1) ++i;
+    return i;
+#endif
+}
+inline int highestBit(std::uint32_t v) {
+    assert(v != 0);
+#if defined(__GNUC__) || defined(__clang__)
+    return 31 - __builtin_clz(v);
+#else
+    int i = 31;
+    for (; !(v & 0x80000000u); v <<= 1) --i;
+    return i;
+#endif
+}
+
+struct FixedPoint64 {
+    std::int64_t x, y;
+};
+
+// Edge function of a -> b at p (the reference rasterizer's, Tests/Raster/ReferenceRasterizer.cpp):
+// > 0 on the interior side of a clockwise (y-down) triangle.
+std::int64_t edgeAt(FixedPoint64 a, FixedPoint64 b, FixedPoint64 p) {
+    return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
+}
+
+// D3D10's top-left rule for a clockwise edge a -> b: a left edge (interior at larger x) or a
+// horizontal top edge (interior below) keeps the points exactly on it.
+bool isTopLeft(FixedPoint64 a, FixedPoint64 b) {
+    const std::int64_t dx = b.x - a.x, dy = b.y - a.y;
+    return dy < 0 || (dy == 0 && dx > 0);
+}
+
+// One edge of the triangle over the box: its biased value (>= 0 inside) at the centre of the
+// box's first pixel, its steps one pixel right and one row down, and its offsets to each sample.
+template <int kN>
+struct BoxEdge {
+    std::int32_t atOrigin = 0, stepX = 0, stepY = 0;
+    std::int32_t sample[kN < 4 ? 4 : kN] = {}; // lanes past kN: 0 (masked off)
+};
+
+template <int kN>
+BoxEdge<kN> boxEdge(FixedPoint64 a, FixedPoint64 b, FixedPoint64 origin, const SampleOffset* pattern) {
+    BoxEdge<kN> e;
+    const std::int64_t ax = -(b.y - a.y), by = b.x - a.x; // E(p) = ax * p.x + by * p.y + c
+    e.atOrigin = std::int32_t(edgeAt(a, b, origin) + (isTopLeft(a, b) ? 0 : -1));
+    e.stepX = std::int32_t(ax * kSubPixelScale);
+    e.stepY = std::int32_t(by * kSubPixelScale);
+    for (int k = 0; k < kN; ++k) e.sample[k] = std::int32_t(ax * pattern[k].x + by * pattern[k].y);
+    return e;
+}
+
+// Bit k set when sample k of the pixel whose three edge values (at its centre) are e0, e1, e2
+// is inside every edge.
+template <int kN>
+struct SampleMasks {
+    static constexpr int kLanes = kN < 4 ? 4 : kN;
+    static constexpr unsigned kAll = (1u << kN) - 1u;
+#if SR_MSAA_SSE2
+    __m128i offset[3][kLanes / 4];
+    explicit SampleMasks(const BoxEdge<kN>* edges) {
+        for (int i = 0; i < 3; ++i)
+            for (int g = 0; g < kLanes / 4; ++g)
+                offset[i][g] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(edges[i].sample + 4 * g));
+    }
+    unsigned operator()(std::int32_t e0, std::int32_t e1, std::int32_t e2) const {
+        const __m128i v0 = _mm_set1_epi32(e0), v1 = _mm_set1_epi32(e1), v2 = _mm_set1_epi32(e2);
+        unsigned outside = 0;
+        for (int g = 0; g < kLanes / 4; ++g) {
+            const __m128i any = _mm_or_si128(_mm_or_si128(_mm_add_epi32(v0, offset[0][g]), _mm_add_epi32(v1, offset[1][g])),
+                                             _mm_add_epi32(v2, offset[2][g]));
+            outside |= unsigned(_mm_movemask_ps(_mm_castsi128_ps(any))) << (4 * g); // a sign bit: some edge < 0
+        }
+        return ~outside & kAll;
+    }
+#else
+    const BoxEdge<kN>* edges;
+    explicit SampleMasks(const BoxEdge<kN>* e) : edges(e) {}
+    unsigned operator()(std::int32_t e0, std::int32_t e1, std::int32_t e2) const {
+        unsigned mask = 0;
+        for (int k = 0; k < kN; ++k)
+            mask |= unsigned((e0 + edges[0].sample[k]) >= 0 && (e1 + edges[1].sample[k]) >= 0 &&
+                             (e2 + edges[2].sample[k]) >= 0)
+                    << k;
+        return mask;
+    }
+#endif
+};
+
+// Pixels [x0, x1) x [rowBegin, rowEnd): the triangle's columns and rows inside the scissor, not
+// empty; the triangle is small (msaaSmallTriangle: the int32 box).
+template <int kN, DepthMode kDepth>
+void coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, int x0, int x1, int rowBegin, int rowEnd,
+                          MsaaScratch& scratch) {
+    assert(msaaSmallTriangle(t) && x0 < x1 && rowBegin < rowEnd);
+
+    // The vertices (from the setup's edges), ordered clockwise.
+    const FixedEdge& l = t.longEdge;
+    FixedPoint64 a{l.x0, l.y0}, b{t.lowerEdge.x0, t.lowerEdge.y0}, c{std::int64_t(l.x0) + l.dx, std::int64_t(l.y0) + l.dy};
+    if (edgeAt(a, b, c) < 0) std::swap(b, c);
+    const SampleOffset* pattern = msaaPattern(kN);
+    const FixedPoint64 origin{pixelCentreFixed(x0), pixelCentreFixed(rowBegin)};
+    const BoxEdge<kN> edges[3] = {boxEdge<kN>(b, c, origin, pattern), boxEdge<kN>(c, a, origin, pattern),
+                                  boxEdge<kN>(a, b, origin, pattern)};
+    const SampleMasks<kN> masksOf(edges);
+
+    // The masks are written straight into the scratch rows, a whole box row each (the row's
+    // record then starts at its first covered pixel).
+    const std::size_t boxWidth = std::size_t(x1 - x0);
+    reserveMasks(scratch, boxWidth * std::size_t(rowEnd - rowBegin));
+    std::size_t used = 0;
+    std::int32_t r0 = edges[0].atOrigin, r1 = edges[1].atOrigin, r2 = edges[2].atOrigin;
+    for (int y = rowBegin; y < rowEnd;
+         ++y, r0 += edges[0].stepY, r1 += edges[1].stepY, r2 += edges[2].stepY) {
+        // Bit i of `any` / `centre`: pixel x0 + i has a covered sample / its centre covered
+        // (the box is at most kMsaaSmallSide = 32 pixels wide).
+        std::uint8_t* rowMasks = scratch.covered.data() + used;
+        std::uint32_t any = 0, centre = 0;
+        std::int32_t e0 = r0, e1 = r1, e2 = r2;
+        for (int i = 0; i < x1 - x0; ++i, e0 += edges[0].stepX, e1 += edges[1].stepX, e2 += edges[2].stepX) {
+            const unsigned mask = masksOf(e0, e1, e2);
+            rowMasks[i] = std::uint8_t(mask);
+            any |= std::uint32_t(mask != 0) << i;
+            centre |= std::uint32_t((e0 | e1 | e2) >= 0) << i;
+        }
+        if (any == 0) continue;
+        const int lo = x0 + lowestBit(any), hi = x0 + highestBit(any) + 1;
+        const int c0 = centre ? x0 + lowestBit(centre) : x1, c1 = centre ? x0 + highestBit(centre) + 1 : x0;
+        const std::size_t offset = used + std::size_t(lo - x0);
+        std::uint8_t* covered = scratch.covered.data() + offset;
+        std::uint8_t* passed = scratch.passed.data() + offset;
+        addRow(scratch, y, lo, hi, offset);
+        used += boxWidth;
+        target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
+        const std::size_t listed = scratch.runs.size();
+        testAndListRow<kN, kDepth, true>(t, pattern, target.depthRow(y), scratch, y, lo, hi, c0, c1, covered, passed);
+        if (scratch.runs.size() != listed) {
+            // A sample passed: the row's colour is written after the shading; ask for its lines.
+            Pixel* colour = target.colourRow(y);
+            for (std::size_t i = std::size_t(lo) * kN, to = std::size_t(hi) * kN; i < to; i += kLine)
+                prefetchForWrite(colour + i);
+            prefetchForWrite(colour + std::size_t(hi) * kN - 1);
+        }
+    }
+}
+
+template <int kN, DepthMode kDepth>
+void coverSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
+                  MsaaCoverageMethod method) {
+    scratch.rows.clear();
+    scratch.runs.clear();
+    int rowBegin = 0, rowEnd = 0;
+    msaaRowRange(t, rowBegin, rowEnd);
+    rowBegin = std::max(rowBegin, s.y0);
+    rowEnd = std::min(rowEnd, s.y1);
+    int boxX0 = 0, boxX1 = 0;
+    msaaColumnRange(t, boxX0, boxX1);
+    boxX0 = std::max(boxX0, s.x0);
+    boxX1 = std::min(boxX1, s.x1);
+    if (rowBegin >= rowEnd || boxX0 >= boxX1) return;
+
+    // A small triangle's samples are a few short pieces of rows far apart in memory (a row of
+    // samples is width * n * 4 bytes): ask for all of its depth lines now, so that their cache
+    // misses overlap with each other and with the coverage below instead of stalling the depth
+    // test one line at a time (a large triangle's rows stream well on their own). Its colour
+    // lines too, unless coverByEdgeFunctions takes it: that asks for a row's colour lines once a
+    // sample of the row has passed the depth test (with no culling, half of the bunny's
+    // triangles pass none and never write a colour).
+    // (Keep the loops inline: moved into a function of its own, GCC 12 at -O2 takes a function
+    // that only prefetches for one without effects and drops every call to it.)
+    const bool edgeFunctions = method == MsaaCoverageMethod::Auto && msaaSmallTriangle(t);
+    if (boxX1 - boxX0 <= 64 && rowEnd - rowBegin <= 64) {
+        for (int y = rowBegin; y < rowEnd; ++y) {
+            const std::size_t from = std::size_t(boxX0) * kN, to = std::size_t(boxX1) * kN;
+            for (std::size_t i = from; i < to; i += kLine) prefetchForWrite(target.depthRow(y) + i);
+            prefetchForWrite(target.depthRow(y) + to - 1);
+            if (edgeFunctions) continue;
+            for (std::size_t i = from; i < to; i += kLine) prefetchForWrite(target.colourRow(y) + i);
+            prefetchForWrite(target.colourRow(y) + to - 1);
+        }
+    }
+    if (edgeFunctions) coverByEdgeFunctions<kN, kDepth>(t, target, boxX0, boxX1, rowBegin, rowEnd, scratch);
+    else if (method == MsaaCoverageMethod::Reference) coverByWalks<kN, kDepth, false>(t, target, s, rowBegin, rowEnd, scratch);
+    else coverByWalks<kN, kDepth, true>(t, target, s, rowBegin, rowEnd, scratch);
+}
+
+template <int kN>
+void coverSamplesFor(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
+                     MsaaScratch& scratch, MsaaCoverageMethod method) {
+    switch (depth) {
+    case DepthMode::Off: coverSamples<kN, DepthMode::Off>(t, target, s, scratch, method); return;
+    case DepthMode::Test: coverSamples<kN, DepthMode::Test>(t, target, s, scratch, method); return;
+    case DepthMode::TestWrite: coverSamples<kN, DepthMode::TestWrite>(t, target, s, scratch, method); return;
+    }
+}
+
+template <int kN>
+std::uint64_t writeRow(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi) {
+    std::uint64_t count = 0;
+    for (int x = lo; x < hi; ++x) {
+        const unsigned pass = passed[x - lo];
+        if (pass == 0) continue;
+        ++count;
+        const Pixel c = shaded[x];
+        Pixel* samples = colourRow + std::size_t(x) * kN;
+#if SR_MSAA_SSE2
+        if constexpr (kN >= 4) {
+            const __m128i colour = _mm_set1_epi32(int(c));
+            for (int g = 0; g < kN / 4; ++g) {
+                __m128i* at = reinterpret_cast<__m128i*>(samples + 4 * g);
+                const __m128i keep = laneMask(pass >> (4 * g) & 0xFu);
+                _mm_storeu_si128(at, _mm_or_si128(_mm_and_si128(keep, colour), _mm_andnot_si128(keep, _mm_loadu_si128(at))));
+            }
+            continue;
+        }
+#endif
+        for (int k = 0; k < kN; ++k)
+            if (pass >> k & 1u) samples[k] = c;
+    }
+    return count;
+}
+
+} // namespace
+
+std::uint64_t writeSampleRow(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi,
+                             int samples) {
+    switch (samples) {
+    case 2: return writeRow<2>(colourRow, shaded, passed, lo, hi);
+    case 4: return writeRow<4>(colourRow, shaded, passed, lo, hi);
+    case 8: return writeRow<8>(colourRow, shaded, passed, lo, hi);
+    default: return writeRow<1>(colourRow, shaded, passed, lo, hi);
+    }
+}
+
+void coverTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
+                          MsaaScratch& scratch, MsaaCoverageMethod method) {
+    assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
+    switch (target.samples()) {
+    case 2: coverSamplesFor<2>(t, target, s, depth, scratch, method); return;
+    case 4: coverSamplesFor<4>(t, target, s, depth, scratch, method); return;
+    case 8: coverSamplesFor<8>(t, target, s, depth, scratch, method); return;
+    default: coverSamplesFor<1>(t, target, s, depth, scratch, method); return;
+    }
+}
+
+} // namespace sr

@@ -1,0 +1,139 @@
+// drawMesh(): the program for the shading mode and material, and its span kernel, chosen once per draw.
+#include "Raster/Frame/MeshRenderer.hpp"
+
+#include <cmath>
+#include <type_traits>
+
+#include "Raster/Fill/Kernels/KernelTable.hpp"
+#include "Raster/Pipeline.hpp"
+#include "Raster/Shade/MeshPrograms.hpp"
+#include "Raster/Shade/PbrProgram.hpp"
+
+namespace sr {
+namespace {
+
+using programs::DrawContext;
+using programs::FlatProgram;
+using programs::GouraudProgram;
+using programs::PbrProgram;
+using programs::PhongProgram;
+using programs::UnlitProgram;
+
+// A scalar program plus the span kernel chosen for this draw (null: the scalar loop fills).
+template <class Base>
+struct KernelProgram : Base {
+    FillKernel<Base> kernel = nullptr;
+    ShadeRunsKernel<Base> runsKernel = nullptr;
+    FlushKernel<Base> flushKernel = nullptr;
+    bool fillKernel(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) const {
+        if (!kernel) return false;
+        kernel(*this, t, fb, s, shaded);
+        return true;
+    }
+    void flushFill(FrameBuffer& fb) const {
+        if (flushKernel) flushKernel(*this, fb);
+    }
+    bool shadeRuns(const TriangleSetup& t, FrameBuffer& fb, const SpanRun* runs, int count) const {
+        if (!runsKernel) return false;
+        runsKernel(*this, t, fb, runs, count);
+        return true;
+    }
+};
+
+// The vector kernels evaluate shininessPow's whole-number exponentiation only (per pixel, in
+// Phong; flat and Gouraud light per triangle / vertex in the scalar program). A surface without
+// a specular term raises nothing to a power.
+bool kernelsCoverSpecular(const Specular& s) {
+    return !s.on() || (s.shininess <= 1024.0f && s.shininess == float(int(s.shininess)));
+}
+
+template <class Program>
+void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, Program program) {
+    const DrawState state = programs::drawStateFor(d);
+    KernelProgram<Program> withKernel{program};
+    // Phong kernels test the shadow maps per pixel as the scalar program does (Kernels.inl's
+    // shadowVisibility); flat and Gouraud light per triangle / vertex, unshadowed (Shadow.hpp).
+    // Light from the sky is the scalar pbr program's (the kernels have no image light).
+    const bool kernelsCoverLight = Program::kMode != ShadingMode::Pbr || d.view.ibl == nullptr;
+    if (kernelsCoverLight && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
+        const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
+        withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
+        withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
+        withKernel.flushKernel = selectFlushKernel<Program>(d.settings.isa, key);
+    }
+    // The programs' vertex() reads the mesh, the view and (Gouraud) the specular constants, which
+    // it names in vertexVariant(): draws of one mesh share their vertex stage inside a
+    // VertexReuseScope (renderScene) when those agree.
+    drawProgram<Program::kVaryings>(ctx, state, d.mesh.vertexCount(), d.indices, indexCount, withKernel, &d.mesh);
+}
+
+template <bool kTextured>
+void drawShaded(RenderContext& ctx, const DrawContext& d, ShadingMode mode, std::size_t indexCount) {
+    switch (mode) {
+    case ShadingMode::Unlit: drawWith(ctx, d, indexCount, UnlitProgram<kTextured>(&d, programs::encode(d, d.kd))); break;
+    case ShadingMode::Flat: drawWith(ctx, d, indexCount, FlatProgram<kTextured>(&d)); break;
+    case ShadingMode::Gouraud:
+        if (d.whiteLights) drawWith(ctx, d, indexCount, GouraudProgram<kTextured>(&d));
+        else drawWith(ctx, d, indexCount, GouraudProgram<kTextured, true>(&d)); // RGB terms: six varyings
+        break;
+    case ShadingMode::Phong:
+    case ShadingMode::Pbr: // a draw without a glTF material (drawMesh): Phong
+        drawWith(ctx, d, indexCount, PhongProgram<kTextured>(&d));
+        break;
+    }
+}
+
+// A glTF material under ShadingMode::Pbr: the maps it has (with uvs), the tangents its normal
+// map needs (without them the map is not applied).
+void drawPbr(RenderContext& ctx, const DrawContext& base, const SurfaceMaterial& material, std::size_t indexCount) {
+    const Mesh& mesh = base.mesh;
+    const Texture* anyMap = material.texture      ? material.texture
+                            : material.metallicRoughness ? material.metallicRoughness
+                            : material.emissive   ? material.emissive
+                                                  : material.normalMap;
+    const bool maps = anyMap != nullptr && mesh.hasUvs();
+    DrawContext d = base;
+    d.texture = maps ? anyMap : nullptr; // the uv varyings' rebase (drawStateFor)
+    if (!maps) drawWith(ctx, d, indexCount, PbrProgram<false, false>(&d));
+    else if (material.normalMap && mesh.hasTangents()) drawWith(ctx, d, indexCount, PbrProgram<true, true>(&d));
+    else drawWith(ctx, d, indexCount, PbrProgram<true, false>(&d));
+}
+
+} // namespace
+
+void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& frameSettings, const Mesh& mesh,
+              const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& material) {
+    const bool textured = material.texture != nullptr && mesh.hasUvs();
+    // The texture's own sampler where the settings let the file choose (glTF).
+    RenderSettings settings = frameSettings;
+    if (textured && material.wrap && settings.wrapFromFile) settings.wrap = *material.wrap;
+    if (textured && material.filter && settings.filterFromFile) settings.filter = *material.filter;
+    ShadingMode mode = settings.shading;
+    if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong || mode == ShadingMode::Pbr))
+        mode = ShadingMode::Flat;
+    const bool pbr = mode == ShadingMode::Pbr && material.pbr != nullptr;
+    // The Blinn-Phong models see physical lights divided by pi (Lighting::physical): the frame's
+    // copy of the view with those lights, or one made here.
+    FrameView phongView;
+    const FrameView* v = &view;
+    if (!pbr && view.lighting.physical) {
+        if (view.blinnPhong) {
+            v = view.blinnPhong;
+        } else {
+            phongView = view;
+            phongView.lighting = blinnPhongLighting(view.lighting);
+            v = &phongView;
+        }
+    }
+    DrawContext d{*v,       settings, mesh, indices, textured ? material.texture : nullptr,
+                  textured ? material.tint : material.kd, material.specular, material.alpha,
+                  v->lighting.whiteDirectional(), material.doubleSided, activeTexelAlpha(material, mesh)};
+    d.linear = settings.colour == ColorMode::Linear;
+    d.exposureScale = std::exp2(settings.exposure);
+    d.material = &material;
+    if (pbr) drawPbr(ctx, d, material, indexCount);
+    else if (textured) drawShaded<true>(ctx, d, mode, indexCount);
+    else drawShaded<false>(ctx, d, mode, indexCount);
+}
+
+} // namespace sr

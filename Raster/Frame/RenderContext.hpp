@@ -1,0 +1,208 @@
+// RenderContext: the explicit render state (target, per-draw scratch memory, statistics).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "Raster/Frame/FrameBuffer.hpp"
+#include "Raster/Frame/Msaa.hpp"
+#include "Raster/Frame/ThreadPool.hpp"
+#include "Raster/Geometry/Clipper.hpp"
+#include "Raster/Geometry/Vertex.hpp"
+#include "Raster/Setup/LaneBalance.hpp"
+
+namespace sr {
+
+struct SceneShadows;
+
+// Counters of one or more draws (reset by the owner, e.g. once per frame).
+struct RenderStats {
+    std::uint64_t trianglesIn = 0;      // triangles submitted
+    std::uint64_t trivialRejected = 0;  // outside one clip plane (or non-finite): never set up
+    std::uint64_t clipped = 0;          // went through the clipper
+    std::uint64_t culled = 0;           // back/front-face culled or zero-area on the snapped grid
+    std::uint64_t rasterized = 0;       // triangle setups handed to the fill
+    std::uint64_t nonFinite = 0;        // dropped for a NaN/Inf position (part of trivialRejected)
+    std::uint64_t fragmentsShaded = 0;  // pixels that passed the depth test and were shaded
+    std::uint64_t verticesTransformed = 0; // vertex-stage runs (not counting reused vertices)
+    std::uint64_t trianglesSorted = 0;     // transparent triangles sorted back to front (renderScene)
+
+    RenderStats& operator+=(const RenderStats& o) {
+        trianglesIn += o.trianglesIn;
+        trivialRejected += o.trivialRejected;
+        clipped += o.clipped;
+        culled += o.culled;
+        rasterized += o.rasterized;
+        nonFinite += o.nonFinite;
+        fragmentsShaded += o.fragmentsShaded;
+        verticesTransformed += o.verticesTransformed;
+        trianglesSorted += o.trianglesSorted;
+        return *this;
+    }
+};
+
+// Most render threads a context runs (lanes of its pool).
+inline constexpr int kMaxRenderThreads = 64;
+static_assert(kMaxRenderThreads <= kMaxBalancedLanes, "LaneBalance holds every lane");
+// Draws of at least this many triangles are binned when drawn on several lanes (see `bins`): below
+// it the saved walk does not pay for the extra fork-join (tens of microseconds).
+inline constexpr std::size_t kBinningMinTriangles = 4096;
+
+// Passed explicitly to every draw (no global state). Owns scratch buffers whose capacity is
+// kept from draw to draw, so a steady frame loop allocates nothing.
+class RenderContext {
+public:
+    explicit RenderContext(FrameBuffer& target) : target_(&target) {}
+
+    FrameBuffer& target() { return *target_; }
+    void setTarget(FrameBuffer& target) { target_ = &target; }
+
+    RenderStats stats;
+
+    // Post-transform vertex cache of the current draw: clip-space vertex, and the screen-space
+    // vertex where the clip-space one is finite with w > 0 (usable[i] != 0).
+    std::vector<ClipVertex> clipVertices;
+    std::vector<ScreenVertex> screenVertices;
+    std::vector<std::uint8_t> usable;
+    std::vector<unsigned> clipCodes; // Clipper::vertexCode of each vertex
+
+    // What the cache above holds, so that the next draw of the same vertices with the same vertex
+    // program reuses it instead of transforming them again: one vertex stage per mesh, shared by
+    // its draws (a mesh with many materials costs one transform, not one per material). Reuse is
+    // only allowed inside a VertexReuseScope (renderScene: the meshes and the view are constant
+    // there); every draw outside one runs its vertex stage and leaves `source` null.
+    struct VertexCacheKey {
+        const void* source = nullptr;  // the vertex data (a Mesh); null: nothing reusable
+        const void* program = nullptr; // identifies the vertex program's type (its output layout)
+        std::uint64_t variant = 0;     // the per-draw constants its vertex() reads (vertexVariantOf)
+        std::size_t count = 0;
+        int width = 0, height = 0;     // the viewport the screen vertices were made for
+        bool clipFar = false;
+        bool operator==(const VertexCacheKey& o) const {
+            return source == o.source && program == o.program && variant == o.variant && count == o.count &&
+                   width == o.width &&
+                   height == o.height && clipFar == o.clipFar;
+        }
+    };
+    VertexCacheKey vertexCache;
+    bool vertexReuse = false; // set by VertexReuseScope only
+
+    // renderScene's transparent pass (Scene.cpp): each transparent triangle's draw, first index
+    // and view depth, and the indices of the run being drawn. Kept between frames: a scene with
+    // transparent draws sorts them every frame without allocating.
+    struct TransparentTriangle {
+        float w;                    // clip-space w of the centroid: the view depth
+        std::uint32_t draw, first;  // the SceneDraw, and the triangle's first index in its mesh
+    };
+    std::vector<TransparentTriangle> transparentOrder;
+    std::vector<std::uint32_t> transparentIndices;
+
+    // The primitive stage's bins (drawLanes with several lanes): bins[c * lanes + l] lists, in
+    // submission order, the triangles of chunk c that lane l fills (detail::binTriangles). Kept
+    // between draws and frames: no allocation once they have grown. A draw of fewer than
+    // binningMinTriangles triangles is not binned (every lane walks all of them: one fork-join
+    // less); tests lower it to bin small draws too.
+    std::vector<std::vector<std::uint32_t>> bins;
+    std::size_t binningMinTriangles = kBinningMinTriangles;
+
+    // Which lane fills which band of rows in a split draw, weighted by the lanes' measured speed
+    // (reset to equal weights by setThreads; tests fix it). The image and the counters do not
+    // depend on it.
+    LaneBalance laneBalance;
+
+    // Render threads (1..kMaxRenderThreads; 0 or less means 1). More than one starts a
+    // persistent pool that drawProgram() splits its work over; the image is the same.
+    void setThreads(int threads) {
+        threads = std::clamp(threads, 1, kMaxRenderThreads);
+        if (threads == this->threads()) return;
+        laneBalance.reset(threads);
+        pool_.reset();
+        if (threads > 1) pool_ = std::make_unique<ThreadPool>(threads);
+    }
+    int threads() const { return pool_ ? pool_->lanes() : 1; }
+    ThreadPool* pool() { return pool_.get(); }
+
+    // Clears the target's colour and depth, split by rows over the render threads. While
+    // multisampling, the samples instead (the target's rows are then only the shading scratch
+    // and the resolve's output) as a fast clear (MsaaBuffer::clearRowsLazily), and nothing when
+    // they are known to be clear already (a resolve that cleared them: MsaaBuffer::isCleared).
+    void clearTarget(Pixel colour, float depth) {
+        FrameBuffer& fb = *target_;
+        MsaaBuffer* msaaTarget = multisampleTarget();
+        if (msaaTarget && msaaTarget->isCleared(colour, depth)) return;
+        const int lanes = threads(), height = fb.height(), width = fb.width();
+        auto job = [&](int lane) {
+            const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
+            if (y0 >= y1) return;
+            if (msaaTarget) {
+                msaaTarget->clearRowsLazily(y0, y1, colour, depth);
+                return;
+            }
+            fillWords(fb.colorRow(y0), std::size_t(y1 - y0) * std::size_t(width), colour);
+            fillWords(fb.depthRow(y0), std::size_t(y1 - y0) * std::size_t(width), depth);
+        };
+        if (pool_) pool_->run(job);
+        else job(0);
+        if (msaaTarget) msaaTarget->markCleared(colour, depth);
+    }
+
+    // Supersampling's sample target (renderSceneFrame with ssaa > 1): factor x factor times the
+    // output's size while a supersampled frame is drawn, released by the next frame without SSAA
+    // (memory only while supersampling).
+    FrameBuffer supersampleTarget;
+
+    // The shadow maps of the last frame drawn with shadows (renderSceneFrame; Raster/Shade/Shadow.hpp),
+    // kept for their memory; reset by a frame without them.
+    std::shared_ptr<SceneShadows> shadows;
+
+    // Multisampling's sample target (renderSceneFrame with msaa > 1). While `multisampling` is
+    // set and it has the target's size, every draw fills its samples instead of the target (the
+    // target's colour rows serve as the per-pixel shading scratch) until the frame resolves it.
+    MsaaBuffer msaa;
+    bool multisampling = false;
+    MsaaBuffer* multisampleTarget() {
+        const bool active = multisampling && msaa.width() == target_->width() && msaa.height() == target_->height() &&
+                            !msaa.empty();
+        return active ? &msaa : nullptr;
+    }
+
+    // Runs job(rowBegin, rowEnd) over rows [0, height) split evenly over the render threads.
+    template <class Job>
+    void forRows(int height, Job&& job) {
+        const int lanes = threads();
+        auto run = [&](int lane) {
+            const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
+            if (y0 < y1) job(y0, y1);
+        };
+        if (pool_) pool_->run(run);
+        else run(0);
+    }
+
+private:
+    FrameBuffer* target_;
+    std::unique_ptr<ThreadPool> pool_;
+};
+
+// Allows draws to share the post-transform vertex cache while it lives (see
+// RenderContext::vertexCache); the caller promises that the vertex data and the view do not
+// change meanwhile. The cache is forgotten when the scope opens and closes.
+class VertexReuseScope {
+public:
+    explicit VertexReuseScope(RenderContext& ctx) : ctx_(ctx) {
+        ctx_.vertexCache = {};
+        ctx_.vertexReuse = true;
+    }
+    ~VertexReuseScope() {
+        ctx_.vertexCache = {};
+        ctx_.vertexReuse = false;
+    }
+    VertexReuseScope(const VertexReuseScope&) = delete;
+    VertexReuseScope& operator=(const VertexReuseScope&) = delete;
+
+private:
+    RenderContext& ctx_;
+};
+
+} // namespace sr

@@ -1,0 +1,115 @@
+// The run-time quality and mode knobs of a frame, and the per-frame view they render with.
+#pragma once
+
+#include <optional>
+
+#include "Math/Mat4.hpp"
+#include "Raster/Fill/Blend.hpp" // TexelAlpha
+#include "Raster/Fill/Kernels/Isa.hpp"
+#include "Raster/Fill/Stencil.hpp"
+#include "Raster/Frame/Sky.hpp" // ViewRays
+#include "Raster/Geometry/Cull.hpp"
+#include "Raster/Setup/PipelineModes.hpp" // PerspectiveMode, PipelineStop
+#include "Raster/Shade/ColorSpace.hpp" // ColorMode, ToneMap
+#include "Raster/Shade/Shading.hpp"
+#include "Raster/Shade/Shadow.hpp"
+#include "Raster/Texture/Texture.hpp"
+
+namespace sr {
+
+struct PbrFactors; // Brdf.hpp
+class ImageLight; // Ibl.hpp
+
+// A selection outline (what the stencil buffer serves): after the opaque draws, scene draw
+// `draw` (an opaque one) is drawn again without colour and with the GEQUAL depth test, marking 1
+// in the stencil buffer (the Replace operation) the pixels where it is what is visible; after
+// everything else, every pixel not marked within `width` output pixels (horizontally and
+// vertically: a square neighbourhood) of a marked one takes `colour`: a band around what shows
+// of the object, over everything. Not drawn multisampled (the stencil buffer is per pixel) nor
+// in partial pipelines. draw < 0: off, and no stencil buffer is allocated.
+struct Outline {
+    int draw = -1;
+    Color colour{1.0f, 0.78f, 0.1f, 1.0f};
+    float width = 3.0f;
+    // The demo's and the headless command's --outline: app::renderFrame sets `draw` each frame to
+    // the draw at the image centre (pickDraw, Scene.hpp); renderScene reads only `draw`.
+    bool pickCentre = false;
+    bool on() const { return draw >= 0; }
+};
+
+struct RenderSettings {
+    ShadingMode shading = ShadingMode::Phong;
+    CullMode cull = CullMode::None;
+    TextureFilter filter = TextureFilter::Bilinear;
+    WrapMode wrap = WrapMode::Repeat;
+    PerspectiveMode perspective = PerspectiveMode::Exact;
+    bool wireframe = false; // overlay triangle edges (DDA lines) on the shaded image
+    PipelineStop stopAfter = PipelineStop::Fill; // partial pipelines, for per-stage timing only
+    Isa isa = bestIsa(); // which span kernels fill (Raster/Fill/Kernels/Isa.hpp); Scalar = the reference loop
+    int ssaa = 1;        // supersampling: samples per pixel, 1 (off), 4 (2x2) or 16 (4x4) (Raster/Frame/Resolve.hpp)
+    int msaa = 1;        // multisampling: samples per pixel, 1 (off), 2, 4 or 8 (Raster/Frame/Msaa.hpp); not with ssaa > 1
+    // A material's own sampler (SurfaceMaterial::wrap / filter, from a glTF file) overrides
+    // `wrap` / `filter` for its draw while these are true; false once the user chose them
+    // (--wrap, --filter, the demo's T key, the report's sweep).
+    bool wrapFromFile = true, filterFromFile = true;
+    // A selection outline around one opaque draw of the scene (Outline above; renderScene).
+    Outline outline;
+    // Shadow maps for the directional and spot lights (Raster/Shade/Shadow.hpp); off: none made.
+    ShadowSettings shadows;
+    // Per-draw fixed-function state that renderScene sets for its own passes (the outline's
+    // mark): the stencil test and operations (DrawState::stencil), the colour write turned off
+    // and the GEQUAL depth test (DrawState::colourWrite, depthEqualPasses: the stencil path only).
+    StencilState stencil;
+    bool colourWrite = true, depthEqualPasses = false;
+    // Colour arithmetic (ColorSpace.hpp): Gamma on display values, Linear in linear light with
+    // the result tone-mapped (toneMap, at 2^exposure) and sRGB-encoded, by the span kernels as
+    // by the scalar programs.
+    ColorMode colour = ColorMode::Gamma;
+    ToneMap toneMap = ToneMap::None;
+    float exposure = 0.0f; // EV: the linear colour is scaled by 2^exposure before tone mapping
+};
+
+// What every draw of one frame shares.
+struct FrameView {
+    Mat4 viewProj;          // world -> clip (reversed-Z)
+    Vec3 eye;               // world-space camera position (for the view vector)
+    bool finiteFar = true;  // the projection has a far plane to clip against
+    Lighting lighting;
+    ViewRays rays;          // the eye ray through each image point (the sky; Sky.hpp)
+    // This frame's shadow maps (renderSceneFrame sets it when RenderSettings::shadows is on;
+    // Phong-shaded draws then test each fragment against them, Shadow.hpp). Null: no shadows.
+    const SceneShadows* shadows = nullptr;
+    // Light from the sky (Ibl.hpp: --ibl), read by the pbr model only. Null: none.
+    const ImageLight* ibl = nullptr;
+    // With physical lights: this view with the lights as the Blinn-Phong models see them
+    // (blinnPhongLighting), made once per frame by renderSceneFrame for the draws not shaded pbr.
+    // Null: drawMesh makes it for the draw.
+    const FrameView* blinnPhong = nullptr;
+};
+
+// The surface of one draw: a texture (used when the mesh has uvs) times `tint`, or the flat
+// colour kd; and its specular constants.
+struct SurfaceMaterial {
+    const Texture* texture = nullptr;
+    Color kd{0.8f, 0.8f, 0.8f, 1.0f};   // untextured colour
+    Color tint{1.0f, 1.0f, 1.0f, 1.0f}; // multiplies the texel when textured (MTL Kd; 1: the texel alone)
+    Specular specular;
+    float alpha = 1.0f; // opacity; below 1 the draw is blended "over" what is behind it (Blend.hpp)
+    // Per-fragment alpha from the texture (glTF MASK / BLEND), used when the texture has alpha
+    // (activeTexelAlpha, MeshRenderer.hpp); its factor then replaces `alpha`.
+    TexelAlpha texelAlpha;
+    bool doubleSided = true; // false: back faces (clockwise on screen) are culled whatever RenderSettings::cull says
+    // The texture's own sampler (glTF), where it says: the draw's wrap and filter when the
+    // settings let the file choose (RenderSettings::wrapFromFile / filterFromFile).
+    std::optional<WrapMode> wrap;
+    std::optional<TextureFilter> filter;
+    // A glTF material's metallic-roughness input (the pbr shading model's; null for OBJ/MTL and
+    // the built-in scene) and its other maps (null: none; used when the mesh has uvs).
+    const PbrFactors* pbr = nullptr;
+    const Texture* metallicRoughness = nullptr;
+    const Texture* emissive = nullptr;
+    const Texture* normalMap = nullptr;
+    const Texture* occlusion = nullptr;
+};
+
+} // namespace sr

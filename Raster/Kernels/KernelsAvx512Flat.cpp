@@ -1,3 +1,0 @@
-// The AVX512 span kernels of the flat programs, untextured and textured (see Kernels.inl).
-#define SR_KERNEL_PROGRAM FlatProgram
-#include "Raster/Kernels/KernelsAvx512.inl"

@@ -1,4 +1,0 @@
-// The AVX512 span kernels of the gouraud programs, untextured and textured, with two or six (RGB) terms (see Kernels.inl).
-#define SR_KERNEL_PROGRAM GouraudProgram
-#define SR_KERNEL_RGB_VARIANTS
-#include "Raster/Kernels/KernelsAvx512.inl"

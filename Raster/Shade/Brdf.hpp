@@ -1,0 +1,88 @@
+// The glTF 2.0 metallic-roughness BRDF (specification, appendix B) and the punctual lights it is lit by.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+
+#include "Math/Color.hpp"
+#include "Math/Vec.hpp"
+#include "Raster/Shade/Shading.hpp" // Lighting, lightAt
+
+namespace sr {
+
+// A glTF material's metallic-roughness values: its factors (linear) and the settings of its maps.
+// The maps themselves are the draw's textures (SurfaceMaterial): base colour x baseColorTexture
+// (sRGB) x COLOR_0, metallic x the blue and roughness x the green channel of the
+// metallicRoughnessTexture, emissive x emissiveTexture (sRGB).
+struct PbrFactors {
+    Color baseColor{1.0f, 1.0f, 1.0f, 1.0f}; // baseColorFactor (its alpha is the alpha modes')
+    float metallic = 1.0f, roughness = 1.0f;
+    Vec3 emissive{0.0f, 0.0f, 0.0f}; // emissiveFactor x KHR_materials_emissive_strength
+    float normalScale = 1.0f;        // normalTexture.scale
+    float occlusionStrength = 1.0f;  // occlusionTexture.strength
+};
+
+// A surface point as the BRDF sees it: linear base colour, metallic and perceptual roughness,
+// each already combined from its factor and texture.
+struct PbrSurface {
+    Vec3 baseColor{1.0f, 1.0f, 1.0f};
+    float metallic = 1.0f;
+    float roughness = 1.0f;
+};
+
+// The smallest perceptual roughness evaluated: the GGX lobe of roughness 0 is a Dirac peak that
+// no point light can hit (D would be infinite where N = H and 0 elsewhere); three.js and the
+// Khronos sample viewer clamp the same way (0.0525 and 0.03 respectively; ours is the former).
+inline constexpr float kMinRoughness = 0.0525f;
+
+// The operations the BRDF is written in, for float here and for each ISA's lane vector F
+// (Raster/Fill/Kernels/Simd*.hpp): one source for the scalar reference and the span kernels, so both
+// run the same operations in the same order. maxOf / minOf are std::max / std::min exactly
+// (NaN included), selectOf is `c ? a : b`, splatAs(x, c) the constant c in x's type.
+inline float maxOf(float a, float b) { return std::max(a, b); }
+inline float minOf(float a, float b) { return std::min(a, b); }
+inline float sqrtOf(float a) { return std::sqrt(a); }
+inline float selectOf(bool c, float a, float b) { return c ? a : b; }
+inline float splatAs(float, float c) { return c; }
+
+// brdfCosineTerms: appendix B's f(l, v) N.L from the dot products, written once for float and
+// for the kernels' lane vectors (BrdfTerms.inl, included here and inside each ISA's kernels).
+#include "Raster/Shade/BrdfTerms.inl"
+
+// f(l, v) N.L for one light direction: the reflected radiance per unit of the light's
+// irradiance at normal incidence (lux for a directional light), per channel; N, L, V unit.
+inline Vec3 brdfCosine(const PbrSurface& s, Vec3 n, Vec3 l, Vec3 v) {
+    const Vec3 h = normalize(l + v);
+    const Vec3 nxh = cross(n, h);
+    const float base[3] = {s.baseColor.x, s.baseColor.y, s.baseColor.z};
+    float out[3];
+    brdfCosineTerms(dot(n, l), dot(n, v), dot(n, h), dot(nxh, nxh), dot(v, h), s.roughness, s.metallic, base, out);
+    return {out[0], out[1], out[2]};
+}
+
+// The radiance leaving world point p toward the eye (unit v) under every light of `lighting`
+// (KHR_lights_punctual units: a directional light's colour x intensity is lux, a point or spot
+// light's is candela, falling off as lightAt says), with no ambient term: the specification has
+// none. `visible(i, p, n, l)` is the lit fraction of light i (shadow maps), as in lightTerms.
+template <class Visibility = AllVisible>
+inline Vec3 pbrRadiance(const Lighting& lighting, const PbrSurface& s, Vec3 n, Vec3 p, Vec3 v,
+                        const Visibility& visible = {}) {
+    Vec3 sum{0.0f, 0.0f, 0.0f};
+    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
+        const Light& light = lighting.lights[i];
+        Vec3 l;
+        float a = lightAt(light, p, l);
+        if (!(a > 0.0f) || !(dot(n, l) > 0.0f)) continue;
+        if constexpr (!std::is_same_v<Visibility, AllVisible>) {
+            const float seen = visible(i, p, n, l);
+            if (seen < 1.0f) a = a * seen;
+        }
+        const Vec3 f = brdfCosine(s, n, l, v);
+        sum.x += f.x * light.colour.r * a;
+        sum.y += f.y * light.colour.g * a;
+        sum.z += f.z * light.colour.b * a;
+    }
+    return sum;
+}
+
+} // namespace sr

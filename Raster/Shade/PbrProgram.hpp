@@ -1,0 +1,145 @@
+// The pbr mesh program: glTF metallic-roughness per pixel, with its maps (the scalar reference).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+
+#include "Raster/Shade/Brdf.hpp"
+#include "Raster/Shade/Ibl.hpp"
+#include "Raster/Shade/MeshPrograms.hpp"
+#include "Raster/Shade/Shadow.hpp"
+
+namespace sr::programs {
+
+// Perturbs the unit normal n by a tangent-space normal-map texel (glTF "normalTexture"): the
+// texel's RGB in [0, 1] is the vector 2 c - 1, its x and y scaled by `scale`, expressed in the
+// frame T, B = w (n x T), n with T made orthogonal to n (Gram-Schmidt). A degenerate frame (no
+// tangent, T parallel to n) or a texel that gives no direction leaves n as it is; the result is
+// unit and finite whenever n is.
+inline Vec3 perturbNormal(Vec3 n, Vec4 tangent, Color texel, float scale) {
+    const Vec3 t0{tangent.x, tangent.y, tangent.z};
+    const Vec3 tOrtho = t0 - n * dot(n, t0);
+    const float tl = length(tOrtho);
+    if (!(tl > 1e-12f) || !std::isfinite(tl)) return n;
+    const Vec3 t = tOrtho / tl;
+    const Vec3 b = cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f);
+    const float x = (texel.r * 2.0f - 1.0f) * scale, y = (texel.g * 2.0f - 1.0f) * scale, z = texel.b * 2.0f - 1.0f;
+    const Vec3 m = t * x + b * y + n * z;
+    const float ml = length(m);
+    if (!(ml > 1e-12f) || !std::isfinite(ml)) return n;
+    return m / ml;
+}
+
+// The light a sky sends toward v from a surface (N, V unit): Lambert's c_diff x E(n) / pi plus
+// the split sum's prefiltered radiance along R = 2 (N.V) N - V times F0 a + b (Ibl.hpp).
+inline Vec3 imageLight(const ImageLight& ibl, const PbrSurface& s, Vec3 n, Vec3 v) {
+    const float roughness = brdfRoughness(s.roughness), metallic = brdfMetallic(s.metallic);
+    const float nDotV = std::max(dot(n, v), 1e-4f);
+    const Vec3 r = n * (2.0f * dot(n, v)) - v;
+    float a = 0.0f, b = 0.0f;
+    ibl.brdfScaleBias(nDotV, roughness, a, b);
+    const Vec3 e = ibl.diffuse(n), spec = ibl.specular(r, roughness);
+    const float base[3] = {s.baseColor.x, s.baseColor.y, s.baseColor.z}, ev[3] = {e.x, e.y, e.z}, sv[3] = {spec.x, spec.y, spec.z};
+    float out[3];
+    for (int c = 0; c < 3; ++c) {
+        const float f0 = 0.04f + (base[c] - 0.04f) * metallic;
+        out[c] = base[c] * (1.0f - metallic) * ev[c] + sv[c] * (f0 * a + b);
+    }
+    return {out[0], out[1], out[2]};
+}
+
+// Phong's interpolation (world position and normal, perspective-correct), lit per pixel by the
+// glTF BRDF (pbrRadiance) plus the emissive term. With kMaps: the uv in varyings 0-1 and the
+// material's maps sampled at it (each with its own level of detail); with kTangents also the
+// tangent (xyzw) for the normal map. Colour maps (base colour, emissive) are decoded from sRGB
+// in linear mode; the others are data and read as stored. Double-sided surfaces seen from
+// behind are lit on their back (the normal flipped toward the viewer, as the specification
+// asks); single-sided ones never show their back (culled).
+// The span kernels (Raster/Fill/Kernels/Kernels*Pbr.cpp) cover all three variants.
+template <bool kMaps, bool kTangents = false>
+struct PbrProgram {
+    static_assert(kMaps || !kTangents, "a normal map needs uvs");
+    static constexpr ShadingMode kMode = ShadingMode::Pbr;
+    static constexpr bool kIsTextured = kMaps;
+    static constexpr bool kNormalMap = kTangents;
+    static constexpr int kP = kMaps ? 2 : 0; // position kP..kP+2, normal kP+3..kP+5
+    static constexpr int kT = kP + 6;        // tangent kT..kT+3 (kTangents)
+    static constexpr int kVaryings = kT + (kTangents ? 4 : 0);
+    const DrawContext* d;
+    const TriangleSetup* setup = nullptr;
+    explicit PbrProgram(const DrawContext* dc) : d(dc) {}
+
+    void vertex(std::size_t i, ClipVertex& out) const {
+        transformVertex<kMaps>(*d, i, out);
+        const Vec3 p = d->mesh.positions[i], n = d->mesh.normals[i];
+        const float values[6] = {p.x, p.y, p.z, n.x, n.y, n.z};
+        for (int k = 0; k < 6; ++k) out.varyings[kP + k] = values[k];
+        if constexpr (kTangents) {
+            const Vec4 t = d->mesh.tangents[i];
+            out.varyings[kT] = t.x;
+            out.varyings[kT + 1] = t.y;
+            out.varyings[kT + 2] = t.z;
+            out.varyings[kT + 3] = t.w;
+        }
+    }
+    void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
+
+    // One map at this fragment (its own level of detail); colour maps decoded in linear light.
+    template <int kV>
+    Color sampleMap(const Texture& map, bool colour, const Fragment<kV>& f) const {
+        return sampleTextureAt(*d, setup, f, map, colour && d->linear);
+    }
+
+    Pixel fragment(const Fragment<kVaryings>& f) const {
+        const SurfaceMaterial& m = *d->material;
+        const PbrFactors& k = *m.pbr;
+        const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
+        Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
+        const Vec3 v = normalize(d->view.eye - p);
+        if (d->doubleSided && dot(n, v) < 0.0f) n = -n;
+        PbrSurface s;
+        s.baseColor = {k.baseColor.r, k.baseColor.g, k.baseColor.b};
+        s.metallic = k.metallic;
+        s.roughness = k.roughness;
+        Vec3 emissive = k.emissive;
+        if constexpr (kMaps) {
+            if (m.texture) {
+                const Color c = sampleMap(*m.texture, true, f);
+                s.baseColor = {s.baseColor.x * c.r, s.baseColor.y * c.g, s.baseColor.z * c.b};
+            }
+            if (m.metallicRoughness) {
+                const Color c = sampleMap(*m.metallicRoughness, false, f);
+                s.roughness *= c.g;
+                s.metallic *= c.b;
+            }
+            if (m.emissive && (emissive.x > 0.0f || emissive.y > 0.0f || emissive.z > 0.0f)) {
+                const Color c = sampleMap(*m.emissive, true, f);
+                emissive = {emissive.x * c.r, emissive.y * c.g, emissive.z * c.b};
+            }
+            if constexpr (kTangents) {
+                const Vec4 t{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], f.varyings[kT + 3]};
+                n = perturbNormal(n, t, sampleMap(*m.normalMap, false, f), k.normalScale);
+            }
+        }
+        Vec3 r = d->view.shadows ? pbrRadiance(d->view.lighting, s, n, p, v,
+                                               [sh = d->view.shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) {
+                                                   return sh->visibility(light, q, normal, l);
+                                               })
+                                 : pbrRadiance(d->view.lighting, s, n, p, v);
+        if (d->view.ibl) {
+            float occlusion = 1.0f;
+            if constexpr (kMaps) {
+                if (m.occlusion) occlusion = 1.0f + k.occlusionStrength * (sampleMap(*m.occlusion, false, f).r - 1.0f);
+            }
+            const Vec3 sky = imageLight(*d->view.ibl, s, n, v) * occlusion;
+            r = r + sky;
+        }
+        return encode(*d, Color{r.x + emissive.x, r.y + emissive.y, r.z + emissive.z, 1.0f});
+    }
+    template <bool kM = kMaps, std::enable_if_t<kM, int> = 0> // textured programs only (HasFragmentAlpha)
+    float fragmentAlpha(const Fragment<kVaryings>& f) const {
+        return d->material->texture ? sampleMap(*d->material->texture, false, f).a : 1.0f;
+    }
+};
+
+} // namespace sr::programs
