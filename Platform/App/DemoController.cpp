@@ -159,17 +159,15 @@ void DemoController::update(double dtSeconds) {
 }
 
 void DemoController::cycleAntialiasing() {
-    // off -> MSAA 2 -> 4 -> 8 -> SSAA 4 -> 16 -> off (one kind at a time).
-    struct Aa {
-        int msaa, ssaa;
-    };
-    static constexpr Aa kCycle[] = {{1, 1}, {2, 1}, {4, 1}, {8, 1}, {1, 4}, {1, 16}};
+    // off -> MSAA 2 -> 4 -> 8 -> SSAA 4 -> 16 -> off.
+    static constexpr AntiAliasing kCycle[] = {AntiAliasing::none(),          *AntiAliasing::multisample(2),
+                                              *AntiAliasing::multisample(4), *AntiAliasing::multisample(8),
+                                              *AntiAliasing::supersample(4), *AntiAliasing::supersample(16)};
     constexpr int n = int(sizeof kCycle / sizeof kCycle[0]);
     int at = 0;
     for (int i = 0; i < n; ++i)
-        if (kCycle[i].msaa == settings_.msaa && kCycle[i].ssaa == settings_.ssaa) at = i;
-    settings_.msaa = kCycle[(at + 1) % n].msaa;
-    settings_.ssaa = kCycle[(at + 1) % n].ssaa;
+        if (kCycle[i] == settings_.antiAliasing) at = i;
+    settings_.antiAliasing = kCycle[(at + 1) % n];
 }
 
 std::string DemoController::modeSummary() const {
@@ -180,8 +178,8 @@ std::string DemoController::modeSummary() const {
     s += filterName(settings_.filter);
     s += " | ";
     s += perspectiveModeName(settings_.perspective);
-    s += settings_.msaa > 1 ? " | msaa " : " | ssaa ";
-    s += std::to_string(settings_.msaa > 1 ? settings_.msaa : settings_.ssaa);
+    const AntiAliasing aa = settings_.antiAliasing;
+    s += aa.multisampled() ? " | msaa " + std::to_string(aa.samples()) : " | ssaa " + std::to_string(aa.ssaaSamples());
     if (cameraIndex_ >= 0)
         s += " | camera " + std::to_string(cameraIndex_);
     if (settings_.wireframe)
@@ -189,7 +187,7 @@ std::string DemoController::modeSummary() const {
     if (settings_.shadows.on)
         s += " | shadows";
     if (settings_.outline.pickCentre)
-        s += settings_.msaa > 1 ? " | outline (not with msaa)" : " | outline";
+        s += aa.multisampled() ? " | outline (not with msaa)" : " | outline";
     if (depthView_)
         s += " | depth view";
     if (help_)

@@ -37,15 +37,19 @@ std::optional<int> parseInt(const std::string& text) {
 QualitySettings qualitySettings(Quality quality, bool physical) {
     if (physical) {
         switch (quality) {
-        case Quality::Fast: return {1, 1, TextureFilter::Nearest, ShadingMode::Pbr, PerspectiveMode::Exact};
-        case Quality::Balanced: return {1, 4, TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
-        case Quality::Accurate: return {16, 1, TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
+        case Quality::Fast: return {AntiAliasing::none(), TextureFilter::Nearest, ShadingMode::Pbr, PerspectiveMode::Exact};
+        case Quality::Balanced:
+            return {*AntiAliasing::multisample(4), TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
+        case Quality::Accurate:
+            return {*AntiAliasing::supersample(16), TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
         }
     }
     switch (quality) {
-    case Quality::Fast: return {1, 1, TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Exact};
-    case Quality::Balanced: return {4, 1, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
-    case Quality::Accurate: return {16, 1, TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
+    case Quality::Fast: return {AntiAliasing::none(), TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Exact};
+    case Quality::Balanced:
+        return {*AntiAliasing::supersample(4), TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
+    case Quality::Accurate:
+        return {*AntiAliasing::supersample(16), TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
     }
     return {};
 }
@@ -256,18 +260,27 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
             return FlagResult::Error;
         }
         o.isa = *m;
-    } else if (flag == "--ssaa") {
+    } else if (flag == "--ssaa" || flag == "--msaa") {
+        // One way of anti-aliasing: a flag replaces a preset's, and its value 1 turns off its
+        // own mode only; the two modes explicitly on together are refused.
+        const bool super = flag == "--ssaa";
         const auto v = parseInt(value);
-        if (!v || ssaaFactor(*v) == 0) return bad("1, 4 or 16 samples per pixel");
-        o.ssaa = *v;
-        o.explicitSsaa = true;
-        if (!o.explicitMsaa) o.msaa = 1;
-    } else if (flag == "--msaa") {
-        const auto v = parseInt(value);
-        if (!v || !validMsaa(*v)) return bad("1, 2, 4 or 8 samples per pixel");
-        o.msaa = *v;
-        o.explicitMsaa = true;
-        if (!o.explicitSsaa) o.ssaa = 1;
+        const std::optional<AntiAliasing> aa =
+            !v ? std::nullopt : super ? AntiAliasing::supersample(*v) : AntiAliasing::multisample(*v);
+        if (!aa) return bad(super ? "1, 4 or 16 samples per pixel" : "1, 2, 4 or 8 samples per pixel");
+        const bool otherExplicit = super ? o.explicitMsaa : o.explicitSsaa;
+        const bool otherOn = super ? o.antiAliasing.multisampled() : o.antiAliasing.supersampled();
+        if (otherExplicit && otherOn) {
+            if (*aa != AntiAliasing::none()) {
+                const AntiAliasing ss = super ? *aa : o.antiAliasing, ms = super ? o.antiAliasing : *aa;
+                error = "--ssaa " + std::to_string(ss.samples()) + " and --msaa " + std::to_string(ms.samples()) +
+                        ": choose one way of anti-aliasing (the other must be 1)";
+                return FlagResult::Error;
+            }
+        } else {
+            o.antiAliasing = *aa;
+        }
+        (super ? o.explicitSsaa : o.explicitMsaa) = true;
     } else if (flag == "--quality") {
         const auto q = parseQuality(value);
         if (!q) return bad("fast, balanced or accurate");
@@ -284,10 +297,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
 void applyQuality(SceneOptions& o, Quality quality, bool physical) {
     o.quality = quality;
     const QualitySettings p = qualitySettings(quality, physical);
-    if (!o.explicitSsaa && !o.explicitMsaa) {
-        o.ssaa = p.ssaa;
-        o.msaa = p.msaa;
-    }
+    if (!o.explicitSsaa && !o.explicitMsaa) o.antiAliasing = p.antiAliasing;
     if (!o.explicitFilter) o.filter = p.filter;
     if (!o.explicitShading) o.shading = p.shading;
     if (!o.explicitPerspective) o.perspective = p.perspective;
@@ -299,16 +309,14 @@ std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
     if (o.eye && o.target && *o.eye == *o.target) return "--eye and --target must differ";
     if (length(o.light) == 0.0f) return "--light must not be the zero vector";
     if (o.ibl && o.sky == Sky::Kind::None) return "--ibl lights the model from the sky: it needs --sky gradient or --skybox DIR";
-    if (o.ssaa > 1 && o.msaa > 1)
-        return "--ssaa " + std::to_string(o.ssaa) + " and --msaa " + std::to_string(o.msaa) +
-               ": choose one way of anti-aliasing (the other must be 1)";
-    if (!msaaFits(o.width, o.height, o.msaa))
-        return "--msaa " + std::to_string(o.msaa) + " at " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+    const AntiAliasing aa = o.antiAliasing;
+    if (!msaaFits(o.width, o.height, aa.msaaSamples()))
+        return "--msaa " + std::to_string(aa.msaaSamples()) + " at " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                " needs more than " + std::to_string(kMaxMsaaSamples) + " samples (the limit): use fewer samples or a "
                "smaller image";
-    if (const int f = ssaaFactor(o.ssaa); f > 1 && (o.width > FrameBuffer::kMaxDimension / f ||
-                                                   o.height > FrameBuffer::kMaxDimension / f))
-        return "--ssaa " + std::to_string(o.ssaa) + " renders " + std::to_string(o.width) + "x" +
+    if (const int f = aa.gridSide(); f > 1 && (o.width > FrameBuffer::kMaxDimension / f ||
+                                              o.height > FrameBuffer::kMaxDimension / f))
+        return "--ssaa " + std::to_string(aa.samples()) + " renders " + std::to_string(o.width) + "x" +
                std::to_string(o.height) + " at " + std::to_string(f) + "x" + std::to_string(f) +
                " the size, above the " + std::to_string(FrameBuffer::kMaxDimension) +
                "-pixel limit: at most " + std::to_string(FrameBuffer::kMaxDimension / f) + " per side";

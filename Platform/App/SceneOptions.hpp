@@ -11,6 +11,7 @@
 #include "Math/Color.hpp"
 #include "Math/Vec.hpp"
 #include "Raster/Fill/Kernels/Isa.hpp"
+#include "Raster/Frame/AntiAliasing.hpp"
 #include "Raster/Frame/Sky.hpp"
 #include "Raster/Geometry/Cull.hpp"
 #include "Raster/Setup/PipelineModes.hpp" // PerspectiveMode
@@ -28,8 +29,7 @@ namespace sr::app {
 enum class Quality { Fast, Balanced, Accurate };
 
 struct QualitySettings {
-    int ssaa = 1;
-    int msaa = 1;
+    AntiAliasing antiAliasing;
     TextureFilter filter = TextureFilter::Bilinear;
     ShadingMode shading = ShadingMode::Phong;
     PerspectiveMode perspective = PerspectiveMode::Exact;
@@ -70,8 +70,7 @@ struct SceneOptions {
     TextureFilter filter = TextureFilter::Bilinear;
     WrapMode wrap = WrapMode::Repeat;
     PerspectiveMode perspective = PerspectiveMode::Exact;
-    int ssaa = 1;        // --ssaa: supersampling samples per pixel, 1, 4 or 16 (Raster/Frame/Resolve.hpp)
-    int msaa = 1;        // --msaa: multisampling samples per pixel, 1, 2, 4 or 8 (Raster/Frame/Msaa.hpp)
+    AntiAliasing antiAliasing; // --ssaa 1|4|16 or --msaa 1|2|4|8 (Raster/Frame/AntiAliasing.hpp)
     Isa isa = bestIsa(); // --isa: which span kernels fill (auto = the widest this CPU has)
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
     MaterialRule materials = MaterialRule::Mtl; // --materials

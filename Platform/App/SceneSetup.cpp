@@ -232,8 +232,9 @@ std::optional<std::string> applySceneDefaults(SceneOptions& o, const LoadedScene
     if (!o.colour) o.colour = ColorMode::Linear;
     if (o.quality) {
         applyQuality(o, *o.quality, true); // the physical scene's preset
-        if (!msaaFits(o.width, o.height, o.msaa))
-            return "--quality " + std::string(qualityName(*o.quality)) + " (MSAA " + std::to_string(o.msaa) + " in a glTF scene) at " +
+        if (!msaaFits(o.width, o.height, o.antiAliasing.msaaSamples()))
+            return "--quality " + std::string(qualityName(*o.quality)) + " (MSAA " +
+                   std::to_string(o.antiAliasing.msaaSamples()) + " in a glTF scene) at " +
                    std::to_string(o.width) + "x" + std::to_string(o.height) +
                    " needs more samples than the limit: use a smaller size or --ssaa";
     }
@@ -340,8 +341,7 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.wireframe = o.wireframe;
     s.outline.pickCentre = o.outline;
     s.shadows = o.shadows;
-    s.ssaa = o.ssaa;
-    s.msaa = o.msaa;
+    s.antiAliasing = o.antiAliasing;
     s.colour = o.colour.value_or(ColorMode::Gamma);
     s.toneMap = o.toneMap;
     s.exposure = o.exposure;

@@ -88,8 +88,8 @@ FrameView makeFrameView(const CameraSetup& camera, int width, int height, Vec3 l
 
 RenderSettings makeRenderSettings(const SceneOptions& options);
 
-// Renders one frame of the scene into ctx's target: clear (black, far depth) then draw, supersampled
-// when settings.ssaa > 1 (renderSceneFrame).
+// Renders one frame of the scene into ctx's target: clear (black, far depth) then draw,
+// anti-aliased as settings.antiAliasing says (renderSceneFrame).
 void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& view, const RenderSettings& settings);
 
 } // namespace sr::app

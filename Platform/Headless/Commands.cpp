@@ -157,8 +157,8 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"filter\":\"" + std::string(filterName(settings.filter)) + "\"";
     j += ",\"persp\":\"" + std::string(perspectiveModeName(settings.perspective)) + "\"";
     j += ",\"isa\":\"" + std::string(isaName(settings.isa)) + "\"";
-    j += ",\"ssaa\":" + std::to_string(settings.ssaa);
-    j += ",\"msaa\":" + std::to_string(settings.msaa);
+    j += ",\"ssaa\":" + std::to_string(settings.antiAliasing.ssaaSamples());
+    j += ",\"msaa\":" + std::to_string(settings.antiAliasing.msaaSamples());
     j += ",\"textured\":" + std::string(p.textured ? "true" : "false");
     j += ",\"hardware_threads\":" + std::to_string(std::thread::hardware_concurrency()) + "}";
 

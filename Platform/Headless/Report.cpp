@@ -45,33 +45,28 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool 
     base.filterFromFile = false; // the report measures each filter itself
     base.shading = physical ? ShadingMode::Pbr : ShadingMode::Phong;
     base.colour = physical ? ColorMode::Linear : ColorMode::Gamma;
-    base.ssaa = 16;
+    base.antiAliasing = *AntiAliasing::supersample(16);
     std::vector<Setting> out{{base, true, {}}};
     std::vector<TextureFilter> filters{TextureFilter::Trilinear};
     if (textured) filters = {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear};
-    struct Aa {
-        int ssaa, msaa;
-    };
-    for (Aa aa : {Aa{1, 1}, Aa{1, 4}, Aa{4, 1}})
+    for (AntiAliasing aa : {AntiAliasing::none(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4)})
         for (TextureFilter f : filters)
             for (ShadingMode m : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong, ShadingMode::Pbr})
                 for (PerspectiveMode p : {PerspectiveMode::Affine, PerspectiveMode::Exact}) {
                     if (m == ShadingMode::Pbr && !physical) continue;
                     Setting s{base, false, {}};
-                    s.settings.ssaa = aa.ssaa;
-                    s.settings.msaa = aa.msaa;
+                    s.settings.antiAliasing = aa;
                     s.settings.filter = f;
                     s.settings.shading = m;
                     s.settings.perspective = p;
                     out.push_back(s);
                 }
     Setting msaa8{base, false, {}};
-    msaa8.settings.ssaa = 1;
-    msaa8.settings.msaa = 8;
+    msaa8.settings.antiAliasing = *AntiAliasing::multisample(8);
     out.push_back(msaa8);
     if (physical) { // the truth's model on display values, one sample
         Setting gamma{base, false, {}};
-        gamma.settings.ssaa = 1;
+        gamma.settings.antiAliasing = AntiAliasing::none();
         gamma.settings.colour = ColorMode::Gamma;
         out.push_back(gamma);
     }
@@ -79,7 +74,7 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool 
     for (app::Quality q : {app::Quality::Fast, app::Quality::Balanced, app::Quality::Accurate}) {
         const app::QualitySettings qs = app::qualitySettings(q, physical);
         for (Setting& s : out)
-            if (s.settings.ssaa == qs.ssaa && s.settings.msaa == qs.msaa && s.settings.shading == qs.shading &&
+            if (s.settings.antiAliasing == qs.antiAliasing && s.settings.shading == qs.shading &&
                 s.settings.colour == base.colour &&
                 s.settings.perspective == qs.perspective && (!textured || s.settings.filter == qs.filter)) {
                 s.preset = q;
@@ -103,7 +98,8 @@ std::string shadingLabel(const RenderSettings& r) {
 
 std::string label(const Setting& s, bool textured) {
     const RenderSettings& r = s.settings;
-    std::string l = r.msaa > 1 ? "msaa" + std::to_string(r.msaa) : "ssaa" + std::to_string(r.ssaa);
+    const AntiAliasing aa = r.antiAliasing;
+    std::string l = aa.multisampled() ? "msaa" + std::to_string(aa.samples()) : "ssaa" + std::to_string(aa.ssaaSamples());
     if (textured) l += " " + std::string(filterName(r.filter));
     l += " " + shadingLabel(r) + " " + perspectiveModeName(r.perspective);
     return l;
@@ -203,7 +199,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         io.out << usage(Subcommand::Report);
         return kExitOk;
     }
-    if (const int f = ssaaFactor(16); a.scene.width > FrameBuffer::kMaxDimension / f || a.scene.height > FrameBuffer::kMaxDimension / f) {
+    if (const int f = AntiAliasing::supersample(16)->gridSide(); a.scene.width > FrameBuffer::kMaxDimension / f || a.scene.height > FrameBuffer::kMaxDimension / f) {
         io.err << "softraster report: the ground truth renders 16 samples per pixel (4x4): width and height at most "
                << FrameBuffer::kMaxDimension / f << "\n";
         return kExitUsage;
@@ -283,11 +279,12 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         const RenderSettings& st = r.setting.settings;
         const std::string filter = textured ? filterName(st.filter) : "-";
         const std::string preset = r.setting.preset ? app::qualityName(*r.setting.preset) : "";
-        csv << st.ssaa << "," << st.msaa << "," << filter << "," << shadingLabel(st) << "," << perspectiveModeName(st.perspective)
-            << "," << fmt(r.time.median) << "," << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
+        csv << st.antiAliasing.ssaaSamples() << "," << st.antiAliasing.msaaSamples() << "," << filter << ","
+            << shadingLabel(st) << "," << perspectiveModeName(st.perspective) << "," << fmt(r.time.median) << "," << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
             << "," << fmt(r.error.psnrDb, 2) << "," << r.error.maxAbs << "," << fmt(r.error.differingShare, 5) << ","
             << (front[i] ? 1 : 0) << "," << preset << "," << (r.setting.truth ? 1 : 0) << "\n";
-        md << "| " << st.ssaa << (r.setting.truth ? " (ground truth)" : "") << " | " << st.msaa << " | " << filter << " | "
+        md << "| " << st.antiAliasing.ssaaSamples() << (r.setting.truth ? " (ground truth)" : "") << " | "
+           << st.antiAliasing.msaaSamples() << " | " << filter << " | "
            << shadingLabel(st) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
            << " [" << fmt(r.time.min) << ", " << fmt(r.maxMs) << "] | " << fmt(r.error.meanAbs, 4) << " | "
            << fmt(r.error.psnrDb, 2) << " | " << r.error.maxAbs << " | " << fmt(100.0 * r.error.differingShare, 2)

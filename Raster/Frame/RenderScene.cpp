@@ -145,7 +145,7 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
     }
     // Lines and points: depth-tested and written, before the transparent surfaces blend over them.
-    const int lineWidth = std::max(1, ssaaFactor(settings.ssaa));
+    const int lineWidth = settings.antiAliasing.gridSide();
     for (const SceneLines& l : scene.lines)
         drawWorldLines(ctx, view, l.positions, l.indices, l.points, packBgra8(l.colour), lineWidth);
     // The outline's mark: the selected draw again, no colour, GEQUAL: stencil 1 where it shows.
@@ -176,7 +176,7 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
     if (anyTransparent) drawTransparent(ctx, scene, view, settings, textureOverride);
     if (!outlined) return;
     // The outline last, over everything: the band around the mark.
-    const float pixels = outline.width * float(std::max(1, ssaaFactor(settings.ssaa)));
+    const float pixels = outline.width * float(settings.antiAliasing.gridSide());
     const int radius = std::isfinite(pixels) ? int(std::clamp(std::lround(pixels), 0L, 256L)) : 0;
     if (radius > 0) drawOutlineBand(ctx, target, packBgra8(outline.colour), radius);
 }
@@ -202,15 +202,14 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
         blinnPhongView.lighting = blinnPhongLighting(view.lighting);
         view.blinnPhong = &blinnPhongView;
     }
-    const int factor = ssaaFactor(settings.ssaa);
-    assert(factor > 0 && "RenderSettings::ssaa must be 1, 4 or 16");
-    assert(validMsaa(settings.msaa) && "RenderSettings::msaa must be 1, 2, 4 or 8");
+    const AntiAliasing aa = settings.antiAliasing;
+    const int factor = aa.gridSide();
     FrameBuffer& out = ctx.target();
     const bool supersample = factor > 1 && !out.empty();
     const bool linear = settings.colour == ColorMode::Linear; // resolved in linear light
-    const bool multisample = !supersample && settings.msaa > 1 && !out.empty();
+    const bool multisample = aa.multisampled() && !out.empty();
     if (!multisample && !ctx.msaa.empty()) ctx.msaa.release(); // memory only while multisampling
-    if (multisample && ctx.msaa.resize(out.width(), out.height(), settings.msaa)) {
+    if (multisample && ctx.msaa.resize(out.width(), out.height(), aa.samples())) {
         if (!ctx.supersampleTarget.empty()) ctx.supersampleTarget = FrameBuffer{};
         ctx.multisampling = true;
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
@@ -227,8 +226,7 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
         if (!ctx.supersampleTarget.empty()) ctx.supersampleTarget = FrameBuffer{}; // no SSAA: give the sample memory back
         if (!ctx.msaa.empty()) ctx.msaa.release();
         RenderSettings plain = settings;
-        plain.ssaa = 1; // drawn at the output size (also what the wireframe width follows)
-        plain.msaa = 1;
+        plain.antiAliasing = AntiAliasing::none(); // drawn at the output size (also what the wireframe width follows)
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, plain, textureOverride);
         return (factor <= 1 && !multisample) || out.empty();

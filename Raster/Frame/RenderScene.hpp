@@ -14,14 +14,14 @@ namespace sr {
 void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                  const Texture* textureOverride = nullptr);
 
-// One whole frame into ctx's target: clear (clearColour, far depth), then renderScene. With
-// settings.ssaa = 4 or 16 the frame is drawn into ctx.supersampleTarget at 2x2 or 4x4 the target's size and
-// box-filtered into the target (Raster/Frame/Resolve.hpp): the target ends with the resolved colour and,
-// per pixel, its nearest sample's depth. A sample target above FrameBuffer::kMaxDimension cannot
-// be made: the frame is then drawn without supersampling and false is returned (true otherwise).
-// With settings.msaa = 2, 4 or 8 (and ssaa 1; supersampling wins when both are asked for) the
-// frame is drawn multisampled into ctx.msaa and resolved the same way (Raster/Frame/Msaa.hpp,
-// MsaaFill.hpp); the sample memory is released by the next frame without multisampling. A target
+// One whole frame into ctx's target: clear (clearColour, far depth), then renderScene.
+// Supersampled (settings.antiAliasing: SSAA 4 or 16) the frame is drawn into
+// ctx.supersampleTarget at 2x2 or 4x4 the target's size and box-filtered into the target
+// (Raster/Frame/Resolve.hpp): the target ends with the resolved colour and, per pixel, its
+// nearest sample's depth. A sample target above FrameBuffer::kMaxDimension cannot be made: the
+// frame is then drawn without supersampling and false is returned (true otherwise).
+// Multisampled (MSAA 2, 4 or 8) the frame is drawn multisampled into ctx.msaa and resolved the
+// same way (Raster/Frame/Msaa.hpp, MsaaFill.hpp); the sample memory is released by the next frame without multisampling. A target
 // above kMaxMsaaSamples samples is drawn with one sample and false is returned.
 // A scene with a sky (Scene::sky) gets it (renderScene) where the depth is still far after the
 // opaque draws and the lines, before the transparent draws blend over it, per sample when

@@ -7,6 +7,7 @@
 #include "Raster/Fill/Blend.hpp" // TexelAlpha
 #include "Raster/Fill/Kernels/Isa.hpp"
 #include "Raster/Fill/Stencil.hpp"
+#include "Raster/Frame/AntiAliasing.hpp"
 #include "Raster/Frame/Sky.hpp" // ViewRays
 #include "Raster/Geometry/Cull.hpp"
 #include "Raster/Setup/PipelineModes.hpp" // PerspectiveMode, PipelineStop
@@ -46,8 +47,7 @@ struct RenderSettings {
     bool wireframe = false; // overlay triangle edges (DDA lines) on the shaded image
     PipelineStop stopAfter = PipelineStop::Fill; // partial pipelines, for per-stage timing only
     Isa isa = bestIsa(); // which span kernels fill (Raster/Fill/Kernels/Isa.hpp); Scalar = the reference loop
-    int ssaa = 1;        // supersampling: samples per pixel, 1 (off), 4 (2x2) or 16 (4x4) (Raster/Frame/Resolve.hpp)
-    int msaa = 1;        // multisampling: samples per pixel, 1 (off), 2, 4 or 8 (Raster/Frame/Msaa.hpp); not with ssaa > 1
+    AntiAliasing antiAliasing; // one sample, SSAA 4 / 16 or MSAA 2 / 4 / 8 (AntiAliasing.hpp)
     // A material's own sampler (SurfaceMaterial::wrap / filter, from a glTF file) overrides
     // `wrap` / `filter` for its draw while these are true; false once the user chose them
     // (--wrap, --filter, the demo's T key, the report's sweep).

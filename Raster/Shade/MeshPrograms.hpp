@@ -10,7 +10,6 @@
 
 #include "Raster/Fill/ScanlineFill.hpp"
 #include "Raster/Frame/RenderSettings.hpp"
-#include "Raster/Frame/Resolve.hpp" // ssaaFactor
 #include "Raster/Geometry/Mesh.hpp"
 #include "Raster/Pipeline.hpp" // DrawState
 #include "Raster/Texture/TextureLod.hpp"
@@ -105,7 +104,7 @@ inline DrawState drawStateFor(const DrawContext& d) {
     s.cull = d.doubleSided ? d.settings.cull : CullMode::CW; // single-sided: back faces (CW on screen) culled
     s.clipFar = d.view.finiteFar;
     s.wireframe = d.settings.wireframe;
-    s.wireWidth = std::max(1, ssaaFactor(d.settings.ssaa));
+    s.wireWidth = d.settings.antiAliasing.gridSide();
     s.stopAfter = d.settings.stopAfter;
     s.perspective = d.settings.perspective;
     if (d.texture != nullptr) s.rebase = {2, wrapPeriod(d.settings.wrap)}; // varyings 0-1 are the uv

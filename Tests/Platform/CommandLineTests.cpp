@@ -166,18 +166,18 @@ TEST_CASE("the demo starts at the balanced quality preset; --quality and explici
     const auto plain = parseCommandLine({});
     REQUIRE(plain.ok);
     CHECK(plain.options.scene.quality == Quality::Balanced);
-    CHECK(plain.options.scene.ssaa == sr::app::qualitySettings(Quality::Balanced).ssaa);
-    CHECK(plain.options.scene.ssaa == 4);
+    CHECK(plain.options.scene.antiAliasing == sr::app::qualitySettings(Quality::Balanced).antiAliasing);
+    CHECK(plain.options.scene.antiAliasing.ssaaSamples() == 4);
     const auto fast = parseCommandLine({"--quality", "fast"});
     REQUIRE(fast.ok);
-    CHECK(fast.options.scene.ssaa == 1);
+    CHECK(fast.options.scene.antiAliasing.ssaaSamples() == 1);
     CHECK(fast.options.scene.filter == sr::TextureFilter::Nearest);
     CHECK(fast.options.scene.shading == sr::ShadingMode::Gouraud);
     CHECK(fast.options.scene.perspective == sr::PerspectiveMode::Exact);
     // An explicit knob without --quality keeps the balanced preset for the others.
     const auto one = parseCommandLine({"--ssaa", "1", "--filter", "nearest"});
     REQUIRE(one.ok);
-    CHECK(one.options.scene.ssaa == 1);
+    CHECK(one.options.scene.antiAliasing.ssaaSamples() == 1);
     CHECK(one.options.scene.filter == sr::TextureFilter::Nearest);
     CHECK(plain.options.scene.filter == sr::TextureFilter::Trilinear);
     CHECK(one.options.scene.shading == sr::ShadingMode::Phong);
@@ -185,6 +185,28 @@ TEST_CASE("the demo starts at the balanced quality preset; --quality and explici
     CHECK(parseCommandLine({"--width", "8000"}).ok);
     CHECK_FALSE(parseCommandLine({"--width", "8000", "--ssaa", "4"}).ok);
     CHECK(sr::app::actionForKey(sr::app::Key::N) == sr::app::Action::CycleAntialiasing);
+}
+
+TEST_CASE("anti-aliasing: one value; --ssaa and --msaa replace a preset's, 1 turns off only its own mode", "[platform]") {
+    using sr::AntiAliasing;
+    const auto aaOf = [](std::vector<std::string> args) {
+        const auto r = parseCommandLine(args);
+        REQUIRE(r.ok);
+        return r.options.scene.antiAliasing;
+    };
+    CHECK(aaOf({"--msaa", "4"}) == *AntiAliasing::multisample(4)); // replaces balanced's SSAA 4
+    CHECK(aaOf({"--quality", "accurate", "--msaa", "8"}) == *AntiAliasing::multisample(8));
+    CHECK(aaOf({"--msaa", "2", "--quality", "accurate"}) == *AntiAliasing::multisample(2)); // explicit wins
+    CHECK(aaOf({"--ssaa", "16", "--msaa", "1"}) == *AntiAliasing::supersample(16));
+    CHECK(aaOf({"--msaa", "1", "--ssaa", "16"}) == *AntiAliasing::supersample(16));
+    CHECK(aaOf({"--msaa", "8", "--ssaa", "1"}) == *AntiAliasing::multisample(8));
+    CHECK(aaOf({"--msaa", "8", "--msaa", "1"}) == AntiAliasing::none());
+    CHECK(aaOf({"--ssaa", "1"}) == AntiAliasing::none());
+    const auto both = parseCommandLine({"--ssaa", "16", "--msaa", "2"});
+    CHECK_FALSE(both.ok);
+    CHECK(both.error.find("--ssaa 16 and --msaa 2: choose one way of anti-aliasing") != std::string::npos);
+    CHECK_FALSE(parseCommandLine({"--msaa", "3"}).ok);
+    CHECK_FALSE(parseCommandLine({"--ssaa", "2"}).ok);
 }
 
 TEST_CASE("the demo starts with shadows in the built-in scene, without in a model; --shadows and --no-shadows win", "[platform]") {

@@ -81,8 +81,8 @@ TEST_CASE("shading, filter, perspective and anti-aliasing cycle through every mo
     const std::pair<int, int> cycle[] = {{2, 1}, {4, 1}, {8, 1}, {1, 4}, {1, 16}, {1, 1}};
     for (const auto& [msaa, ssaa] : cycle) {
         CHECK(c.keyDown(Key::N) == Action::CycleAntialiasing);
-        CHECK(c.settings().msaa == msaa);
-        CHECK(c.settings().ssaa == ssaa);
+        CHECK(c.settings().antiAliasing.msaaSamples() == msaa);
+        CHECK(c.settings().antiAliasing.ssaaSamples() == ssaa);
     }
     c.keyDown(Key::N);
     c.keyDown(Key::N);

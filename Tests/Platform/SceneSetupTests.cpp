@@ -223,31 +223,31 @@ TEST_CASE("a glTF scene's --quality presets are its own model's: pbr in linear l
         return o;
     };
     const SceneOptions fast = resolve({"--quality", "fast"}, true);
-    CHECK(fast.ssaa == 1);
-    CHECK(fast.msaa == 1);
+    CHECK(fast.antiAliasing.ssaaSamples() == 1);
+    CHECK(fast.antiAliasing.msaaSamples() == 1);
     CHECK(fast.filter == TextureFilter::Nearest);
     CHECK(fast.shading == ShadingMode::Pbr);
     CHECK(fast.colour == ColorMode::Linear);
     const SceneOptions balanced = resolve({"--quality", "balanced"}, true);
-    CHECK(balanced.ssaa == 1);
-    CHECK(balanced.msaa == 4);
+    CHECK(balanced.antiAliasing.ssaaSamples() == 1);
+    CHECK(balanced.antiAliasing.msaaSamples() == 4);
     CHECK(balanced.filter == TextureFilter::Trilinear);
     CHECK(balanced.shading == ShadingMode::Pbr);
     const SceneOptions accurate = resolve({"--quality", "accurate"}, true);
-    CHECK(accurate.ssaa == 16);
-    CHECK(accurate.msaa == 1);
+    CHECK(accurate.antiAliasing.ssaaSamples() == 16);
+    CHECK(accurate.antiAliasing.msaaSamples() == 1);
     CHECK(accurate.shading == ShadingMode::Pbr);
     // Explicit flags win, before or after the preset.
     const SceneOptions mixed = resolve({"--shading", "gouraud", "--quality", "balanced", "--ssaa", "4"}, true);
     CHECK(mixed.shading == ShadingMode::Gouraud);
-    CHECK(mixed.ssaa == 4);
-    CHECK(mixed.msaa == 1);
+    CHECK(mixed.antiAliasing.ssaaSamples() == 4);
+    CHECK(mixed.antiAliasing.msaaSamples() == 1);
     CHECK(mixed.filter == TextureFilter::Trilinear);
     // The built-in scene (and OBJ) keep the display-model presets.
     const SceneOptions plainFast = resolve({"--quality", "fast"}, false);
     CHECK(plainFast.shading == ShadingMode::Gouraud);
     const SceneOptions plainBalanced = resolve({"--quality", "balanced"}, false);
-    CHECK(plainBalanced.ssaa == 4);
-    CHECK(plainBalanced.msaa == 1);
+    CHECK(plainBalanced.antiAliasing.ssaaSamples() == 4);
+    CHECK(plainBalanced.antiAliasing.msaaSamples() == 1);
     CHECK(plainBalanced.shading == ShadingMode::Phong);
 }

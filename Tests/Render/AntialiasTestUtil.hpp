@@ -87,8 +87,7 @@ inline EdgeError coverageError(int ssaa, const std::vector<std::pair<double, dou
     view.viewProj = Mat4::identity();
     RenderSettings settings;
     settings.shading = ShadingMode::Unlit;
-    settings.ssaa = ssaa;
-    settings.msaa = msaa;
+    settings.antiAliasing = msaa > 1 ? *AntiAliasing::multisample(msaa) : *AntiAliasing::supersample(ssaa);
     REQUIRE(renderSceneFrame(ctx, whiteTriangle(tri, width, height), view, settings));
     EdgeError e;
     for (int y = 0; y < height; ++y)

@@ -149,8 +149,8 @@ TEST_CASE("world points under MSAA cover their whole pixel; under SSAA 4 they st
     for (const int mode : {0, 1}) {
         INFO((mode == 0 ? "msaa 4" : "ssaa 4"));
         RenderSettings settings;
-        if (mode == 0) settings.msaa = 4;
-        else settings.ssaa = 4;
+        if (mode == 0) settings.antiAliasing = *AntiAliasing::multisample(4);
+        else settings.antiAliasing = *AntiAliasing::supersample(4);
         FrameBuffer fb(kW, kH);
         RenderContext ctx(fb);
         renderSceneFrame(ctx, scene, view, settings);

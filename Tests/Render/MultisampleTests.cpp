@@ -14,6 +14,7 @@
 #include "Raster/Fill/Kernels/Isa.hpp"
 #include "Raster/Fill/Line.hpp"
 #include "Raster/Fill/MsaaFill.hpp"
+#include "Raster/Frame/AntiAliasing.hpp"
 #include "Raster/Frame/Msaa.hpp"
 #include "Raster/Frame/RenderContext.hpp"
 #include "Raster/Frame/RenderScene.hpp"
@@ -41,6 +42,33 @@ FrameView builtInView(const app::LoadedScene& scene, int width, int height) {
 }
 
 } // namespace
+
+TEST_CASE("AntiAliasing: the factories accept each mode's counts only; 1 is no anti-aliasing", "[msaa]") {
+    for (int n = -1; n <= 32; ++n) {
+        CAPTURE(n);
+        const auto ss = AntiAliasing::supersample(n), ms = AntiAliasing::multisample(n);
+        CHECK(ss.has_value() == (n == 1 || n == 4 || n == 16));
+        CHECK(ms.has_value() == (n == 1 || n == 2 || n == 4 || n == 8));
+        if (ss) {
+            CHECK(ss->samples() == n);
+            CHECK(ss->supersampled() == (n > 1));
+            CHECK_FALSE(ss->multisampled());
+            CHECK(ss->msaaSamples() == 1);
+            CHECK(ss->gridSide() * ss->gridSide() == n);
+        }
+        if (ms) {
+            CHECK(ms->samples() == n);
+            CHECK(ms->multisampled() == (n > 1));
+            CHECK_FALSE(ms->supersampled());
+            CHECK(ms->ssaaSamples() == 1);
+            CHECK(ms->gridSide() == 1);
+        }
+    }
+    CHECK(*AntiAliasing::supersample(1) == AntiAliasing::none());
+    CHECK(*AntiAliasing::multisample(1) == AntiAliasing::none());
+    CHECK(*AntiAliasing::supersample(4) != *AntiAliasing::multisample(4));
+    CHECK(AntiAliasing().mode() == AaMode::None);
+}
 
 TEST_CASE("resolveMsaaRows: each channel the rounded mean of the samples, depth the nearest", "[msaa]") {
     std::mt19937 rng(99);
@@ -139,7 +167,7 @@ TEST_CASE("MSAA: depth per sample resolves the intersection line of two interpen
         REQUIRE(red < n);
         FrameBuffer fb(64, 8);
         RenderContext ctx(fb);
-        settings.msaa = n;
+        settings.antiAliasing = *AntiAliasing::multisample(n);
         REQUIRE(renderSceneFrame(ctx, scene, view, settings));
         for (int y = 0; y < 8; ++y) {
             CHECK(fb.pixel(19, y) == packBgra(255, 0, 0));
@@ -213,7 +241,7 @@ TEST_CASE("MSAA: lines cover all samples of their pixels; the wireframe keeps it
     for (int i = 0; i < 2; ++i) {
         FrameBuffer fb(64, 48);
         RenderContext ctx(fb);
-        settings.msaa = i == 0 ? 1 : 4;
+        settings.antiAliasing = *AntiAliasing::multisample(i == 0 ? 1 : 4);
         REQUIRE(renderSceneFrame(ctx, scene, view, settings));
         for (int y = 0; y < 48; ++y)
             for (int x = 0; x < 64; ++x) ink[i] += pixelR(fb.pixel(x, y)) / 255.0;
@@ -236,7 +264,7 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
     app::renderFrame(c0, scene, view, settings); // the plain path
     for (int n : {1, 2, 4, 8, 1}) {
         CAPTURE(n);
-        settings.msaa = n;
+        settings.antiAliasing = *AntiAliasing::multisample(n);
         app::renderFrame(c1, scene, view, settings);
         app::renderFrame(c2, scene, view, settings);
         app::renderFrame(c3, scene, view, settings);
@@ -257,7 +285,7 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
         FrameBuffer wide(FrameBuffer::kMaxDimension, FrameBuffer::kMaxDimension / 8 + 1);
         RenderContext cw(wide);
         RenderSettings big;
-        big.msaa = 8;
+        big.antiAliasing = *AntiAliasing::multisample(8);
         FrameView v;
         v.viewProj = Mat4::identity();
         CHECK_FALSE(renderSceneFrame(cw, Scene{}, v, big));
@@ -265,9 +293,8 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
         CHECK_FALSE(cw.msaa.resize(FrameBuffer::kMaxDimension, FrameBuffer::kMaxDimension / 8 + 1, 8));
         CHECK(msaaFits(FrameBuffer::kMaxDimension, FrameBuffer::kMaxDimension / 8, 8));
     }
-    // Supersampling wins when both are asked for; no multisample memory then.
-    settings.msaa = 4;
-    settings.ssaa = 4;
+    // Switched from multisampling to supersampling: the multisample memory goes.
+    settings.antiAliasing = *AntiAliasing::supersample(4);
     app::renderFrame(c1, scene, view, settings);
     CHECK(c1.msaa.empty());
     CHECK(c1.supersampleTarget.width() == 2 * 96);
@@ -283,7 +310,7 @@ TEST_CASE("MSAA: every kernel ISA gives the scalar reference's image, for every 
                 settings.shading = shading;
                 settings.filter = filter;
                 settings.perspective = persp;
-                settings.msaa = 4;
+                settings.antiAliasing = *AntiAliasing::multisample(4);
                 settings.isa = Isa::Scalar;
                 FrameBuffer reference(80, 56);
                 RenderContext cr(reference);

@@ -497,7 +497,7 @@ TEST_CASE("linear light resolves in linear light: SSAA and MSAA average decoded 
     // decoded, averaged and encoded by hand in double.
     const PbrScene s = makePbrScene();
     RenderSettings ssaa = s.settings;
-    ssaa.ssaa = 4;
+    ssaa.antiAliasing = *AntiAliasing::supersample(4);
     const Image four = renderPbr(s, ssaa);
     FrameBuffer big(2 * kW, 2 * kH);
     RenderContext ctx(big);

@@ -223,7 +223,7 @@ TEST_CASE("the sky is drawn only where no geometry was, per sample before the re
     // Multisampled (4): away from the square's edges the same pixels; on an edge pixel the
     // uncovered samples hold the sky, so the resolve mixes red with sky (green/blue), not black.
     RenderSettings msaa = settings;
-    msaa.msaa = 4;
+    msaa.antiAliasing = *AntiAliasing::multisample(4);
     FrameBuffer fm(kSize, kSize), fmPlain(kSize, kSize);
     {
         RenderContext c(fm);
@@ -246,7 +246,7 @@ TEST_CASE("the sky is drawn only where no geometry was, per sample before the re
     CHECK(mixedEdges > 20);
     // Supersampled (4): the sky is drawn per sample, so the background is the mean of four rays.
     RenderSettings ssaa = settings;
-    ssaa.ssaa = 4;
+    ssaa.antiAliasing = *AntiAliasing::supersample(4);
     FrameBuffer fs(kSize, kSize);
     RenderContext cs(fs);
     renderSceneFrame(cs, withSky, view, ssaa);
@@ -264,7 +264,7 @@ TEST_CASE("transparent surfaces blend over the sky, which is drawn before them",
     settings.shading = ShadingMode::Unlit;
     for (const int msaa : {1, 4}) {
         INFO("msaa " << msaa);
-        settings.msaa = msaa;
+        settings.antiAliasing = *AntiAliasing::multisample(msaa);
         FrameBuffer fb(kSize, kSize);
         RenderContext ctx(fb);
         renderSceneFrame(ctx, scene, view, settings);

@@ -203,7 +203,7 @@ TEST_CASE("the selection outline: a band around the picked draw's pixels, throug
         for (const int threads : {1, 2}) {
             INFO("ssaa " << ssaa << " threads " << threads);
             RenderSettings plainSettings;
-            plainSettings.ssaa = ssaa;
+            plainSettings.antiAliasing = *AntiAliasing::supersample(ssaa);
             RenderSettings outlined = plainSettings;
             outlined.outline.draw = 1;
             outlined.outline.colour = {0, 1, 0, 1};

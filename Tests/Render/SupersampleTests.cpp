@@ -100,12 +100,12 @@ TEST_CASE("SSAA: the same image on every thread count; sample memory only while 
     c2.setThreads(2);
     for (int ssaa : {1, 4, 16, 1}) {
         CAPTURE(ssaa);
-        settings.ssaa = ssaa;
+        settings.antiAliasing = *AntiAliasing::supersample(ssaa);
         REQUIRE(renderSceneFrame(c1, scene, view, settings));
         REQUIRE(renderSceneFrame(c2, scene, view, settings));
         CHECK(std::equal(one.colorData(), one.colorData() + 64 * 48, two.colorData()));
         CHECK(std::equal(one.depthData(), one.depthData() + 64 * 48, two.depthData()));
-        const int f = ssaaFactor(ssaa);
+        const int f = AntiAliasing::supersample(ssaa)->gridSide();
         CHECK(c1.supersampleTarget.width() == (f > 1 ? 64 * f : 0));
         CHECK(c1.supersampleTarget.height() == (f > 1 ? 48 * f : 0));
         CHECK(&c1.target() == &one); // the output target is restored
@@ -113,7 +113,7 @@ TEST_CASE("SSAA: the same image on every thread count; sample memory only while 
     // A sample target above FrameBuffer::kMaxDimension: drawn without SSAA, reported.
     FrameBuffer wide(FrameBuffer::kMaxDimension / 2 + 1, 2);
     RenderContext cw(wide);
-    settings.ssaa = 4;
+    settings.antiAliasing = *AntiAliasing::supersample(4);
     CHECK_FALSE(renderSceneFrame(cw, scene, view, settings));
     CHECK(cw.supersampleTarget.empty());
 }
@@ -135,7 +135,7 @@ TEST_CASE("SSAA: wireframe edges keep their weight after the resolve (k-sample-w
     for (int ssaa : {1, 4, 16}) {
         FrameBuffer fb(64, 48);
         RenderContext ctx(fb);
-        settings.ssaa = ssaa;
+        settings.antiAliasing = *AntiAliasing::supersample(ssaa);
         REQUIRE(renderSceneFrame(ctx, scene, view, settings));
         for (int y = 0; y < 48; ++y)
             for (int x = 0; x < 64; ++x) ink[k] += pixelR(fb.pixel(x, y)) / 255.0;
@@ -167,7 +167,7 @@ TEST_CASE("SSAA 16 of the built-in scene equals its 4x render, box-filtered by h
         FrameBuffer big(256, 160), aa(64, 40);
         RenderContext cBig(big), cAa(aa);
         app::renderFrame(cBig, scene.value(), view, settings);
-        settings.ssaa = 16;
+        settings.antiAliasing = *AntiAliasing::supersample(16);
         app::renderFrame(cAa, scene.value(), view, settings);
         int differing = 0;
         for (int y = 0; y < 40; ++y)
@@ -208,7 +208,7 @@ TEST_CASE("SSAA: depth per sample resolves the intersection line of two interpen
         CAPTURE(k.ssaa);
         FrameBuffer fb(64, 8);
         RenderContext ctx(fb);
-        settings.ssaa = k.ssaa;
+        settings.antiAliasing = *AntiAliasing::supersample(k.ssaa);
         REQUIRE(renderSceneFrame(ctx, scene, view, settings));
         for (int y = 0; y < 8; ++y) {
             CHECK(fb.pixel(19, y) == packBgra(255, 0, 0));

@@ -126,7 +126,7 @@ TEST_CASE("transparent draws: after the opaque ones, back to front, over what is
         INFO("variant " << variant);
         RenderSettings s = settings;
         if (variant == 1) s.isa = Isa::Scalar;
-        if (variant == 2) s.msaa = 4;
+        if (variant == 2) s.antiAliasing = *AntiAliasing::multisample(4);
         const FrameBuffer other = frameOf(scene, view, s, nullptr, variant == 0 ? 2 : 1);
         if (variant < 2) {
             CHECK(differingPixels(other, fb) == 0);
@@ -296,7 +296,7 @@ TEST_CASE("texel alpha MASK: a fragment below the cutoff writes neither colour n
         RenderSettings s = unlitNearest();
         if (variant == 0) s.isa = Isa::Scalar;
         if (variant == 2) s.shading = ShadingMode::Phong;
-        if (variant == 3) s.msaa = 4;
+        if (variant == 3) s.antiAliasing = *AntiAliasing::multisample(4);
         const FrameBuffer other = frameOf(scene, view, s, nullptr, variant == 1 ? 2 : 1);
         if (variant < 2) {
             CHECK(differingPixels(other, fb) == 0);
@@ -343,7 +343,7 @@ TEST_CASE("texel alpha BLEND: factor x texel alpha over what is behind, sorted w
         RenderContext c(other);
         if (variant == 0) s.isa = Isa::Scalar;
         if (variant == 1) c.setThreads(2);
-        if (variant == 2) s.msaa = 4;
+        if (variant == 2) s.antiAliasing = *AntiAliasing::multisample(4);
         renderSceneFrame(c, scene, view, s);
         CHECK(columns(other, view) == columns(fb, view));
     }
