@@ -148,6 +148,7 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"clipped\":" + std::to_string(counters.clipped);
     j += ",\"culled\":" + std::to_string(counters.culled);
     j += ",\"rasterized\":" + std::to_string(counters.rasterized);
+    j += ",\"triangles_set_up\":" + std::to_string(counters.setupsBuilt);
     j += ",\"pixels_shaded\":" + std::to_string(counters.fragmentsShaded);
     j += ",\"pixels_covered\":" + std::to_string(covered);
     j += ",\"triangles_sorted\":" + std::to_string(counters.trianglesSorted);

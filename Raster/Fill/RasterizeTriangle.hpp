@@ -216,6 +216,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     case SetupOutcome::Empty: return true; // covers no sample: nothing to do, but not culled
     case SetupOutcome::Ready: break;
     }
+    ++lane.stats.setupsBuilt; // by this lane, whichever lane counts the triangle
     ++stats->rasterized;
     if (state.stopAfter == PipelineStop::Setup) return true;
     program.triangle(t, static_cast<const TriangleSetup&>(setup));

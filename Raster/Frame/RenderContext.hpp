@@ -24,6 +24,9 @@ struct RenderStats {
     std::uint64_t clipped = 0;          // went through the clipper
     std::uint64_t culled = 0;           // back/front-face culled or zero-area on the snapped grid
     std::uint64_t rasterized = 0;       // triangle setups handed to the fill
+    // Triangle records built by setup, over every lane: `rasterized` on one lane; with several,
+    // a triangle whose rows meet the bands of k lanes is set up by each of them (k times).
+    std::uint64_t setupsBuilt = 0;
     std::uint64_t nonFinite = 0;        // dropped for a NaN/Inf position (part of trivialRejected)
     std::uint64_t fragmentsShaded = 0;  // pixels that passed the depth test and were shaded
     std::uint64_t verticesTransformed = 0; // vertex-stage runs (not counting reused vertices)
@@ -35,6 +38,7 @@ struct RenderStats {
         clipped += o.clipped;
         culled += o.culled;
         rasterized += o.rasterized;
+        setupsBuilt += o.setupsBuilt;
         nonFinite += o.nonFinite;
         fragmentsShaded += o.fragmentsShaded;
         verticesTransformed += o.verticesTransformed;

@@ -307,13 +307,14 @@ TEST_CASE("bench prints one JSON line with the documented fields", "[headless]")
     for (const char* key : {"width", "height", "triangles", "frames", "threads", "ms_per_frame_median",
                             "ms_per_frame_min", "mpix_per_s", "stages_ms", "clear", "transform_clip_cull", "setup",
                             "fill_shade", "counters", "vertices_transformed", "triangles_in", "clipped", "culled",
-                            "rasterized", "pixels_shaded", "overdraw", "triangles_sorted"})
+                            "rasterized", "triangles_set_up", "pixels_shaded", "overdraw", "triangles_sorted"})
         CHECK(hasKey(j, key));
     CHECK(numberOf(j, "width") == 64);
     CHECK(numberOf(j, "frames") == 3);
     CHECK(numberOf(j, "ms_per_frame_min") <= numberOf(j, "ms_per_frame_median"));
     CHECK(numberOf(j, "triangles_in") > 1000);
     CHECK(numberOf(j, "rasterized") <= numberOf(j, "triangles_in"));
+    CHECK(numberOf(j, "triangles_set_up") == numberOf(j, "rasterized")); // one thread: each set up once
     // Counted, and indexed: the built-in scene's triangles share vertices, so fewer vertex-stage
     // runs than triangle corners (the sharing between draws is tested in SharedVertexStageTests).
     CHECK(numberOf(j, "vertices_transformed") > 0);

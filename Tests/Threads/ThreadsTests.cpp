@@ -187,6 +187,7 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
         options.filter = c.filter;
         const RenderSettings settings = app::makeRenderSettings(options);
         const Frame one = renderDefault(options, 1, settings);
+        CHECK(one.stats.setupsBuilt == one.stats.rasterized); // one lane sets each triangle up once
         for (int threads : {2, 3, 4, 7}) {
             INFO(c.width << "x" << c.height << " " << shadingModeName(c.shading) << " cull " << cullModeName(c.cull)
                           << " " << perspectiveModeName(c.persp) << " " << filterName(c.filter) << ", " << threads
@@ -194,6 +195,12 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
             const Frame many = renderDefault(options, threads, settings);
             CHECK(differingPixels(one.fb, many.fb) == 0);
             CHECK(sameStats(one.stats, many.stats));
+            // Several lanes set a triangle up once per lane whose bands it meets: at least once,
+            // at most once per lane.
+            CHECK(many.stats.setupsBuilt >= many.stats.rasterized);
+            CHECK(many.stats.setupsBuilt <= std::uint64_t(threads) * many.stats.rasterized);
+            if (c.height >= 2 * detail::LaneBands::kBandRows && c.width > 100)
+                CHECK(many.stats.setupsBuilt > many.stats.rasterized); // triangles crossing bands
             // Every draw binned (the built-in scene's draws are below kBinningMinTriangles).
             const Frame binned = renderDefault(options, threads, settings, 0);
             CHECK(differingPixels(one.fb, binned.fb) == 0);
