@@ -37,7 +37,8 @@ std::optional<int> parseInt(const std::string& text) {
 QualitySettings qualitySettings(Quality quality, bool physical) {
     if (physical) {
         switch (quality) {
-        case Quality::Fast: return {AntiAliasing::none(), TextureFilter::Nearest, ShadingMode::Pbr, PerspectiveMode::Exact};
+        case Quality::Fast:
+            return {AntiAliasing::none(), TextureFilter::Nearest, ShadingMode::Pbr, PerspectiveMode::Exact};
         case Quality::Balanced:
             return {*AntiAliasing::multisample(4), TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
         case Quality::Accurate:
@@ -45,7 +46,8 @@ QualitySettings qualitySettings(Quality quality, bool physical) {
         }
     }
     switch (quality) {
-    case Quality::Fast: return {AntiAliasing::none(), TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Exact};
+    case Quality::Fast:
+        return {AntiAliasing::none(), TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Exact};
     case Quality::Balanced:
         return {*AntiAliasing::supersample(4), TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
     case Quality::Accurate:
@@ -311,7 +313,8 @@ std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
     if (o.ibl && o.sky == Sky::Kind::None) return "--ibl lights the model from the sky: it needs --sky gradient or --skybox DIR";
     const AntiAliasing aa = o.antiAliasing;
     if (!msaaFits(o.width, o.height, aa.msaaSamples()))
-        return "--msaa " + std::to_string(aa.msaaSamples()) + " at " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+        return "--msaa " + std::to_string(aa.msaaSamples()) + " at " + std::to_string(o.width) + "x" +
+               std::to_string(o.height) +
                " needs more than " + std::to_string(kMaxMsaaSamples) + " samples (the limit): use fewer samples or a "
                "smaller image";
     if (const int f = aa.gridSide(); f > 1 && (o.width > FrameBuffer::kMaxDimension / f ||

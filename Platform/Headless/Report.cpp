@@ -99,7 +99,8 @@ std::string shadingLabel(const RenderSettings& r) {
 std::string label(const Setting& s, bool textured) {
     const RenderSettings& r = s.settings;
     const AntiAliasing aa = r.antiAliasing;
-    std::string l = aa.multisampled() ? "msaa" + std::to_string(aa.samples()) : "ssaa" + std::to_string(aa.ssaaSamples());
+    std::string l =
+        aa.multisampled() ? "msaa" + std::to_string(aa.samples()) : "ssaa" + std::to_string(aa.ssaaSamples());
     if (textured) l += " " + std::string(filterName(r.filter));
     l += " " + shadingLabel(r) + " " + perspectiveModeName(r.perspective);
     return l;
@@ -199,7 +200,8 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         io.out << usage(Subcommand::Report);
         return kExitOk;
     }
-    if (const int f = AntiAliasing::supersample(16)->gridSide(); a.scene.width > FrameBuffer::kMaxDimension / f || a.scene.height > FrameBuffer::kMaxDimension / f) {
+    if (const int f = AntiAliasing::supersample(16)->gridSide();
+        a.scene.width > FrameBuffer::kMaxDimension / f || a.scene.height > FrameBuffer::kMaxDimension / f) {
         io.err << "softraster report: the ground truth renders 16 samples per pixel (4x4): width and height at most "
                << FrameBuffer::kMaxDimension / f << "\n";
         return kExitUsage;
@@ -280,7 +282,8 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         const std::string filter = textured ? filterName(st.filter) : "-";
         const std::string preset = r.setting.preset ? app::qualityName(*r.setting.preset) : "";
         csv << st.antiAliasing.ssaaSamples() << "," << st.antiAliasing.msaaSamples() << "," << filter << ","
-            << shadingLabel(st) << "," << perspectiveModeName(st.perspective) << "," << fmt(r.time.median) << "," << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
+            << shadingLabel(st) << "," << perspectiveModeName(st.perspective) << "," << fmt(r.time.median) << ","
+            << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
             << "," << fmt(r.error.psnrDb, 2) << "," << r.error.maxAbs << "," << fmt(r.error.differingShare, 5) << ","
             << (front[i] ? 1 : 0) << "," << preset << "," << (r.setting.truth ? 1 : 0) << "\n";
         md << "| " << st.antiAliasing.ssaaSamples() << (r.setting.truth ? " (ground truth)" : "") << " | "
