@@ -20,10 +20,14 @@ namespace sr {
 // Waking a sleeping thread takes tens of microseconds (15 us on a 2-vCPU VM, measured), and a
 // frame has a few jobs per draw, so both sides first poll for a while (kSpinTime) before they
 // sleep on the condition variables: a worker waiting for the next draw while the calling thread
-// sets it up, the calling thread waiting for a lane that got the larger share of a draw.
+// sets it up, the calling thread waiting for a lane that got the larger share of a draw. A pool
+// with more lanes than this process may run on at once (usableHardwareThreads) never polls: a
+// polling lane would hold a core that a working lane needs (8 lanes on 2 cores drew the spider
+// close-up 3.8x slower than 2 lanes).
 class ThreadPool {
 public:
-    explicit ThreadPool(int lanes) : lanes_(std::max(lanes, 1)) {
+    explicit ThreadPool(int lanes, int hardwareThreads = usableHardwareThreads())
+        : lanes_(std::max(lanes, 1)), polls_(hardwareThreads <= 0 || lanes_ <= hardwareThreads) {
         workers_.reserve(std::size_t(lanes_ - 1));
         for (int lane = 1; lane < lanes_; ++lane) workers_.emplace_back([this, lane] { workerLoop(lane); });
     }
@@ -39,6 +43,13 @@ public:
     ThreadPool& operator=(const ThreadPool&) = delete;
 
     int lanes() const { return lanes_; }
+    // The hardware threads this process may run on: its CPU affinity where the system says (Linux:
+    // sched_getaffinity, so `taskset -c 0` gives 1), else std::thread::hardware_concurrency; 0
+    // when unknown.
+    static int usableHardwareThreads();
+    // Whether waits poll before they sleep (not when the lanes outnumber the hardware threads;
+    // an unknown count, 0, counts as enough).
+    bool polls() const { return polls_; }
 
     // Calls job(lane) for lane = 0 .. lanes()-1 concurrently and waits for all of them.
     template <class Job>
@@ -86,6 +97,7 @@ private:
     }
 
     int lanes_;
+    bool polls_;
     std::vector<std::thread> workers_;
     std::mutex mutex_;
     std::condition_variable wake_, done_;
@@ -96,8 +108,10 @@ private:
     static void pause();
     // Polls `ready` (with a pause between polls) until it holds or kSpinTime has passed; returns
     // whether it holds. Timed rather than counted, since a pause takes 10 to 150 cycles by CPU.
+    // Without polling (polls_ false): one look.
     template <class Ready>
-    static bool spinUntil(Ready ready) {
+    bool spinUntil(Ready ready) const {
+        if (!polls_) return ready();
         const auto deadline = std::chrono::steady_clock::now() + kSpinTime;
         for (;;) {
             for (int i = 0; i < 16; ++i) {

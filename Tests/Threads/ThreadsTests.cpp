@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <cstring>
 #include <random>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -151,6 +152,22 @@ TEST_CASE("thread pool runs every lane once per job and can be reused", "[thread
         ThreadPool pool(lanes);
         REQUIRE(pool.lanes() == lanes);
         std::vector<int> hits(std::size_t(lanes), 0);
+        for (int round = 0; round < 50; ++round) {
+            auto job = [&](int lane) { ++hits[std::size_t(lane)]; };
+            pool.run(job);
+        }
+        for (int h : hits) CHECK(h == 50);
+    }
+    // The hardware threads this process may use: at least one, at most the machine's.
+    const int usable = ThreadPool::usableHardwareThreads();
+    CHECK(usable >= 1);
+    if (std::thread::hardware_concurrency() > 0) CHECK(usable <= int(std::thread::hardware_concurrency()));
+    // More lanes than hardware threads: no polling, and still every lane once per job.
+    for (int hardware : {0, 1, 2, 4, 8}) {
+        CAPTURE(hardware);
+        ThreadPool pool(4, hardware);
+        CHECK(pool.polls() == (hardware == 0 || hardware >= 4));
+        std::vector<int> hits(4, 0);
         for (int round = 0; round < 50; ++round) {
             auto job = [&](int lane) { ++hits[std::size_t(lane)]; };
             pool.run(job);
