@@ -303,7 +303,7 @@ struct FixedPoint64 {
     std::int64_t x, y;
 };
 
-// Edge function of a -> b at p (the reference rasterizer's, Tests/Raster/ReferenceRasterizer.cpp):
+// Edge function of a -> b at p (the reference rasterizer's, Tests/Fill/ReferenceRasterizer.cpp):
 // > 0 on the interior side of a clockwise (y-down) triangle.
 std::int64_t edgeAt(FixedPoint64 a, FixedPoint64 b, FixedPoint64 p) {
     return (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);

@@ -52,7 +52,7 @@ private:
 
 // Calls visit(y, x0, x1) for every non-empty span [x0, x1) of row y covered by the triangle and
 // inside the scissor, top row first, in increasing y. The rule (D3D10 top-left, proven equal to
-// the edge-function rule in Tests/Raster/TriangleCoverageTests.cpp): row j is covered when its
+// the edge-function rule in Tests/Fill/TriangleCoverageTests.cpp): row j is covered when its
 // centre is in [yTop, yBottom); its span starts at the first centre >= the left edge's x (a
 // centre ON a left edge is in) and ends before the first centre >= the right edge's x (a centre
 // on a right edge is out). A horizontal top edge is the top row's span itself (in); a

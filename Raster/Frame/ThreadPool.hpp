@@ -22,8 +22,7 @@ namespace sr {
 // sleep on the condition variables: a worker waiting for the next draw while the calling thread
 // sets it up, the calling thread waiting for a lane that got the larger share of a draw. A pool
 // with more lanes than this process may run on at once (usableHardwareThreads) never polls: a
-// polling lane would hold a core that a working lane needs (8 lanes on 2 cores drew the spider
-// close-up 3.8x slower than 2 lanes).
+// polling lane would hold a core that a working lane needs (docs/PERFORMANCE.md, Threads).
 class ThreadPool {
 public:
     explicit ThreadPool(int lanes, int hardwareThreads = usableHardwareThreads())

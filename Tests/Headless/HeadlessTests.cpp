@@ -443,7 +443,7 @@ TEST_CASE("--quality selects a preset; explicit flags win in any order", "[headl
 }
 
 TEST_CASE("render of the default scene matches its golden image", "[headless][golden]") {
-    // Same tolerance as the render suite's golden test (Tests/Render/GoldenImageTests.cpp):
+    // Same tolerance as the frame suite's golden test (Tests/Frame/GoldenImageTests.cpp):
     // at most 0.5% of the pixels differ, at most 10 of them by more than 2 levels.
     for (const char* mode : {"unlit", "phong"}) {
         CAPTURE(mode);

@@ -9,7 +9,7 @@ using namespace sr;
 TEST_CASE("specialised pipelines render the default scene exactly like the general path", "[render][shading][specialised]") {
     // Each varying is interpolated independently of how many others a draw carries, and each mode
     // does the same arithmetic in both renderers, so the images must be bit-identical; the
-    // specialised ones only skip work (see Tests/Render/Bench/ShadingBench.cpp for the timing).
+    // specialised ones only skip work (see Tests/Frame/Bench/ShadingBench.cpp for the timing).
     app::SceneOptions options;
     options.width = 160;
     options.height = 120;

@@ -2,7 +2,7 @@
 //
 // The goldens live in Tests/Golden/default_<mode>_160x120.png and are produced by this test itself.
 // To regenerate them after an intended change of the image (then look at them before committing):
-//     SR_UPDATE_GOLDEN=1 build/native/bin/sr_render_tests "[golden]"
+//     SR_UPDATE_GOLDEN=1 build/native/bin/sr_frame_tests "[golden]"
 // which writes the PNGs into the source tree (SR_TEST_DATA_DIR/../Golden) and passes.
 #include "TestFramework.hpp"
 
