@@ -7,7 +7,6 @@
 
 #include "Raster/Frame/FrameBuffer.hpp"
 #include "Raster/Frame/Msaa.hpp"
-#include "Raster/Frame/Resolve.hpp"
 #include "Raster/Geometry/Camera.hpp"
 
 namespace sr::app {

@@ -11,7 +11,6 @@
 namespace sr {
 namespace detail {
 
-// --- Binned draws (several lanes, many triangles) ----------------------------------------------
 // Every lane of the plain walk classifies every triangle, and sets up every one its bands meet,
 // the culled ones included; with several lanes that front end is repeated per lane. A binned draw
 // screens each triangle once instead: lane c classifies and culls chunk c of the triangles
