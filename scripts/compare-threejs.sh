@@ -2,6 +2,9 @@
 # Renders glTF models with softraster and with the three.js reference (../shared/tools/threejs-ref,
 # built by its build.sh) under the same camera, and prints the PSNR over the pixels lit in both,
 # for the default (pbr, linear) and the former model (phong on display values).
+# With IBL=1 both light the models from the same cube-map sky too (scripts/make-sky.py, with
+# three.js's mirrored lookup undone), and the PSNR is over all pixels, the sky included; the
+# second column is then pbr without --ibl.
 # Usage: scripts/compare-threejs.sh [OUT_DIR] [MODEL...]   (a development aid: not in the test command)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -14,14 +17,21 @@ models=("$@")
   "$M/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" "$M/BoxTextured-glTF/BoxTextured.gltf")
 mkdir -p "$out"
 W=${WIDTH:-400} H=${HEIGHT:-300}
-printf '%-22s %14s %14s\n' model "pbr+linear dB" "phong+gamma dB"
+ours=() three=() second=(--shading phong --color gamma) key=psnr_both_nonblack
+heading=("pbr+linear dB" "phong+gamma dB")
+if [[ ${IBL:-0} == 1 ]]; then
+  python3 scripts/make-sky.py "$out/sky" && python3 scripts/make-sky.py "$out/sky-three" --three
+  ours=(--skybox "$out/sky" --ibl) three=(--skybox "$out/sky-three" --ibl) second=(--skybox "$out/sky") key=psnr_all
+  heading=("pbr+ibl dB" "pbr, no ibl dB")
+fi
+printf '%-22s %14s %14s\n' model "${heading[@]}"
 for m in "${models[@]}"; do
   n=$(basename "${m%.*}")
-  cam=$("$sr" render --model "$m" --width "$W" --height "$H" --out "$out/$n.png" --ssaa 16 2>&1 | sed -n 's/^softraster: camera: //p')
-  "$sr" render --model "$m" --width "$W" --height "$H" --ssaa 16 --shading phong --color gamma --out "$out/${n}_phong.png" >/dev/null 2>&1
+  cam=$("$sr" render --model "$m" --width "$W" --height "$H" --out "$out/$n.png" --ssaa 16 "${ours[@]}" 2>&1 | sed -n 's/^softraster: camera: //p')
+  "$sr" render --model "$m" --width "$W" --height "$H" --ssaa 16 "${second[@]}" --out "$out/${n}_phong.png" >/dev/null 2>&1
   # shellcheck disable=SC2086
-  "$ref/render.sh" "$m" --out "$out/${n}_three.png" --width "$W" --height "$H" $cam --quiet >/dev/null
-  p1=$(/usr/bin/python3 "$ref/compare.py" "$out/${n}_three.png" "$out/$n.png" --json | python3 -c 'import json,sys; print("%.1f" % json.load(sys.stdin)["psnr_both_nonblack"])')
-  p0=$(/usr/bin/python3 "$ref/compare.py" "$out/${n}_three.png" "$out/${n}_phong.png" --json | python3 -c 'import json,sys; print("%.1f" % json.load(sys.stdin)["psnr_both_nonblack"])')
+  "$ref/render.sh" "$m" --out "$out/${n}_three.png" --width "$W" --height "$H" $cam "${three[@]}" --quiet >/dev/null
+  p1=$(/usr/bin/python3 "$ref/compare.py" "$out/${n}_three.png" "$out/$n.png" --json | python3 -c 'import json,sys; print("%.1f" % json.load(sys.stdin)[sys.argv[1]])' "$key")
+  p0=$(/usr/bin/python3 "$ref/compare.py" "$out/${n}_three.png" "$out/${n}_phong.png" --json | python3 -c 'import json,sys; print("%.1f" % json.load(sys.stdin)[sys.argv[1]])' "$key")
   printf '%-22s %14s %14s\n' "$n" "$p1" "$p0"
 done

@@ -53,9 +53,7 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
     KernelProgram<Program> withKernel{program};
     // Phong kernels test the shadow maps per pixel as the scalar program does (Kernels.inl's
     // shadowVisibility); flat and Gouraud light per triangle / vertex, unshadowed (Shadow.hpp).
-    // Light from the sky is the scalar pbr program's (the kernels have no image light).
-    const bool kernelsCoverLight = Program::kMode != ShadingMode::Pbr || d.view.ibl == nullptr;
-    if (kernelsCoverLight && (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular))) {
+    if (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular)) {
         const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
         withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);

@@ -1,11 +1,10 @@
-// Image-based light: the sky on a latitude-longitude grid, its SH irradiance, GGX-prefiltered levels, the split-sum table.
+// Image-based light: the sky's SH irradiance, its radiance on octahedral levels prefiltered by GGX, the split-sum table.
 #include "Raster/Shade/Ibl.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-#include "Raster/Shade/Brdf.hpp" // kMinRoughness
 #include "Raster/Shade/ColorSpace.hpp"
 
 namespace sr {
@@ -13,7 +12,7 @@ namespace {
 
 constexpr double kPiIbl = 3.14159265358979323846;
 
-// The unit direction of a grid point: theta from the zenith (+Y), phi from +X toward +Z.
+// The unit direction of a latitude-longitude point: theta from the zenith (+Y), phi from +X toward +Z.
 Vec3 direction(double theta, double phi) {
     return {float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)), float(std::sin(theta) * std::sin(phi))};
 }
@@ -45,83 +44,109 @@ std::array<double, 9> shBasis(double x, double y, double z) {
             0.315392 * (3.0 * z * z - 1.0), 1.092548 * x * z, 0.546274 * (x * x - y * y)};
 }
 
+// The sky in linear light along r.
+Vec3 linearSky(const Sky& sky, Vec3 r) {
+    const Color c = sky.sample(r);
+    return {srgbToLinear(std::clamp(c.r, 0.0f, 1.0f)), srgbToLinear(std::clamp(c.g, 0.0f, 1.0f)),
+            srgbToLinear(std::clamp(c.b, 0.0f, 1.0f))};
+}
+
+// The octahedral square's coordinate of grid column (or row) i plus a fraction f in [0, 1) of
+// the texel: column 1 starts at -1, column kSide ends at +1 (columns 0 and kSide + 1 the border).
+double gridToSquare(int i, double f) { return (double(i - 1) + f) / double(ImageLight::kSide) * 2.0 - 1.0; }
+
 } // namespace
 
-Vec3 ImageLight::Grid::sample(Vec3 r) const {
-    const double len = std::sqrt(double(r.x) * r.x + double(r.y) * r.y + double(r.z) * r.z);
-    if (!(len > 0.0) || !std::isfinite(len)) return texels[0];
-    double phi = std::atan2(double(r.z), double(r.x));
-    if (phi < 0.0) phi += 2.0 * kPiIbl;
-    const double theta = std::acos(std::clamp(double(r.y) / len, -1.0, 1.0));
-    const double fx = phi / (2.0 * kPiIbl) * width - 0.5, fy = theta / kPiIbl * height - 0.5;
-    const double x0f = std::floor(fx), y0f = std::floor(fy);
-    const float wx = float(fx - x0f), wy = float(fy - y0f);
-    const int x0 = ((int(x0f) % width) + width) % width, x1 = (x0 + 1) % width;
-    const int y0 = std::clamp(int(y0f), 0, height - 1), y1 = std::clamp(int(y0f) + 1, 0, height - 1);
-    const auto at = [&](int x, int y) { return texels[std::size_t(y) * std::size_t(width) + std::size_t(x)]; };
-    const Vec3 top = at(x0, y0) * (1.0f - wx) + at(x1, y0) * wx;
-    const Vec3 bottom = at(x0, y1) * (1.0f - wx) + at(x1, y1) * wx;
-    return top * (1.0f - wy) + bottom * wy;
+Vec3 ImageLight::octahedralDirection(double u, double v) {
+    // Across an edge of the square the map continues on the same edge, mirrored (u > 1 is
+    // (2 - u, -v)): the edges are where the folded lower hemisphere meets itself.
+    if (u > 1.0) u = 2.0 - u, v = -v;
+    if (u < -1.0) u = -2.0 - u, v = -v;
+    if (v > 1.0) v = 2.0 - v, u = -u;
+    if (v < -1.0) v = -2.0 - v, u = -u;
+    double x = u, z = v;
+    const double y = 1.0 - std::fabs(u) - std::fabs(v);
+    if (y < 0.0) {
+        x = (1.0 - std::fabs(v)) * (u < 0.0 ? -1.0 : 1.0);
+        z = (1.0 - std::fabs(u)) * (v < 0.0 ? -1.0 : 1.0);
+    }
+    const double len = std::sqrt(x * x + y * y + z * z);
+    return {float(x / len), float(y / len), float(z / len)};
 }
 
 ImageLight::ImageLight(const Sky& sky) {
-    // The sky in linear light on a 128 x 64 grid, each texel the mean of 4 x 4 directions.
-    Grid& base = levels_[0];
-    base.width = 128;
-    base.height = 64;
-    base.texels.resize(std::size_t(base.width) * std::size_t(base.height));
-    for (int y = 0; y < base.height; ++y)
-        for (int x = 0; x < base.width; ++x) {
-            double sum[3] = {0, 0, 0};
-            for (int j = 0; j < 4; ++j)
-                for (int i = 0; i < 4; ++i) {
-                    const double theta = kPiIbl * (y + (j + 0.5) / 4.0) / base.height;
-                    const double phi = 2.0 * kPiIbl * (x + (i + 0.5) / 4.0) / base.width;
-                    const Color c = sky.sample(direction(theta, phi));
-                    sum[0] += srgbToLinear(std::clamp(c.r, 0.0f, 1.0f));
-                    sum[1] += srgbToLinear(std::clamp(c.g, 0.0f, 1.0f));
-                    sum[2] += srgbToLinear(std::clamp(c.b, 0.0f, 1.0f));
-                }
-            base.texels[std::size_t(y) * std::size_t(base.width) + std::size_t(x)] =
-                Vec3{float(sum[0] / 16.0), float(sum[1] / 16.0), float(sum[2] / 16.0)};
-        }
-
-    // Irradiance: the projection on bands 0-2 (solid angle sin(theta) dtheta dphi per texel),
-    // each band convolved with the clamped cosine (pi, 2 pi / 3, pi / 4), divided by pi.
+    // Irradiance: the sky in linear light on a 128 x 64 latitude-longitude grid (each texel the
+    // mean of 4 x 4 directions) projected on bands 0-2 (solid angle sin(theta) dtheta dphi per
+    // texel), each band convolved with the clamped cosine (pi, 2 pi / 3, pi / 4), divided by pi.
+    constexpr int kLatLongW = 128, kLatLongH = 64;
     std::array<double, 27> coefficients{};
-    const double dTheta = kPiIbl / base.height, dPhi = 2.0 * kPiIbl / base.width;
-    for (int y = 0; y < base.height; ++y) {
+    const double dTheta = kPiIbl / kLatLongH, dPhi = 2.0 * kPiIbl / kLatLongW;
+    for (int y = 0; y < kLatLongH; ++y) {
         const double theta = (y + 0.5) * dTheta;
         const double weight = std::sin(theta) * dTheta * dPhi;
-        for (int x = 0; x < base.width; ++x) {
+        for (int x = 0; x < kLatLongW; ++x) {
+            double l[3] = {0, 0, 0};
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i) {
+                    const Vec3 c = linearSky(sky, direction(kPiIbl * (y + (j + 0.5) / 4.0) / kLatLongH,
+                                                            2.0 * kPiIbl * (x + (i + 0.5) / 4.0) / kLatLongW));
+                    l[0] += c.x / 16.0;
+                    l[1] += c.y / 16.0;
+                    l[2] += c.z / 16.0;
+                }
             const Vec3 d = direction(theta, (x + 0.5) * dPhi);
             const std::array<double, 9> basis = shBasis(d.x, d.y, d.z);
-            const Vec3 l = base.texels[std::size_t(y) * std::size_t(base.width) + std::size_t(x)];
-            for (int k = 0; k < 9; ++k) {
-                coefficients[std::size_t(3 * k)] += double(l.x) * basis[std::size_t(k)] * weight;
-                coefficients[std::size_t(3 * k + 1)] += double(l.y) * basis[std::size_t(k)] * weight;
-                coefficients[std::size_t(3 * k + 2)] += double(l.z) * basis[std::size_t(k)] * weight;
-            }
+            for (int k = 0; k < 9; ++k)
+                for (int c = 0; c < 3; ++c) coefficients[std::size_t(3 * k + c)] += double(float(l[c])) * basis[std::size_t(k)] * weight;
         }
     }
     const double band[9] = {kPiIbl, 2.0 * kPiIbl / 3.0, 2.0 * kPiIbl / 3.0, 2.0 * kPiIbl / 3.0, kPiIbl / 4.0, kPiIbl / 4.0, kPiIbl / 4.0, kPiIbl / 4.0, kPiIbl / 4.0};
     for (int k = 0; k < 9; ++k)
-        sh_[std::size_t(k)] = Vec3{float(coefficients[std::size_t(3 * k)] * band[k] / kPiIbl),
-                                   float(coefficients[std::size_t(3 * k + 1)] * band[k] / kPiIbl),
-                                   float(coefficients[std::size_t(3 * k + 2)] * band[k] / kPiIbl)};
+        for (int c = 0; c < 3; ++c) tables_.sh[k][c] = float(coefficients[std::size_t(3 * k + c)] * band[k] / kPiIbl);
 
-    // Specular levels: GGX around R = N = V, weighted by N.L (Karis 2013), from the base grid.
+    // Level 0: the sky itself, each texel (the border's too, across its fold) the mean of 4 x 4
+    // directions within it.
+    for (auto& channel : radiance_) channel.assign(std::size_t(kLevels) * std::size_t(kLevelTexels), 0.0f);
+    lutA_.assign(std::size_t(kLut) * std::size_t(kLut), 0.0f);
+    lutB_.assign(std::size_t(kLut) * std::size_t(kLut), 0.0f);
+    for (std::size_t c = 0; c < 3; ++c) tables_.radiance[c] = radiance_[c].data();
+    tables_.lutA = lutA_.data();
+    tables_.lutB = lutB_.data();
+    const auto put = [&](int level, int x, int y, Vec3 c) {
+        const std::size_t at = std::size_t(level) * std::size_t(kLevelTexels) + std::size_t(y) * std::size_t(kStride) + std::size_t(x);
+        radiance_[0][at] = c.x;
+        radiance_[1][at] = c.y;
+        radiance_[2][at] = c.z;
+    };
+    for (int y = 0; y < kStride; ++y)
+        for (int x = 0; x < kStride; ++x) {
+            double sum[3] = {0, 0, 0};
+            for (int j = 0; j < 4; ++j)
+                for (int i = 0; i < 4; ++i) {
+                    const Vec3 c = linearSky(sky, octahedralDirection(gridToSquare(x, (i + 0.5) / 4.0), gridToSquare(y, (j + 0.5) / 4.0)));
+                    sum[0] += c.x;
+                    sum[1] += c.y;
+                    sum[2] += c.z;
+                }
+            put(0, x, y, Vec3{float(sum[0] / 16.0), float(sum[1] / 16.0), float(sum[2] / 16.0)});
+        }
+
+    // Levels 1-5: GGX around R = N = V, weighted by N.L (Karis 2013), from level 0 (read as the
+    // lookups read it), at each texel's centre direction.
+    const Tables& t = tables_;
+    const auto level0 = [&](Vec3 d) {
+        float fx, fy, c[3];
+        ibl::iblGridPosition(d.x, d.y, d.z, fx, fy);
+        ibl::iblGridSample(t, 0.0f, fx, fy, c);
+        return Vec3{c[0], c[1], c[2]};
+    };
     constexpr int kSamples = 256;
     for (int level = 1; level < kLevels; ++level) {
         const double roughness = double(level) / double(kLevels - 1);
         const double alpha = roughness * roughness;
-        Grid& g = levels_[std::size_t(level)];
-        g.width = 64;
-        g.height = 32;
-        g.texels.resize(std::size_t(g.width) * std::size_t(g.height));
-        for (int y = 0; y < g.height; ++y)
-            for (int x = 0; x < g.width; ++x) {
-                const Vec3 n = direction(kPiIbl * (y + 0.5) / g.height, 2.0 * kPiIbl * (x + 0.5) / g.width);
+        for (int y = 0; y < kStride; ++y)
+            for (int x = 0; x < kStride; ++x) {
+                const Vec3 n = octahedralDirection(gridToSquare(x, 0.5), gridToSquare(y, 0.5));
                 // A frame around n.
                 const Vec3 up = std::fabs(n.y) < 0.999f ? Vec3{0, 1, 0} : Vec3{1, 0, 0};
                 const Vec3 tx = normalize(cross(up, n)), ty = cross(n, tx);
@@ -134,22 +159,20 @@ ImageLight::ImageLight(const Sky& sky) {
                     const Vec3 l = h * (2.0f * vDotH) - n;
                     const float nDotL = dot(n, l);
                     if (!(nDotL > 0.0f)) continue;
-                    const Vec3 c = base.sample(l);
+                    const Vec3 c = level0(l);
                     sum[0] += double(c.x) * nDotL;
                     sum[1] += double(c.y) * nDotL;
                     sum[2] += double(c.z) * nDotL;
                     total += nDotL;
                 }
-                g.texels[std::size_t(y) * std::size_t(g.width) + std::size_t(x)] =
-                    total > 0.0 ? Vec3{float(sum[0] / total), float(sum[1] / total), float(sum[2] / total)} : base.sample(n);
+                put(level, x, y,
+                    total > 0.0 ? Vec3{float(sum[0] / total), float(sum[1] / total), float(sum[2] / total)} : level0(n));
             }
     }
 
     // The split sum's table: for V at N.V in the plane xz and N = +Z, the GGX lobe's samples
     // weighted by Vis 4 N.L V.H / N.H (Vis the height-correlated Smith term of Brdf.hpp), split
     // by Schlick's (1 - V.H)^5 into the scale and the bias of F0.
-    lutA_.assign(std::size_t(kLut) * std::size_t(kLut), 0.0f);
-    lutB_.assign(std::size_t(kLut) * std::size_t(kLut), 0.0f);
     for (int j = 0; j < kLut; ++j) {
         const double roughness = std::max(double(j) / double(kLut - 1), double(kMinRoughness));
         const double alpha = roughness * roughness, a2 = alpha * alpha;
@@ -178,37 +201,19 @@ ImageLight::ImageLight(const Sky& sky) {
 }
 
 Vec3 ImageLight::diffuse(Vec3 n) const {
-    const std::array<double, 9> basis = shBasis(n.x, n.y, n.z);
-    double e[3] = {0, 0, 0};
-    for (int k = 0; k < 9; ++k) {
-        e[0] += double(sh_[std::size_t(k)].x) * basis[std::size_t(k)];
-        e[1] += double(sh_[std::size_t(k)].y) * basis[std::size_t(k)];
-        e[2] += double(sh_[std::size_t(k)].z) * basis[std::size_t(k)];
-    }
-    return {float(std::max(e[0], 0.0)), float(std::max(e[1], 0.0)), float(std::max(e[2], 0.0))};
+    float e[3];
+    ibl::iblDiffuse(tables(), n.x, n.y, n.z, e);
+    return {e[0], e[1], e[2]};
 }
 
 Vec3 ImageLight::specular(Vec3 r, float roughness) const {
-    const float t = (roughness >= 0.0f ? std::min(roughness, 1.0f) : 0.0f) * float(kLevels - 1);
-    const int lo = std::min(int(t), kLevels - 2);
-    const float w = t - float(lo);
-    const Vec3 a = levels_[std::size_t(lo)].sample(r), b = levels_[std::size_t(lo + 1)].sample(r);
-    return a * (1.0f - w) + b * w;
+    float s[3];
+    ibl::iblSpecular(tables(), r.x, r.y, r.z, roughness, s);
+    return {s[0], s[1], s[2]};
 }
 
 void ImageLight::brdfScaleBias(float nDotV, float roughness, float& a, float& b) const {
-    const auto unit = [](float x) { return x >= 0.0f ? std::min(x, 1.0f) : 0.0f; };
-    const float fx = unit(nDotV) * float(kLut - 1), fy = unit(roughness) * float(kLut - 1);
-    const int x0 = std::min(int(fx), kLut - 2), y0 = std::min(int(fy), kLut - 2);
-    const float wx = fx - float(x0), wy = fy - float(y0);
-    const auto bilinear = [&](const std::vector<float>& t) {
-        const auto at = [&](int x, int y) { return t[std::size_t(y * kLut + x)]; };
-        const float top = at(x0, y0) * (1.0f - wx) + at(x0 + 1, y0) * wx;
-        const float bottom = at(x0, y0 + 1) * (1.0f - wx) + at(x0 + 1, y0 + 1) * wx;
-        return top * (1.0f - wy) + bottom * wy;
-    };
-    a = bilinear(lutA_);
-    b = bilinear(lutB_);
+    ibl::iblScaleBias(tables(), nDotV, roughness, a, b);
 }
 
 } // namespace sr

@@ -31,20 +31,12 @@ inline Vec3 perturbNormal(Vec3 n, Vec4 tangent, Color texel, float scale) {
 }
 
 // The light a sky sends toward v from a surface (N, V unit): Lambert's c_diff x E(n) / pi plus
-// the split sum's prefiltered radiance along R = 2 (N.V) N - V times F0 a + b (Ibl.hpp).
-inline Vec3 imageLight(const ImageLight& ibl, const PbrSurface& s, Vec3 n, Vec3 v) {
-    const float roughness = brdfRoughness(s.roughness), metallic = brdfMetallic(s.metallic);
-    const float nDotV = std::max(dot(n, v), 1e-4f);
-    const Vec3 r = n * (2.0f * dot(n, v)) - v;
-    float a = 0.0f, b = 0.0f;
-    ibl.brdfScaleBias(nDotV, roughness, a, b);
-    const Vec3 e = ibl.diffuse(n), spec = ibl.specular(r, roughness);
-    const float base[3] = {s.baseColor.x, s.baseColor.y, s.baseColor.z}, ev[3] = {e.x, e.y, e.z}, sv[3] = {spec.x, spec.y, spec.z};
+// the split sum's prefiltered radiance along R = 2 (N.V) N - V times F0 a + b (Ibl.hpp,
+// iblRadiance: the kernels evaluate the same source).
+inline Vec3 imageLight(const ImageLight& light, const PbrSurface& s, Vec3 n, Vec3 v) {
+    const float base[3] = {s.baseColor.x, s.baseColor.y, s.baseColor.z};
     float out[3];
-    for (int c = 0; c < 3; ++c) {
-        const float f0 = 0.04f + (base[c] - 0.04f) * metallic;
-        out[c] = base[c] * (1.0f - metallic) * ev[c] + sv[c] * (f0 * a + b);
-    }
+    ibl::iblRadiance(light.tables(), base, s.metallic, s.roughness, n.x, n.y, n.z, v.x, v.y, v.z, out);
     return {out[0], out[1], out[2]};
 }
 

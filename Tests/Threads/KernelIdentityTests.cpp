@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "Raster/Fill/Kernels/KernelTable.hpp"
 #include "Raster/Fill/ScanlineFill.hpp" // fillTriangle, the reference
 #include "Raster/Shade/MeshPrograms.hpp"
+#include "Raster/Shade/Ibl.hpp"
 #include "Raster/Shade/PbrProgram.hpp"
 #include "Raster/Shade/Shadow.hpp"
 
@@ -425,6 +427,82 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
     }
     REQUIRE(ran > 0);
     CHECK(totals.pixels > 50000 * long(ran));
+}
+
+TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map are bit-identical to the scalar program",
+          "[threads][simd][kernels][pbr][ibl]") {
+    std::mt19937 rng(41u);
+    const Mesh mesh = oneTriangle();
+    // A sky of random texels: every lookup of the levels reads something different.
+    constexpr int kN = 8;
+    std::vector<std::uint8_t> faces[kCubeFaces];
+    for (auto& f : faces) {
+        f.resize(std::size_t(kN) * kN * 4);
+        for (auto& b : f) b = std::uint8_t(rng() & 0xFFu);
+    }
+    Sky sky;
+    sky.kind = Sky::Kind::Cube;
+    sky.cube = std::make_shared<const CubeMap>(CubeMap::fromRgba8(
+        kN, {faces[0].data(), faces[1].data(), faces[2].data(), faces[3].data(), faces[4].data(), faces[5].data()}));
+    const ImageLight ibl(sky);
+    FrameView view;
+    view.eye = {0.3f, 0.4f, 3.0f};
+    view.lighting.physical = true;
+    view.lighting.ambient = 0.0f;
+    view.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1)), {kPiF, kPiF, kPiF, 1.0f})};
+    view.ibl = &ibl;
+    const Texture base = randomTexture(rng, 13, 7), mr = randomTexture(rng, 32, 16), occlusion = randomTexture(rng, 8, 4);
+    const Texture normals = randomTexture(rng, 16, 8);
+    PbrFactors rough, polished;
+    rough.baseColor = {0.8f, 0.5f, 0.3f, 1.0f};
+    rough.metallic = 0.2f;
+    rough.roughness = 0.9f;
+    rough.occlusionStrength = 0.6f;
+    polished.baseColor = {1.0f, 0.8f, 0.4f, 1.0f};
+    polished.metallic = 1.0f;
+    polished.roughness = 0.03f;
+    Totals totals;
+    int ran = 0;
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+        if (!isaAvailable(isa)) continue;
+        ++ran;
+        for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
+            for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear})
+                for (const bool linear : {true, false}) {
+                    RenderSettings settings;
+                    settings.filter = filter;
+                    settings.perspective = persp;
+                    settings.shading = ShadingMode::Pbr;
+                    settings.colour = linear ? ColorMode::Linear : ColorMode::Gamma;
+                    const KernelKey key{DepthMode::TestWrite, persp, filter, WrapMode::Repeat};
+                    for (const PbrFactors* factors : {&rough, &polished}) {
+                        SurfaceMaterial material;
+                        material.pbr = factors;
+                        material.texture = &base;
+                        material.metallicRoughness = &mr;
+                        material.occlusion = &occlusion;
+                        DrawContext d{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
+                                      Specular{}, 1.0f, false, true, {}};
+                        d.linear = linear;
+                        d.material = &material;
+                        compareKernel<PbrProgram<true>>(isa, key, [&] { return PbrProgram<true>(&d); }, rng, totals);
+                        SurfaceMaterial mapped = material;
+                        mapped.normalMap = &normals;
+                        DrawContext dn = d;
+                        dn.material = &mapped;
+                        compareKernel<PbrProgram<true, true>>(isa, key, [&] { return PbrProgram<true, true>(&dn); }, rng, totals);
+                        SurfaceMaterial plain;
+                        plain.pbr = factors;
+                        DrawContext u{view, settings, mesh, mesh.indices.data(), nullptr, Color{1.0f, 1.0f, 1.0f, 1.0f},
+                                      Specular{}, 1.0f, false, false, {}};
+                        u.linear = linear;
+                        u.material = &plain;
+                        compareKernel<PbrProgram<false>>(isa, key, [&] { return PbrProgram<false>(&u); }, rng, totals);
+                    }
+                }
+    }
+    REQUIRE(ran > 0);
+    CHECK(totals.pixels > 20000 * long(ran));
 }
 
 TEST_CASE("the sRGB encoder's table: one midpoint per bucket at most, and the encoder exact for every float from 2^-13 to 1", "[threads][simd][colour]") {

@@ -5,6 +5,25 @@
 // brdfCosineTerms compiled for this ISA (the scalar reference's source, Brdf.hpp).
 #include "Raster/Shade/BrdfTerms.inl"
 
+// The image light's lookups compiled for this ISA (Ibl.hpp's source, IblTerms.inl), with its
+// operations on lanes: absOf, wholeOf (truncation: the callers pass values in [0, 2^24)) and
+// gatherOf (a float table at whole-number indices).
+SR_SIMD_INLINE F absOf(F a) { return fabs(a); }
+SR_SIMD_INLINE F wholeOf(F a) { return toFloat(truncToInt(a)); }
+SR_SIMD_INLINE F gatherOf(const float* table, F index) {
+    return asFloat(gather(reinterpret_cast<const std::uint32_t*>(table), truncToInt(index)));
+}
+#include "Raster/Shade/IblTerms.inl"
+
+// programs::imageLight per lane (iblRadiance), out of line: about forty gathers.
+SR_SIMD_NOINLINE Rgb imageLightLanes(const ImageLight::Tables& t, F baseR, F baseG, F baseB, F metallic, F roughness, const V3& n,
+                                     const V3& v) {
+    const F base[3] = {baseR, baseG, baseB};
+    F out[3];
+    iblRadiance(t, base, metallic, roughness, n.x, n.y, n.z, v.x, v.y, v.z, out);
+    return {out[0], out[1], out[2]};
+}
+
 // The radiance at the lanes' points (px, py, pz) with unit normals n and view vectors v:
 // pbrRadiance's loop over the lights (lightAt's direction and factor as lightsRgb computes
 // them, the shadow maps' lit fraction, brdfCosineTerms), the same operations in the same
@@ -108,6 +127,7 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
     F baseR = fset(k.baseColor.r), baseG = fset(k.baseColor.g), baseB = fset(k.baseColor.b);
     F metallic = fset(k.metallic), roughness = fset(k.roughness);
     F eR = fset(k.emissive.x), eG = fset(k.emissive.y), eB = fset(k.emissive.z);
+    F occlusion = fset(1.0f); // the occlusion map's factor on the light from the sky
     if constexpr (Prog::kIsTextured) {
         // Each map at its own level of detail (PbrProgram::sampleMap).
         auto mapLanes = [&](const Texture& map, bool colour) SR_SIMD_LAMBDA {
@@ -132,12 +152,20 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
             eG = eG * c.g;
             eB = eB * c.b;
         }
+        if (d.view.ibl && m.occlusion) {
+            const F one = fset(1.0f);
+            occlusion = one + fset(k.occlusionStrength) * (mapLanes(*m.occlusion, false).r - one);
+        }
         if constexpr (Prog::kNormalMap) {
             constexpr int kT = Prog::kT;
             n = perturbNormalLanes(n, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.normalMap, false), k.normalScale);
         }
     }
-    const Rgb r = pbrLights(d.view.lighting, d.view.shadows, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z, v[kP],
-                            v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok);
+    Rgb r = pbrLights(d.view.lighting, d.view.shadows, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z, v[kP],
+                      v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok);
+    if (d.view.ibl) {
+        const Rgb sky = imageLightLanes(d.view.ibl->tables(), baseR, baseG, baseB, metallic, roughness, n, toEye);
+        r = {r.r + sky.r * occlusion, r.g + sky.g * occlusion, r.b + sky.b * occlusion};
+    }
     return {r.r + eR, r.g + eG, r.b + eB};
 }

@@ -1,0 +1,126 @@
+// The image light's per-pixel lookups over a generic real type: included by Ibl.hpp (float) and LanePbr.inl (each ISA's lanes).
+//
+// Included INSIDE a namespace (sr, or sr::kernels_<isa> within that ISA's target region), with
+// no include guard, as BrdfTerms.inl (which must come first: brdfRoughness, brdfMetallic). The
+// operations absOf, wholeOf and gatherOf come from Ibl.hpp (float) or LanePbr.inl (lanes), the
+// others from Brdf.hpp or the ISA's Simd*.hpp. Every index is computed in float from whole
+// numbers below 2^24 (exact), and every coordinate is clamped into the grid first, NaN included,
+// so a lane of garbage still reads inside the tables.
+
+// x clamped into [lo, hi]; NaN gives lo.
+template <class R>
+inline R iblClamp(R x, float lo, float hi) {
+    const R l = splatAs(x, lo);
+    return selectOf(x > l, minOf(x, splatAs(x, hi)), l);
+}
+
+// The grid position (fx, fy) of the direction (x, y, z) on the octahedral levels (Ibl.hpp):
+// (u, v) = (x, z) / (|x| + |y| + |z|), folded for y < 0 to ((1 - |v|) sign u, (1 - |u|) sign v),
+// then u = -1 at texel column 1's left edge, +1 at column kSide's right edge; texel centres at
+// whole numbers, so fx in [0.5, kSide + 0.5].
+template <class R>
+inline void iblGridPosition(R x, R y, R z, R& fx, R& fy) {
+    const R zero = splatAs(x, 0.0f), one = splatAs(x, 1.0f), minusOne = splatAs(x, -1.0f);
+    const R s = (absOf(x) + absOf(y)) + absOf(z);
+    const R px = x / s, pz = z / s;
+    const R ax = absOf(px), az = absOf(pz);
+    const auto lower = y < zero;
+    const R u = selectOf(lower, (one - az) * selectOf(px < zero, minusOne, one), px);
+    const R v = selectOf(lower, (one - ax) * selectOf(pz < zero, minusOne, one), pz);
+    const R half = splatAs(x, 0.5f * float(ImageLight::kSide)), centre = splatAs(x, 0.5f);
+    fx = iblClamp((u + one) * half + centre, 0.5f, float(ImageLight::kSide) + 0.5f);
+    fy = iblClamp((v + one) * half + centre, 0.5f, float(ImageLight::kSide) + 0.5f);
+}
+
+// The bilinear radiance at grid position (fx, fy) of the level starting at texel `first`.
+template <class R>
+inline void iblGridSample(const ImageLight::Tables& t, R first, R fx, R fy, R out[3]) {
+    const R one = splatAs(fx, 1.0f), stride = splatAs(fx, float(ImageLight::kStride));
+    const R x0 = wholeOf(fx), y0 = wholeOf(fy);
+    const R wx = fx - x0, wy = fy - y0;
+    const R i00 = first + y0 * stride + x0;
+    const R i10 = i00 + one, i01 = i00 + stride, i11 = i01 + one;
+    for (int c = 0; c < 3; ++c) {
+        const float* p = t.radiance[c];
+        const R top = gatherOf(p, i00) * (one - wx) + gatherOf(p, i10) * wx;
+        const R bottom = gatherOf(p, i01) * (one - wx) + gatherOf(p, i11) * wx;
+        out[c] = top * (one - wy) + bottom * wy;
+    }
+}
+
+// ImageLight::specular: the two levels around roughness (clamped into [0, 1], NaN 0), blended.
+template <class R>
+inline void iblSpecular(const ImageLight::Tables& t, R rx, R ry, R rz, R roughness, R out[3]) {
+    const R one = splatAs(rx, 1.0f);
+    const R level = iblClamp(roughness, 0.0f, 1.0f) * splatAs(rx, float(ImageLight::kLevels - 1));
+    const R lo = minOf(wholeOf(level), splatAs(rx, float(ImageLight::kLevels - 2)));
+    const R w = level - lo;
+    R fx, fy;
+    iblGridPosition(rx, ry, rz, fx, fy);
+    const R texels = splatAs(rx, float(ImageLight::kLevelTexels));
+    R a[3], b[3];
+    iblGridSample(t, lo * texels, fx, fy, a);
+    iblGridSample(t, (lo + one) * texels, fx, fy, b);
+    for (int c = 0; c < 3; ++c) out[c] = a[c] * (one - w) + b[c] * w;
+}
+
+// ImageLight::diffuse: E(n) / pi from the nine coefficients, each channel at least 0 (NaN 0).
+template <class R>
+inline void iblDiffuse(const ImageLight::Tables& t, R x, R y, R z, R out[3]) {
+    const R zero = splatAs(x, 0.0f);
+    const R basis[9] = {splatAs(x, 0.282095f),
+                        splatAs(x, 0.488603f) * y,
+                        splatAs(x, 0.488603f) * z,
+                        splatAs(x, 0.488603f) * x,
+                        splatAs(x, 1.092548f) * x * y,
+                        splatAs(x, 1.092548f) * y * z,
+                        splatAs(x, 0.315392f) * (splatAs(x, 3.0f) * z * z - splatAs(x, 1.0f)),
+                        splatAs(x, 1.092548f) * x * z,
+                        splatAs(x, 0.546274f) * (x * x - y * y)};
+    for (int c = 0; c < 3; ++c) {
+        R e = splatAs(x, t.sh[0][c]) * basis[0];
+        for (int k = 1; k < 9; ++k) e = e + splatAs(x, t.sh[k][c]) * basis[k];
+        out[c] = selectOf(e > zero, e, zero);
+    }
+}
+
+// ImageLight::brdfScaleBias: the table's bilinear value at (N.V, roughness), each clamped into
+// [0, 1] (NaN 0).
+template <class R>
+inline void iblScaleBias(const ImageLight::Tables& t, R nDotV, R roughness, R& a, R& b) {
+    const R one = splatAs(nDotV, 1.0f), last = splatAs(nDotV, float(ImageLight::kLut - 1));
+    const R secondLast = splatAs(nDotV, float(ImageLight::kLut - 2)), row = splatAs(nDotV, float(ImageLight::kLut));
+    const R fx = iblClamp(nDotV, 0.0f, 1.0f) * last, fy = iblClamp(roughness, 0.0f, 1.0f) * last;
+    const R x0 = minOf(wholeOf(fx), secondLast), y0 = minOf(wholeOf(fy), secondLast);
+    const R wx = fx - x0, wy = fy - y0;
+    const R i00 = y0 * row + x0;
+    const R i10 = i00 + one, i01 = i00 + row, i11 = i01 + one;
+    auto bilinear = [&](const float* p) {
+        const R top = gatherOf(p, i00) * (one - wx) + gatherOf(p, i10) * wx;
+        const R bottom = gatherOf(p, i01) * (one - wx) + gatherOf(p, i11) * wx;
+        return top * (one - wy) + bottom * wy;
+    };
+    a = bilinear(t.lutA);
+    b = bilinear(t.lutB);
+}
+
+// The light a sky sends toward v from a surface with unit normal n (programs::imageLight):
+// Lambert's c_diff x E(n) / pi plus the prefiltered radiance along R = 2 (N.V) N - V times
+// F0 a + b, with the BRDF's roughness and metallic (brdfRoughness, brdfMetallic).
+template <class R>
+inline void iblRadiance(const ImageLight::Tables& t, const R base[3], R metallicIn, R roughnessIn, R nx, R ny, R nz, R vx,
+                        R vy, R vz, R out[3]) {
+    const R one = splatAs(nx, 1.0f), f0Dielectric = splatAs(nx, 0.04f);
+    const R roughness = brdfRoughness(roughnessIn), metallic = brdfMetallic(metallicIn);
+    const R ndv = (nx * vx + ny * vy) + nz * vz;
+    const R nDotV = maxOf(ndv, splatAs(nx, 1e-4f));
+    const R twice = splatAs(nx, 2.0f) * ndv;
+    R a, b, e[3], spec[3];
+    iblScaleBias(t, nDotV, roughness, a, b);
+    iblDiffuse(t, nx, ny, nz, e);
+    iblSpecular(t, nx * twice - vx, ny * twice - vy, nz * twice - vz, roughness, spec);
+    for (int c = 0; c < 3; ++c) {
+        const R f0 = f0Dielectric + (base[c] - f0Dielectric) * metallic;
+        out[c] = base[c] * (one - metallic) * e[c] + spec[c] * (f0 * a + b);
+    }
+}
