@@ -186,7 +186,13 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
         return nullptr;
     }
     p->context.setTarget(p->framebuffer);
-    p->context.setThreads(a.scene.threads); // 0 (llvmpipe's "no extra thread") renders on the caller too
+    // 0 (llvmpipe's "no extra thread") renders on the caller too; more threads than this process
+    // may run on at once are not started (they would only take turns).
+    const int worth = ThreadPool::threadsWorthStarting(a.scene.threads);
+    if (worth < a.scene.threads && !a.quiet)
+        err << "softraster: --threads " << a.scene.threads << ": this process may run on " << worth
+            << " CPU" << (worth == 1 ? "" : "s") << " at once: rendering with " << worth << " thread" << (worth == 1 ? "" : "s") << "\n";
+    p->context.setThreads(worth);
     p->threadsUsed = p->context.threads();
     if (a.scene.wireframe && p->threadsUsed > 1 && !a.quiet)
         err << "softraster: warning: --wireframe draws on one thread (its lines cross the thread bands)\n";

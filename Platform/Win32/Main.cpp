@@ -118,7 +118,7 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
 
     win32::enableDpiAwareness(); // before any window exists
     win32::MainWindow window(scene, controller);
-    window.setThreads(options.scene.threads);
+    window.setThreads(ThreadPool::threadsWorthStarting(options.scene.threads)); // more would take turns on the CPUs
     const bool created = options.sizeGiven
                              ? window.create(instance, showCommand, options.scene.width, options.scene.height, false)
                              : window.create(instance, showCommand, kDefaultClientWidth, kDefaultClientHeight, true);

@@ -46,6 +46,14 @@ public:
     // sched_getaffinity, so `taskset -c 0` gives 1), else std::thread::hardware_concurrency; 0
     // when unknown.
     static int usableHardwareThreads();
+    // The render threads worth starting for `requested`: at least 1 and at most the hardware
+    // threads this process may use (an unknown count, 0, limits nothing). More would only take
+    // turns on the same CPUs: the image is the same whatever the count, the frame slower
+    // (docs/PERFORMANCE.md, Threads).
+    static int threadsWorthStarting(int requested, int usable = usableHardwareThreads()) {
+        const int n = std::max(requested, 1);
+        return usable > 0 ? std::min(n, usable) : n;
+    }
     // Whether waits poll before they sleep (not when the lanes outnumber the hardware threads;
     // an unknown count, 0, counts as enough).
     bool polls() const { return polls_; }

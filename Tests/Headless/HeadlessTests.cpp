@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "Platform/Headless/Commands.hpp"
+#include "Raster/Frame/ThreadPool.hpp"
 #include "Resources/FileIO.hpp"
 #include "Resources/Image.hpp"
 
@@ -467,4 +468,21 @@ TEST_CASE("render of the default scene matches its golden image", "[headless][go
         CHECK(differing <= 160 * 120 / 200);
         CHECK(large <= 10);
     }
+}
+
+TEST_CASE("--threads beyond the CPUs this process may use starts only as many, and says so", "[headless][threads]") {
+    const int usable = ThreadPool::usableHardwareThreads();
+    const Run many = run({"bench", "--width", "64", "--height", "48", "--frames", "1", "--warmup", "0", "--threads", "64"});
+    REQUIRE(many.rc == kExitOk);
+    if (usable > 0 && usable < 64) {
+        CHECK(numberOf(many.out, "threads") == usable);
+        CHECK(many.err.find("--threads 64: this process may run on " + std::to_string(usable)) != std::string::npos);
+    } else {
+        CHECK(numberOf(many.out, "threads") == 64);
+    }
+    // Within the CPUs: as asked, without a note.
+    const Run one = run({"bench", "--width", "64", "--height", "48", "--frames", "1", "--warmup", "0", "--threads", "1"});
+    REQUIRE(one.rc == kExitOk);
+    CHECK(numberOf(one.out, "threads") == 1);
+    CHECK(one.err.find("may run on") == std::string::npos);
 }

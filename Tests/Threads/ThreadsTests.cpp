@@ -162,6 +162,13 @@ TEST_CASE("thread pool runs every lane once per job and can be reused", "[thread
     const int usable = ThreadPool::usableHardwareThreads();
     CHECK(usable >= 1);
     if (std::thread::hardware_concurrency() > 0) CHECK(usable <= int(std::thread::hardware_concurrency()));
+    // The threads worth starting: at least 1, at most the usable hardware threads (0: unknown).
+    CHECK(ThreadPool::threadsWorthStarting(8, 2) == 2);
+    CHECK(ThreadPool::threadsWorthStarting(2, 8) == 2);
+    CHECK(ThreadPool::threadsWorthStarting(0, 4) == 1);
+    CHECK(ThreadPool::threadsWorthStarting(-3, 4) == 1);
+    CHECK(ThreadPool::threadsWorthStarting(3, 0) == 3);
+    CHECK(ThreadPool::threadsWorthStarting(5, 1) == 1);
     // More lanes than hardware threads: no polling, and still every lane once per job.
     for (int hardware : {0, 1, 2, 4, 8}) {
         CAPTURE(hardware);
