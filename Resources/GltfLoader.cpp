@@ -9,12 +9,14 @@
 #include <cstring>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <set>
 #include <system_error>
 
 #include "Math/Conventions.hpp"
 #include "Math/DoubleMath.hpp"
+#include "Resources/Animation.hpp"
 #include "Resources/FileIO.hpp"
 #include "Resources/ObjLoader.hpp"
 #include "Resources/TinyGltf.hpp"
@@ -50,6 +52,7 @@ int componentCount(int type) {
     case TINYGLTF_TYPE_VEC2: return 2;
     case TINYGLTF_TYPE_VEC3: return 3;
     case TINYGLTF_TYPE_VEC4: return 4;
+    case TINYGLTF_TYPE_MAT4: return 16; // skins' inverse bind matrices (float only: no column padding)
     default: return 0;
     }
 }
@@ -180,6 +183,12 @@ float readFloat(const View& v, std::size_t i, int c) {
         std::memcpy(&s, p + 2 * c, 2);
         return float(s) / 65535.0f;
     }
+    case kByte: return std::max(float(std::int8_t(p[c])) / 127.0f, -1.0f); // glTF "Animations": normalised signed
+    case kShort: {
+        std::int16_t s;
+        std::memcpy(&s, p + 2 * c, 2);
+        return std::max(float(s) / 32767.0f, -1.0f);
+    }
     default: return 0.0f;
     }
 }
@@ -199,6 +208,15 @@ std::uint32_t readIndex(const View& v, std::size_t i) {
         return u;
     }
     }
+}
+
+// Component c of element i of an unsigned byte or short accessor (JOINTS_n).
+std::uint32_t readIndexComponent(const View& v, std::size_t i, int c) {
+    const unsigned char* p = v.base + i * v.stride;
+    if (v.componentType == kUnsignedByte) return p[c];
+    std::uint16_t s;
+    std::memcpy(&s, p + 2 * c, 2);
+    return s;
 }
 
 // The node's local transform (glTF: matrix, column-major, or T * R * S).
@@ -552,6 +570,10 @@ UvTransform materialUvTransform(const tinygltf::Material& gm, std::string* probl
 struct Builder {
     std::string path; // the file, for warnings
     Model model;
+    // A file with animations, skins or morph targets: what moves (null otherwise: nothing kept).
+    std::shared_ptr<ModelAnimation> animation;
+    const tinygltf::Node* node = nullptr; // the node whose primitives are being added
+    int nodeIndex = -1;
     std::vector<std::vector<std::uint32_t>> trianglesOf; // [material + 1] -> indices
     std::vector<int> firstUse;                           // materials (+1) in order of first use
     std::size_t lineElements = 0, lineVertices = 0; // in model.lineSets, for the limits
@@ -604,6 +626,118 @@ Status addLines(Builder& b, const tinygltf::Model& g, const tinygltf::Primitive&
         set.positions.push_back(p.value());
     }
     if (!set.indices.empty()) b.model.lineSets.push_back(std::move(set));
+    return success();
+}
+
+// A primitive of an animated file: its object-space vertices (in the mesh's numbering: vertex i
+// reads accessor element src(i)), morph targets, and skin attributes, for ModelAnimation::pose.
+template <class Source>
+Status addAnimatedBlock(Builder& b, const tinygltf::Model& g, const tinygltf::Primitive& prim, const View& pos,
+                        const std::optional<View>& normals, bool keepTangents, std::uint32_t first, std::size_t vertices,
+                        const Source& src, bool mirrored, const std::string& what, const LoadLimits& limits) {
+    AnimatedBlock block;
+    block.node = b.nodeIndex;
+    block.first = first;
+    block.count = std::uint32_t(vertices);
+    block.mirrored = mirrored;
+    block.flatNormals = !normals;
+    const auto vec3 = [](const View& v, std::size_t i) { return Vec3{readFloat(v, i, 0), readFloat(v, i, 1), readFloat(v, i, 2)}; };
+    const auto finite3 = [](Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    block.positions.resize(vertices);
+    for (std::size_t i = 0; i < vertices; ++i) block.positions[i] = vec3(pos, src(i));
+    if (normals) {
+        block.normals.resize(vertices);
+        for (std::size_t i = 0; i < vertices; ++i) block.normals[i] = vec3(*normals, src(i));
+    }
+    if (keepTangents) {
+        const auto ti = prim.attributes.find("TANGENT");
+        auto v = accessorView(g, ti->second, what + " TANGENT");
+        if (!v) return Status::failure(v.error());
+        block.tangents.resize(vertices);
+        for (std::size_t i = 0; i < vertices; ++i)
+            block.tangents[i] = Vec4{readFloat(v.value(), src(i), 0), readFloat(v.value(), src(i), 1), readFloat(v.value(), src(i), 2),
+                                     readFloat(v.value(), src(i), 3)};
+    }
+    if (prim.targets.size() > limits.maxMorphTargets)
+        return Status::failure(what + ": " + std::to_string(prim.targets.size()) + " morph targets, above the limit of " +
+                               std::to_string(limits.maxMorphTargets));
+    for (std::size_t k = 0; k < prim.targets.size(); ++k) {
+        const std::string name = what + " target " + std::to_string(k);
+        std::vector<Vec3> dp(vertices, Vec3{0, 0, 0}), dn;
+        for (const char* attribute : {"POSITION", "NORMAL"}) {
+            const auto it = prim.targets[k].find(attribute);
+            if (it == prim.targets[k].end()) continue;
+            const bool isPosition = attribute[0] == 'P';
+            if (!isPosition && !normals) continue; // flat normals are made from the morphed positions
+            if (it->second >= 0 && std::size_t(it->second) < g.accessors.size() && g.accessors[std::size_t(it->second)].sparse.isSparse) {
+                b.model.warnings.push_back(b.path + ": " + name + " " + attribute + ": a sparse accessor (not supported): the target is ignored");
+                continue;
+            }
+            auto v = accessorView(g, it->second, name + " " + attribute);
+            if (!v) return Status::failure(v.error());
+            if (v.value().components != 3 || v.value().count != pos.count)
+                return Status::failure(name + " " + attribute + ": must be VEC3 with POSITION's count (" + std::to_string(pos.count) + ")");
+            std::vector<Vec3>& out = isPosition ? dp : dn;
+            out.resize(vertices);
+            for (std::size_t i = 0; i < vertices; ++i) {
+                out[i] = vec3(v.value(), src(i));
+                if (!finite3(out[i])) return Status::failure(name + " " + attribute + ": vertex " + std::to_string(src(i)) + " is not finite");
+            }
+        }
+        block.targetPositions.push_back(std::move(dp));
+        block.targetNormals.push_back(std::move(dn));
+    }
+    const int skin = b.node->skin;
+    const auto joints0 = prim.attributes.find("JOINTS_0");
+    const auto weights0 = prim.attributes.find("WEIGHTS_0");
+    if (skin >= 0 && joints0 != prim.attributes.end() && weights0 != prim.attributes.end()) {
+        if (std::size_t(skin) >= g.skins.size()) return Status::failure("node " + std::to_string(b.nodeIndex) + ": skin " + std::to_string(skin) + " does not exist");
+        const std::size_t jointCount = g.skins[std::size_t(skin)].joints.size();
+        block.skin = skin;
+        block.joints.assign(vertices, {});
+        block.weights.assign(vertices, {});
+        for (int set = 0; set < 2; ++set) {
+            const std::string suffix = "_" + std::to_string(set);
+            const auto ji = prim.attributes.find("JOINTS" + suffix), wi = prim.attributes.find("WEIGHTS" + suffix);
+            if (ji == prim.attributes.end() || wi == prim.attributes.end()) break;
+            auto jv = accessorView(g, ji->second, what + " JOINTS" + suffix);
+            if (!jv) return Status::failure(jv.error());
+            auto wv = accessorView(g, wi->second, what + " WEIGHTS" + suffix);
+            if (!wv) return Status::failure(wv.error());
+            const View& J = jv.value();
+            const View& W = wv.value();
+            if (J.components != 4 || (J.componentType != kUnsignedByte && J.componentType != kUnsignedShort) || J.count != pos.count)
+                return Status::failure(what + " JOINTS" + suffix + ": must be unsigned byte or short VEC4 with POSITION's count");
+            if (W.components != 4 || W.count != pos.count ||
+                !(W.componentType == kFloat || (W.normalized && (W.componentType == kUnsignedByte || W.componentType == kUnsignedShort))))
+                return Status::failure(what + " WEIGHTS" + suffix + ": must be float or normalised unsigned byte/short VEC4 with POSITION's count");
+            for (std::size_t i = 0; i < vertices; ++i)
+                for (int c = 0; c < 4; ++c) {
+                    const std::uint32_t joint = readIndexComponent(J, src(i), c);
+                    const float weight = readFloat(W, src(i), c);
+                    if (!std::isfinite(weight) || weight < 0.0f)
+                        return Status::failure(what + " WEIGHTS" + suffix + ": vertex " + std::to_string(src(i)) + " has a weight that is negative or not finite");
+                    if (weight > 0.0f && joint >= jointCount)
+                        return Status::failure(what + " JOINTS" + suffix + ": vertex " + std::to_string(src(i)) + " names joint " +
+                                               std::to_string(joint) + ", out of range (skin " + std::to_string(skin) + " has " +
+                                               std::to_string(jointCount) + ")");
+                    block.joints[i][std::size_t(4 * set + c)] = std::uint16_t(weight > 0.0f ? joint : 0u);
+                    block.weights[i][std::size_t(4 * set + c)] = weight;
+                }
+        }
+        // Weights that do not sum to 1 are normalised (glTF allows it); none at all: the first joint alone.
+        for (auto& w : block.weights) {
+            double sum = 0.0;
+            for (float x : w) sum += x;
+            if (sum > 0.0) {
+                for (float& x : w) x = float(x / sum);
+            } else {
+                w = {};
+                w[0] = 1.0f;
+            }
+        }
+    }
+    b.animation->blocks.push_back(std::move(block));
     return success();
 }
 
@@ -801,6 +935,11 @@ Status addPrimitive(Builder& b, const tinygltf::Model& g, const tinygltf::Primit
             mesh.tangents.resize(mesh.positions.size(), Vec4{1.0f, 0.0f, 0.0f, 1.0f});
         }
     }
+    if (b.animation) {
+        const Status s = addAnimatedBlock(b, g, prim, pos.value(), normals, tangents && normalMapped && normals, base, vertices, src,
+                                          det < 0, what, limits);
+        if (!s) return s;
+    }
     // Triangles into their material's list.
     const int material = prim.material >= 0 && std::size_t(prim.material) < g.materials.size() ? prim.material : -1;
     if (prim.material >= 0 && material < 0) return Status::failure(what + ": material " + std::to_string(prim.material) + " does not exist");
@@ -904,6 +1043,153 @@ Result<int> nodeLight(const tinygltf::Node& node, std::size_t lightCount) {
 
 } // namespace
 
+namespace {
+
+// The nodes' rest transforms and weights, the skins and the clips of an animated file, checked:
+// key times finite and strictly increasing, values finite, counts as the specification says.
+Status addAnimation(ModelAnimation& a, const tinygltf::Model& g, std::vector<std::string>& warnings, const std::string& path,
+                    const LoadLimits& limits) {
+    for (std::size_t n = 0; n < g.nodes.size(); ++n) {
+        const tinygltf::Node& node = g.nodes[n];
+        AnimationNode& an = a.nodes[n];
+        if (node.matrix.size() == 16) {
+            an.hasMatrix = true;
+            an.matrix = localMatrix(node);
+        }
+        if (node.translation.size() == 3) std::copy(node.translation.begin(), node.translation.end(), an.translation.begin());
+        if (node.rotation.size() == 4) std::copy(node.rotation.begin(), node.rotation.end(), an.rotation.begin());
+        if (node.scale.size() == 3) std::copy(node.scale.begin(), node.scale.end(), an.scale.begin());
+        an.weights = node.weights;
+        if (an.weights.empty() && node.mesh >= 0 && std::size_t(node.mesh) < g.meshes.size()) an.weights = g.meshes[std::size_t(node.mesh)].weights;
+        for (double w : an.weights)
+            if (!std::isfinite(w)) return Status::failure("node " + std::to_string(n) + ": a morph weight is not finite");
+    }
+    for (std::size_t k = 0; k < g.skins.size(); ++k) {
+        const tinygltf::Skin& gs = g.skins[k];
+        const std::string what = "skin " + std::to_string(k);
+        if (gs.joints.size() > limits.maxJoints)
+            return Status::failure(what + ": " + std::to_string(gs.joints.size()) + " joints, above the limit of " + std::to_string(limits.maxJoints));
+        AnimationSkin skin;
+        for (int j : gs.joints) {
+            if (j < 0 || std::size_t(j) >= g.nodes.size()) return Status::failure(what + ": joint node " + std::to_string(j) + " does not exist");
+            skin.joints.push_back(j);
+        }
+        Mat4d identity;
+        for (int i = 0; i < 4; ++i) identity.m[i][i] = 1.0;
+        skin.inverseBind.assign(gs.joints.size(), identity);
+        if (gs.inverseBindMatrices >= 0) {
+            auto v = accessorView(g, gs.inverseBindMatrices, what + " inverseBindMatrices");
+            if (!v) return Status::failure(v.error());
+            if (v.value().components != 16 || v.value().componentType != kFloat || v.value().count < gs.joints.size())
+                return Status::failure(what + " inverseBindMatrices: must be float MAT4, one per joint (" + std::to_string(gs.joints.size()) + ")");
+            for (std::size_t j = 0; j < gs.joints.size(); ++j) {
+                Mat4d m;
+                for (int c = 0; c < 4; ++c)
+                    for (int r = 0; r < 4; ++r) m.m[r][c] = readFloat(v.value(), j, c * 4 + r);
+                const double (*e)[4] = m.m;
+                const double det3 = e[0][0] * (e[1][1] * e[2][2] - e[1][2] * e[2][1]) - e[0][1] * (e[1][0] * e[2][2] - e[1][2] * e[2][0]) +
+                                    e[0][2] * (e[1][0] * e[2][1] - e[1][1] * e[2][0]);
+                if (!finite(m) || !(std::fabs(det3) > 0.0))
+                    return Status::failure(what + " inverseBindMatrices: matrix " + std::to_string(j) + " is " +
+                                           (finite(m) ? "singular (not invertible)" : "not finite"));
+                skin.inverseBind[j] = m;
+            }
+        }
+        a.skins.push_back(std::move(skin));
+    }
+    std::size_t totalKeys = 0;
+    const auto targetsOf = [&](int node) -> std::size_t {
+        const int mesh = g.nodes[std::size_t(node)].mesh;
+        if (mesh < 0 || std::size_t(mesh) >= g.meshes.size() || g.meshes[std::size_t(mesh)].primitives.empty()) return 0;
+        return g.meshes[std::size_t(mesh)].primitives.front().targets.size();
+    };
+    for (std::size_t k = 0; k < g.animations.size(); ++k) {
+        const tinygltf::Animation& ga = g.animations[k];
+        AnimationClip clip;
+        clip.name = ga.name;
+        const std::string what = "animation " + std::to_string(k);
+        // What each sampler drives (the components of its values), from the channels.
+        std::vector<int> components(ga.samplers.size(), 0);
+        std::vector<std::uint8_t> rotation(ga.samplers.size(), 0);
+        for (std::size_t c = 0; c < ga.channels.size(); ++c) {
+            const tinygltf::AnimationChannel& gc = ga.channels[c];
+            const std::string name = what + " channel " + std::to_string(c);
+            if (gc.target_node < 0) continue; // no target: ignored (glTF: an extension may define one)
+            if (std::size_t(gc.target_node) >= g.nodes.size())
+                return Status::failure(name + ": node " + std::to_string(gc.target_node) + " does not exist");
+            if (gc.sampler < 0 || std::size_t(gc.sampler) >= ga.samplers.size())
+                return Status::failure(name + ": sampler " + std::to_string(gc.sampler) + " does not exist");
+            AnimationChannel ch;
+            ch.node = gc.target_node;
+            ch.sampler = gc.sampler;
+            int n = 0;
+            if (gc.target_path == "translation") ch.path = AnimationPath::Translation, n = 3;
+            else if (gc.target_path == "rotation") ch.path = AnimationPath::Rotation, n = 4;
+            else if (gc.target_path == "scale") ch.path = AnimationPath::Scale, n = 3;
+            else if (gc.target_path == "weights") ch.path = AnimationPath::Weights, n = int(targetsOf(gc.target_node));
+            else {
+                warnings.push_back(path + ": " + name + ": path '" + gc.target_path + "' is not animated");
+                continue;
+            }
+            if (n == 0) return Status::failure(name + ": animates the weights of node " + std::to_string(gc.target_node) + ", whose mesh has no morph targets");
+            int& have = components[std::size_t(gc.sampler)];
+            if (have != 0 && have != n) return Status::failure(name + ": sampler " + std::to_string(gc.sampler) + " drives targets of different sizes");
+            have = n;
+            rotation[std::size_t(gc.sampler)] = ch.path == AnimationPath::Rotation;
+            clip.channels.push_back(ch);
+        }
+        for (std::size_t si = 0; si < ga.samplers.size(); ++si) {
+            const tinygltf::AnimationSampler& gsm = ga.samplers[si];
+            const std::string name = what + " sampler " + std::to_string(si);
+            AnimationSampler sm;
+            sm.components = std::max(components[si], 1);
+            sm.quaternion = rotation[si] != 0;
+            if (gsm.interpolation == "LINEAR") sm.interpolation = AnimationSampler::Interpolation::Linear;
+            else if (gsm.interpolation == "STEP") sm.interpolation = AnimationSampler::Interpolation::Step;
+            else if (gsm.interpolation == "CUBICSPLINE") sm.interpolation = AnimationSampler::Interpolation::CubicSpline;
+            else return Status::failure(name + ": unknown interpolation '" + gsm.interpolation + "'");
+            auto in = accessorView(g, gsm.input, name + " input");
+            if (!in) return Status::failure(in.error());
+            if (in.value().components != 1 || in.value().componentType != kFloat || in.value().count == 0)
+                return Status::failure(name + " input: must be float scalars, at least one");
+            totalKeys += in.value().count;
+            if (totalKeys > limits.maxAnimationKeys)
+                return Status::failure("more than " + std::to_string(limits.maxAnimationKeys) + " animation keys");
+            sm.times.resize(in.value().count);
+            for (std::size_t i = 0; i < sm.times.size(); ++i) {
+                sm.times[i] = readFloat(in.value(), i, 0);
+                if (!std::isfinite(sm.times[i])) return Status::failure(name + " input: key " + std::to_string(i) + " time is not finite");
+                if (i > 0 && !(sm.times[i] > sm.times[i - 1]))
+                    return Status::failure(name + " input: key times are not increasing (key " + std::to_string(i) + ")");
+            }
+            auto out = accessorView(g, gsm.output, name + " output");
+            if (!out) return Status::failure(out.error());
+            const View& o = out.value();
+            const std::size_t perKey = sm.interpolation == AnimationSampler::Interpolation::CubicSpline ? 3 : 1;
+            const std::size_t want = sm.times.size() * perKey * std::size_t(sm.components);
+            const bool scalarsOk = o.components == 1 && o.count == want;                                         // weights
+            const bool vectorsOk = o.components == sm.components && o.count * std::size_t(o.components) == want; // T, R, S
+            const bool typeOk = o.componentType == kFloat || (o.normalized && o.componentType != kUnsignedInt);
+            if (components[si] != 0 && (!typeOk || !(scalarsOk || vectorsOk)))
+                return Status::failure(name + " output: " + std::to_string(o.count) + " elements of " + std::to_string(o.components) +
+                                       " components, expected " + std::to_string(want) + " values (" +
+                                       std::to_string(sm.components) + " per key" + (perKey == 3 ? ", three elements per cubic key" : "") + ")");
+            sm.values.resize(components[si] != 0 ? want : 0);
+            for (std::size_t i = 0; i < sm.values.size(); ++i) {
+                const std::size_t e = i / std::size_t(o.components);
+                sm.values[i] = readFloat(o, e, int(i % std::size_t(o.components)));
+                if (!std::isfinite(sm.values[i])) return Status::failure(name + " output: value " + std::to_string(i) + " is not finite");
+            }
+            clip.duration = std::max(clip.duration, sm.times.back());
+            clip.samplers.push_back(std::move(sm));
+        }
+        a.clips.push_back(std::move(clip));
+    }
+    return success();
+}
+
+} // namespace
+
 bool isGltfPath(const std::string& path) {
     const std::string ext = lowerExtension(path);
     return ext == ".gltf" || ext == ".glb";
@@ -972,6 +1258,13 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
     Builder b;
     b.path = path;
     b.trianglesOf.resize(g.materials.size() + 2); // [material + 1]; the last slot: the override stand-in
+    bool morphs = false;
+    for (const tinygltf::Mesh& gm : g.meshes)
+        for (const tinygltf::Primitive& prim : gm.primitives) morphs |= !prim.targets.empty();
+    if (!g.animations.empty() || !g.skins.empty() || morphs) {
+        b.animation = std::make_shared<ModelAnimation>();
+        b.animation->nodes.resize(g.nodes.size());
+    }
     // Depth-first over the scene's node trees; a node met twice makes the graph not a tree.
     std::vector<std::uint8_t> seen(g.nodes.size(), 0);
     struct Item {
@@ -998,6 +1291,8 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
         const tinygltf::Node& node = g.nodes[std::size_t(item.node)];
         const Mat4d world = item.parent * localMatrix(node);
         if (!finite(world)) return R::failure(path + ": node " + std::to_string(item.node) + " has a transform that is not finite");
+        b.node = &node;
+        b.nodeIndex = item.node;
         if (node.mesh >= 0) {
             if (std::size_t(node.mesh) >= g.meshes.size())
                 return R::failure(path + ": node " + std::to_string(item.node) + ": mesh " + std::to_string(node.mesh) + " does not exist");
@@ -1022,7 +1317,14 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
             const Status s = addLight(b, g.lights[std::size_t(light.value())], world, light.value());
             if (!s) return R::failure(path + ": " + s.error());
         }
-        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) stack.push_back({*it, world, item.depth + 1});
+        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) {
+            stack.push_back({*it, world, item.depth + 1});
+            if (b.animation && *it >= 0 && std::size_t(*it) < g.nodes.size()) b.animation->nodes[std::size_t(*it)].parent = item.node;
+        }
+    }
+    if (b.animation) {
+        const Status s = addAnimation(*b.animation, g, b.model.warnings, path, limits);
+        if (!s) return R::failure(path + ": " + s.error());
     }
     Model& model = b.model;
     if (b.triangles == 0 && model.lineSets.empty()) return R::failure(path + ": the scene has nothing to draw");
@@ -1132,6 +1434,12 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
         r.texture = model.hasUvs && r.material >= 0 ? model.materials[std::size_t(r.material)].texture : -1;
         model.mesh.indices.insert(model.mesh.indices.end(), list.begin(), list.end());
         model.ranges.push_back(r);
+    }
+    // An animated file's rest pose: skins bound by their joints' rest transforms and the default
+    // morph weights (the specification's pose without a clip); the bounds are the rest pose's.
+    if (b.animation) {
+        b.animation->pose(0.0, -1, model.mesh, true);
+        model.animation = std::move(b.animation);
     }
     // Bounds of the drawn vertices (world space), triangles', lines' and points'.
     model.boundsMin = model.boundsMax = !model.mesh.positions.empty() ? model.mesh.positions.front() : model.lineSets.front().positions.front();

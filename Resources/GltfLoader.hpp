@@ -26,11 +26,16 @@ namespace sr {
 //    2 / r^4 - 2 rounded and clamped to [1, 1024]. Primitives without a material get the fixed
 //    values of OBJ faces without one;
 //  - one draw range per material, in order of first use (node order, depth first; primitives in
-//    order).
+//    order);
+//  - animations, skins and morph targets (Resources/Animation.hpp) into Model::animation, the
+//    mesh then holding the rest pose (skins bound by their joints' rest transforms, the default
+//    morph weights); null for a file without any.
 // Errors (one line, "PATH: problem", exit 1 at the command line): JSON that is not glTF, no
 // scene, accessors or buffer views out of their buffers, indices out of range, a missing .bin,
 // node graphs that are not trees (recursive or shared nodes), a hierarchy deeper than
-// limits.maxNodeDepth, positions that are not finite, a required extension we do not support
+// limits.maxNodeDepth, positions that are not finite, animation data against the specification
+// (key times not finite or not increasing, values not finite, outputs of the wrong count or type,
+// joint indices beyond their skin, singular inverse bind matrices), a required extension we do not support
 // (Draco named as such), and the limits of LoadLimits (file, buffer, triangle, vertex, node,
 // texture sizes). A texture that cannot be loaded is a warning and the checkerboard.
 Result<Model> loadGltf(const std::string& utf8Path, const LoadOptions& options = {});

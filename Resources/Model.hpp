@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,6 +18,8 @@
 #include "Resources/Image.hpp"
 
 namespace sr {
+
+struct ModelAnimation; // Resources/Animation.hpp
 
 // One material as the renderer uses it: its diffuse map and the values the shading reads. From
 // an MTL: Kd, Ks, Ns (Ka, Ke, d, illum and the rest are ignored, as in the llvmpipe reference),
@@ -88,6 +91,9 @@ struct Model {
     std::vector<LineSet> lineSets;     // glTF: line and point primitives (OBJ 'l'/'p' are not read)
     std::vector<Light> lights;         // glTF KHR_lights_punctual: the scene's lights in world space, in node order
     std::vector<std::string> warnings; // one line each, naming the file
+    // glTF animations, skins and morph targets (Animation.hpp): null when the file has none. The
+    // mesh above is their rest pose.
+    std::shared_ptr<const ModelAnimation> animation;
 };
 
 // Resource limits of both loaders (OBJ/MTL and glTF) for files from untrusted sources: exceeding
@@ -106,6 +112,9 @@ struct LoadLimits {
     std::size_t maxNodes = 65536;                          // glTF: nodes in the file
     std::size_t maxNodeDepth = 64;                         // glTF: levels of the node hierarchy
     std::size_t maxLights = 64;                            // glTF: lights placed in the scene (each costs per pixel)
+    std::size_t maxAnimationKeys = std::size_t(1) << 22;   // glTF: key times over all samplers
+    std::size_t maxJoints = 1024;                          // glTF: joints per skin
+    std::size_t maxMorphTargets = 64;                      // glTF: morph targets per primitive
 };
 
 // What loadModel, loadObj and loadGltf are asked to do: the texture override, whether to decode

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 namespace sr::app {
@@ -116,6 +117,17 @@ Action DemoController::keyDown(Key key, bool repeat) {
     case Action::ResetView: resetView(); break;
     case Action::CycleCamera: cycleCamera(); break;
     case Action::ToggleHelp: help_ = !help_; break;
+    case Action::TogglePlay:
+        if (animated_)
+            playing_ = !playing_;
+        break;
+    case Action::StepBack:
+    case Action::StepForward:
+        if (animated_) {
+            playing_ = false;
+            advanceAnimation(action == Action::StepForward ? kAnimationStep : -kAnimationStep);
+        }
+        break;
     case Action::None:
     case Action::Quit:
     case Action::Screenshot: break; // the platform's
@@ -135,12 +147,33 @@ void DemoController::mouseDrag(int dx, int dy) {
     camera_.turn(-float(dx) * tuning_.mouseRadiansPerPixel, -float(dy) * tuning_.mouseRadiansPerPixel);
 }
 
+void DemoController::setAnimation(double duration, double start, int clip) {
+    animated_ = true;
+    playing_ = true;
+    animDuration_ = std::isfinite(duration) && duration > 0.0 ? duration : 0.0;
+    animClip_ = clip;
+    animTime_ = 0.0;
+    advanceAnimation(std::isfinite(start) ? start : 0.0);
+}
+
+void DemoController::advanceAnimation(double dt) {
+    if (!animated_)
+        return;
+    animTime_ += dt;
+    if (animDuration_ > 0.0)
+        animTime_ -= std::floor(animTime_ / animDuration_) * animDuration_; // into [0, duration)
+    else
+        animTime_ = 0.0;
+}
+
 void DemoController::update(double dtSeconds) {
     // Clamp the step: a NaN, negative or huge frame time (a breakpoint, a dragged window)
     // integrates at most maxStep.
     const double dt = std::isfinite(dtSeconds) ? std::clamp(dtSeconds, 0.0, tuning_.maxStep) : 0.0;
     if (dt <= 0.0)
         return;
+    if (playing_)
+        advanceAnimation(dt);
     const float speed = tuning_.moveSpeed * (held(Key::Shift) ? tuning_.fastFactor : 1.0f);
     const float step = float(double(speed) * dt);
     const float turnStep = float(double(tuning_.turnSpeed) * dt);
@@ -190,6 +223,11 @@ std::string DemoController::modeSummary() const {
         s += aa.multisampled() ? " | outline (not with msaa)" : " | outline";
     if (depthView_)
         s += " | depth view";
+    if (animated_) {
+        char t[48];
+        std::snprintf(t, sizeof t, " | t %.2f s%s", animTime_, playing_ ? "" : " paused");
+        s += t;
+    }
     if (help_)
         s += " | help"; // scripts can tell the overlay is up (it hides part of the picture)
     return s;

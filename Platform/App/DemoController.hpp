@@ -79,6 +79,15 @@ public:
     // The sky's light (LoadedScene::ibl), or null.
     void setImageLight(const ImageLight* ibl) { ibl_ = ibl; }
     int cameraIndex() const { return cameraIndex_; }
+    // A glTF file's animation (LoadedScene::animation): played from `start` seconds at real time,
+    // looping over `duration` (the longest clip; 0: a pose that does not move), clip `clip` alone
+    // or every clip (< 0). Space pauses and plays, ',' and '.' pause and step kAnimationStep.
+    void setAnimation(double duration, double start, int clip);
+    bool animated() const { return animated_; }
+    bool animationPlaying() const { return animated_ && playing_; }
+    double animationTime() const { return animTime_; }
+    int animationClip() const { return animClip_; }
+    static constexpr double kAnimationStep = 1.0 / 30.0;
 
     // The camera as a setup for the one view builder (makeFrameView): the starting setup while
     // the camera is where it started, else eye = position, target = position + forward, up = +Y.
@@ -86,7 +95,7 @@ public:
     FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_, lights_, physical_, ibl_); }
 
     // "cull none | phong | bilinear | exact | ssaa 4" (or "| msaa 4" while multisampling; + " | wireframe",
-    // " | depth view", " | help").
+    // " | depth view", " | help"; an animated scene " | t 1.23 s", " paused" when paused).
     std::string modeSummary() const;
 
 private:
@@ -107,6 +116,10 @@ private:
     MotionTuning tuning_;
     bool depthView_ = false;
     bool help_ = false;
+    bool animated_ = false, playing_ = true;
+    double animTime_ = 0.0, animDuration_ = 0.0;
+    int animClip_ = -1;
+    void advanceAnimation(double dt);
     std::array<bool, std::size_t(kKeyCount)> held_{};
 
     float axis(Key positive, Key negative) const { return float(held(positive)) - float(held(negative)); }

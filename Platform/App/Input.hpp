@@ -14,6 +14,7 @@ enum class Key {
     Up, Down, Left, Right,     // turn
     Shift,                     // held: move faster
     C, M, T, P, N, L, O, H, Z, R, V, G, // toggles, reset and camera (see actionForKey)
+    Space, Comma, Period,      // animation: play / pause, step back, step forward
     F1, F12,
     Count
 };
@@ -37,7 +38,10 @@ enum class Action {
     ResetView,        // back to the starting camera
     CycleCamera,      // the flags' view -> the file's camera 0 -> 1 -> ... -> the flags' view
     ToggleHelp,
-    Screenshot
+    Screenshot,
+    TogglePlay,       // a glTF file's animation: play <-> pause
+    StepBack,         // pause, one step (1/30 s) back
+    StepForward       // pause, one step forward
 };
 
 constexpr Action actionForKey(Key key) {
@@ -57,6 +61,9 @@ constexpr Action actionForKey(Key key) {
     case Key::V: return Action::CycleCamera;
     case Key::F1: return Action::ToggleHelp;
     case Key::F12: return Action::Screenshot;
+    case Key::Space: return Action::TogglePlay;
+    case Key::Comma: return Action::StepBack;
+    case Key::Period: return Action::StepForward;
     default: break;
     }
     return Action::None;
@@ -68,7 +75,7 @@ struct KeyHelp {
     const char* what;
 };
 
-inline constexpr std::array<KeyHelp, 20> kKeyHelp{{
+inline constexpr std::array<KeyHelp, 22> kKeyHelp{{
     {"W / S", "fly forward / back"},
     {"A / D", "strafe left / right"},
     {"Q / E", "fly down / up"},
@@ -86,6 +93,8 @@ inline constexpr std::array<KeyHelp, 20> kKeyHelp{{
     {"O", "outline of the object at the screen centre on / off"},
     {"H", "shadows on / off"},
     {"Z", "depth view (near = white) on / off"},
+    {"Space", "animation (glTF): play / pause"},
+    {", / .", "animation: pause and step 1/30 s back / forward"},
     {"F1", "this help on / off"},
     {"F12", "save a screenshot (PNG, current folder)"},
     {"Esc", "quit"},

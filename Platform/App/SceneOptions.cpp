@@ -104,7 +104,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     static const char* const kFlags[] = {"--obj",   "--model",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
-                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera",
+                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera", "--time", "--animation",
                                          "--sky",   "--skybox",  "--outline", "--ibl", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
@@ -226,6 +226,18 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         const auto v = parseInt(value);
         if (!v || *v < 0 || *v > 65535) return bad("a camera number from 0 (the file's cameras, in node order)");
         o.camera = *v;
+    } else if (flag == "--time") {
+        const auto v = parseNumber(value);
+        if (!v || !std::isfinite(*v) || *v < 0.0 || *v > 1e9) return bad("seconds from 0 (a finite number)");
+        o.time = *v;
+    } else if (flag == "--animation") {
+        if (value == "all") {
+            o.animation.reset();
+        } else {
+            const auto v = parseInt(value);
+            if (!v || *v < 0 || *v > 65535) return bad("all, or an animation number from 0 (the file's, in order)");
+            o.animation = *v;
+        }
     } else if (flag == "--materials") {
         const auto m = parseMaterialRule(value);
         if (!m) return bad("mtl or fixed");
@@ -348,6 +360,9 @@ std::string sceneFlagsHelp() {
            "  --exposure EV         scale the linear colour by 2^EV before tone mapping (default 0)\n"
            "  --ibl                 light glTF (pbr) surfaces from the sky too: diffuse irradiance and\n"
            "                        prefiltered specular, made once when the sky loads; needs a sky\n"
+           "  --time T              pose a glTF file's animations (node channels, morph targets, skins)\n"
+           "                        at T seconds (default: the rest pose; each clip loops)\n"
+           "  --animation N|all     only animation N (numbered from 0), or all of them (default)\n"
            "  --texture PATH        texture for every material (overrides map_Kd)\n"
            "  --sky S               none (default: black) | gradient: what shows where nothing is drawn\n"
            "  --skybox DIR          cube-map sky: DIR holds px, nx, py, ny, pz, nz images (OpenGL's\n"

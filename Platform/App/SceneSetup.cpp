@@ -30,7 +30,8 @@ namespace {
 // Each range is one draw with its material's values under `rule` (SceneOptions.hpp, MaterialRule),
 // its opacity included (a range of opacity 0 is not drawn); a range without a material from the
 // file (or under Fixed) gets kd = `kd`, the texel alone, ks 0.5, 32, opaque.
-Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
+// `origins`, when not null, gets for each scene mesh the model vertex of each of its vertices.
+Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std::vector<std::uint32_t>>* origins = nullptr) {
     Scene scene;
     for (const Image& img : model.textures)
         scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
@@ -47,15 +48,19 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule) {
     std::vector<int> meshOf(model.ranges.size(), -1);
     for (const bool textured : {true, false}) {
         Mesh part;
+        std::vector<std::uint32_t> partOrigins;
         for (std::size_t r = 0; r < model.ranges.size(); ++r) {
             const DrawRange& range = model.ranges[r];
             if (usesUvs(range) != textured) continue;
-            firstIndex[r] = appendRange(part, src, range.firstIndex, range.indexCount, remap);
+            firstIndex[r] = appendRange(part, src, range.firstIndex, range.indexCount, remap, origins ? &partOrigins : nullptr);
             meshOf[r] = int(scene.meshes.size());
         }
         for (const DrawRange& range : model.ranges)
             if (usesUvs(range) == textured) clearRange(src, range.firstIndex, range.indexCount, remap);
-        if (!part.indices.empty()) scene.meshes.push_back(std::move(part));
+        if (!part.indices.empty()) {
+            scene.meshes.push_back(std::move(part));
+            if (origins) origins->push_back(std::move(partOrigins));
+        }
     }
     for (std::size_t r = 0; r < model.ranges.size(); ++r) {
         const DrawRange& range = model.ranges[r];
@@ -122,7 +127,7 @@ double usableNear(double nearZ) {
 } // namespace
 
 std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
-                          std::vector<std::uint32_t>& remap) {
+                          std::vector<std::uint32_t>& remap, std::vector<std::uint32_t>* origins) {
     assert(remap.size() == src.vertexCount());
     assert(std::size_t(firstIndex) + indexCount <= src.indices.size());
     const auto first = std::uint32_t(part.indices.size());
@@ -137,6 +142,7 @@ std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex,
             if (src.hasNormals()) part.normals.push_back(src.normals[v]);
             if (src.hasUvs()) part.uvs.push_back(src.uvs[v]);
             if (src.hasTangents()) part.tangents.push_back(src.tangents[v]);
+            if (origins) origins->push_back(v);
         }
         part.indices.push_back(remap[v]);
     }
@@ -204,7 +210,17 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
             c.farZ = mc.zfar > 0.0 ? mc.zfar : std::numeric_limits<double>::infinity();
             out.cameras.push_back(c);
         }
-        out.scene = sceneFromModel(std::move(m), options.kd, options.materials);
+        if (m.animation) {
+            out.animation = m.animation;
+            out.posedModel.positions = m.mesh.positions;
+            out.posedModel.normals = m.mesh.normals;
+            out.posedModel.tangents = m.mesh.tangents;
+        }
+        const int clips = m.animation ? int(m.animation->clips.size()) : 0;
+        out.scene = sceneFromModel(std::move(m), options.kd, options.materials, out.animation ? &out.meshOrigins : nullptr);
+        if (options.animation && *options.animation >= clips)
+            return Result<LoadedScene>::failure(options.obj + ": --animation " + std::to_string(*options.animation) + ": it has " +
+                                                std::to_string(clips) + " animation(s)" + (clips == 0 ? "" : " (numbered from 0)"));
     }
     out.scene.sky.kind = options.sky;
     if (options.sky == Sky::Kind::Cube) {
@@ -346,6 +362,23 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.toneMap = o.toneMap;
     s.exposure = o.exposure;
     return s;
+}
+
+void poseScene(LoadedScene& scene, double t, int clip) {
+    if (!scene.animation) return;
+    Mesh& model = scene.posedModel;
+    scene.animation->pose(t, clip, model);
+    for (std::size_t m = 0; m < scene.scene.meshes.size() && m < scene.meshOrigins.size(); ++m) {
+        Mesh& mesh = scene.scene.meshes[m];
+        const std::vector<std::uint32_t>& origin = scene.meshOrigins[m];
+        const bool normals = mesh.hasNormals() && model.hasNormals(), tangents = mesh.hasTangents() && model.hasTangents();
+        for (std::size_t k = 0; k < origin.size(); ++k) {
+            const std::uint32_t v = origin[k];
+            mesh.positions[k] = model.positions[v];
+            if (normals) mesh.normals[k] = model.normals[v];
+            if (tangents) mesh.tangents[k] = model.tangents[v];
+        }
+    }
 }
 
 void renderFrame(RenderContext& ctx, const LoadedScene& scene, const FrameView& view, const RenderSettings& settings) {

@@ -11,6 +11,7 @@
 #include "Raster/Frame/RenderScene.hpp"
 #include "Raster/Frame/RenderSettings.hpp"
 #include "Raster/Shade/Ibl.hpp"
+#include "Resources/Animation.hpp"
 #include "Resources/Result.hpp"
 
 namespace sr::app {
@@ -38,7 +39,17 @@ struct LoadedScene {
     bool physical = false;
     // --ibl with a sky: the light it sends (made once, here); null otherwise.
     std::shared_ptr<const ImageLight> ibl;
+    // A glTF file's animations, skins and morph targets (Resources/Animation.hpp); null without
+    // them, and then nothing below is kept. The meshes hold the rest pose until poseScene.
+    std::shared_ptr<const ModelAnimation> animation;
+    Mesh posedModel;                                  // the model's vertices, posed (its numbering)
+    std::vector<std::vector<std::uint32_t>> meshOrigins; // [mesh][k]: the model vertex of scene vertex k
 };
+
+// Poses an animated scene at time t (seconds): clip `clip` alone, or every clip (clip < 0), as
+// ModelAnimation::pose says; the scene's meshes take the posed positions, normals and tangents.
+// Nothing for a scene without animation.
+void poseScene(LoadedScene& scene, double t, int clip);
 
 // Loads options.obj (or builds the default scene when empty). Errors name the file.
 Result<LoadedScene> loadScene(const SceneOptions& options);
@@ -58,8 +69,9 @@ std::optional<std::string> applySceneDefaults(SceneOptions& options, const Loade
 // kNoVertex. No other entry is read or written: splitting a model costs O(its indices) whatever
 // the number of ranges (one remap serves them all).
 inline constexpr std::uint32_t kNoVertex = UINT32_MAX;
+// `origins`, when not null, gets the src index of each vertex appended to part.
 std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount,
-                          std::vector<std::uint32_t>& remap);
+                          std::vector<std::uint32_t>& remap, std::vector<std::uint32_t>* origins = nullptr);
 void clearRange(const Mesh& src, std::uint32_t firstIndex, std::uint32_t indexCount, std::vector<std::uint32_t>& remap);
 
 // The camera the flags ask for. With --camera N: the file's camera N (loadScene checked that it

@@ -2,6 +2,7 @@
 #include "Platform/Headless/CommandArgs.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <ostream>
 
@@ -47,9 +48,12 @@ std::string usage(Subcommand c) {
                "  --quiet               no diagnostics on stderr\n" +
                app::sceneFlagsHelp();
     case Subcommand::Bench:
-        return "usage: softraster bench [scene flags] [--frames N] [--warmup N] [--flight SEED] [--out FILE] [--depth-out FILE] [--quiet]\n"
+        return "usage: softraster bench [scene flags] [--frames N] [--warmup N] [--time-step DT] [--flight SEED] [--out FILE] [--depth-out FILE] [--quiet]\n"
                "  --frames N            timed frames (default 100)\n"
                "  --warmup N            untimed frames first (default 5)\n"
+               "  --time-step DT        animate: each frame DT seconds after the one before, from --time\n"
+               "                        (default 0: the pose --time gives, or the rest pose); the JSON's\n"
+               "                        stages_ms then has \"animate\" (posing the meshes, per frame)\n"
                "  --flight SEED         soak test: each frame from a new seeded random camera pose\n"
                "                        (including eye on a vertex, in a triangle's plane, inside the\n"
                "                        model, looking straight up/down, extreme near/far/fov); prints\n"
@@ -136,6 +140,14 @@ ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& 
             if (!n || *n < 1 || *n > 1000)
                 return fail("bad value for --rounds: '" + *v + "' (expected an integer from 1 to 1000)");
             a.rounds = *n;
+        } else if (bench && flag == "--time-step") {
+            const auto v = need();
+            if (!v) return fail("missing value for --time-step");
+            char* end = nullptr;
+            const double dt = std::strtod(v->c_str(), &end);
+            if (v->empty() || end != v->c_str() + v->size() || !std::isfinite(dt) || dt < 0.0 || dt > 1e6)
+                return fail("bad value for --time-step: '" + *v + "' (expected seconds from 0)");
+            a.timeStep = dt;
         } else if (bench && flag == "--flight") {
             const auto v = need();
             if (!v) return fail("missing value for --flight");
@@ -175,6 +187,10 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
     if (const auto problem = app::applySceneDefaults(p->options, p->scene)) {
         err << "softraster: " << *problem << "\n";
         return nullptr;
+    }
+    if (a.scene.time) {
+        if (p->scene.animation) app::poseScene(p->scene, *a.scene.time, a.scene.animation.value_or(-1));
+        else if (!a.quiet) err << "softraster: note: --time: " << a.scene.obj << " has no animation, skin or morph target\n";
     }
     p->camera = app::resolveCamera(p->options, p->scene);
     if (!a.quiet) err << "softraster: camera: " << app::cameraFlags(p->camera) << "\n";

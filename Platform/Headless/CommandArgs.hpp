@@ -25,6 +25,7 @@ struct CommandArgs {
     int warmup = 5;
     int rounds = 3;       // report: interleaved timing rounds
     std::optional<std::uint32_t> flightSeed; // bench --flight SEED: the soak flight (Flight.hpp)
+    double timeStep = 0.0; // bench --time-step DT: each frame (warm-up included) DT seconds after the last (--time: the first)
     bool quiet = false;
     bool help = false;
 };

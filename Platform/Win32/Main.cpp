@@ -95,7 +95,7 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
         reportError("SoftRaster: cannot load the scene: " + loaded.error() + "\n");
         return app::kExitFailure;
     }
-    const app::LoadedScene& scene = loaded.value();
+    app::LoadedScene& scene = loaded.value();
     for (const std::string& warning : scene.warnings)
         win32::writeStderr("SoftRaster: warning: " + warning + "\n");
     if (const auto problem = app::applySceneDefaults(options.scene, scene)) {
@@ -115,6 +115,9 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
     controller.setLights(scene.lights);
     controller.setPhysicalLights(scene.physical);
     controller.setImageLight(scene.ibl.get());
+    if (scene.animation) // plays from --time (or 0), every clip or --animation N's
+        controller.setAnimation(scene.animation->duration(options.scene.animation.value_or(-1)), options.scene.time.value_or(0.0),
+                                options.scene.animation.value_or(-1));
 
     win32::enableDpiAwareness(); // before any window exists
     win32::MainWindow window(scene, controller);

@@ -28,7 +28,7 @@ std::wstring helpText() {
 
 } // namespace
 
-MainWindow::MainWindow(const app::LoadedScene& scene, app::DemoController& controller)
+MainWindow::MainWindow(app::LoadedScene& scene, app::DemoController& controller)
     : scene_(scene), controller_(controller), helpText_(helpText()) {}
 
 MainWindow::~MainWindow() {
@@ -101,6 +101,7 @@ void MainWindow::draw() {
     if (frame_.empty())
         return;
     context_.stats = {};
+    if (controller_.animated()) app::poseScene(scene_, controller_.animationTime(), controller_.animationClip());
     app::renderFrame(context_, scene_, controller_.frameView(frame_.width(), frame_.height()), controller_.settings());
     if (controller_.depthView())
         app::depthToGrey(frame_);
@@ -200,6 +201,9 @@ app::Key MainWindow::translateKey(WPARAM vk) {
     case 'Z': return Key::Z;
     case 'R': return Key::R;
     case 'V': return Key::V;
+    case VK_SPACE: return Key::Space;
+    case VK_OEM_COMMA: return Key::Comma;
+    case VK_OEM_PERIOD: return Key::Period;
     case VK_F1: return Key::F1;
     case VK_F12: return Key::F12;
     default: return Key::Unknown;

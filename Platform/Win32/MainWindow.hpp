@@ -18,8 +18,8 @@ namespace sr::win32 {
 
 class MainWindow {
 public:
-    // The scene and the controller outlive the window.
-    MainWindow(const app::LoadedScene& scene, app::DemoController& controller);
+    // The scene and the controller outlive the window; an animated scene is posed each frame.
+    MainWindow(app::LoadedScene& scene, app::DemoController& controller);
     ~MainWindow();
     MainWindow(const MainWindow&) = delete;
     MainWindow& operator=(const MainWindow&) = delete;
@@ -63,7 +63,7 @@ private:
     void setStatus(std::string text);
     static app::Key translateKey(WPARAM virtualKey);
 
-    const app::LoadedScene& scene_;
+    app::LoadedScene& scene_;
     app::DemoController& controller_;
 
     HWND hwnd_ = nullptr;

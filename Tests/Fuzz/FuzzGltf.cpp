@@ -3,6 +3,7 @@
 // Input: the file's bytes (GLB when they start with "glTF"). An external buffer "t.bin" (a valid
 // triangle: 3 float VEC3 positions, then 3 u16 indices) and an image "t.ppm" are written once at
 // start-up next to the fuzzed file, so the seeds' external references load too.
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -10,6 +11,7 @@
 #include <string>
 
 #include "FuzzModel.hpp"
+#include "Resources/Animation.hpp"
 #include "Resources/GltfLoader.hpp"
 
 namespace {
@@ -46,7 +48,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const sr::Result<sr::Model> r = sr::loadGltfFromMemory(bytes, size, gDir + "fuzz.gltf", options);
     std::free(bytes);
 
-    if (r.ok()) sr::fuzz::checkModel(r.value());
-    else sr::fuzz::checkError(r.error(), "fuzz.gltf");
+    if (r.ok()) {
+        sr::fuzz::checkModel(r.value());
+        // An animated file poses at any time without touching anything outside its mesh.
+        if (const auto& animation = r.value().animation) {
+            sr::Mesh mesh = r.value().mesh;
+            for (const double t : {0.0, 0.37, 1e6}) animation->pose(t, -1, mesh);
+            animation->pose(0.5, 0, mesh);
+            assert(mesh.positions.size() == r.value().mesh.positions.size() && mesh.normals.size() == r.value().mesh.normals.size());
+        }
+    } else {
+        sr::fuzz::checkError(r.error(), "fuzz.gltf");
+    }
     return 0;
 }

@@ -100,6 +100,42 @@ int main(int argc, char** argv) {
                "{\"type\":\"directional\",\"color\":[1,0.5,0.5],\"intensity\":2},{\"type\":\"point\",\"range\":5},"
                "{\"type\":\"spot\",\"spot\":{\"innerConeAngle\":0.1,\"outerConeAngle\":0.6}}]}},"
                "\"buffers\":[{\"byteLength\":42,\"uri\":\"t.bin\"}]," + views + "}");
+    // Animation: a two-joint skin (weights summing to 2 and to 1), a morph target with mesh
+    // weights, a LINEAR rotation clip on a joint and a STEP weights clip (base64 of 316 bytes:
+    // positions, indices, key times, rotations, morph deltas, weights, joints, skin weights, two
+    // inverse bind matrices).
+    {
+        const std::string data =
+            "AAAAAAAAAEAAAAAAzczMPQAAAEAAAAAAAAAAAAAAAEDNzMw9AAABAAIAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAPMENT/zBDU/"
+            "AAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAAAAAAAAAAgD8AAAAAAAAAAAAAgD8BAQAAAQAAAAABAAAAAIA/AACAPwAAAAAAAAAAAAAAQAAAAAAAAAAA"
+            "AAAAAAAAAD8AAAA/AAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAAAAAAIA/"
+            "AACAPwAAAAAAAAAAAAAAAAAAAAAAAIA/AAAAAAAAAAAAAAAAAAAAAAAAgD8AAAAAAAAAAAAAgL8AAAAAAACAPw==";
+        std::string v = "\"bufferViews\":[";
+        const int spans[9][2] = {{0, 36}, {36, 6}, {44, 8}, {52, 32}, {84, 36}, {120, 8}, {128, 12}, {140, 48}, {188, 128}};
+        for (int k = 0; k < 9; ++k)
+            v += std::string(k ? "," : "") + "{\"buffer\":0,\"byteOffset\":" + std::to_string(spans[k][0]) +
+                 ",\"byteLength\":" + std::to_string(spans[k][1]) + "}";
+        v += "],\"accessors\":["
+             "{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+             "{\"bufferView\":1,\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"},"
+             "{\"bufferView\":2,\"componentType\":5126,\"count\":2,\"type\":\"SCALAR\"},"
+             "{\"bufferView\":3,\"componentType\":5126,\"count\":2,\"type\":\"VEC4\"},"
+             "{\"bufferView\":4,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+             "{\"bufferView\":5,\"componentType\":5126,\"count\":2,\"type\":\"SCALAR\"},"
+             "{\"bufferView\":6,\"componentType\":5121,\"count\":3,\"type\":\"VEC4\"},"
+             "{\"bufferView\":7,\"componentType\":5126,\"count\":3,\"type\":\"VEC4\"},"
+             "{\"bufferView\":8,\"componentType\":5126,\"count\":2,\"type\":\"MAT4\"}]";
+        put(gl + "animated.gltf",
+            "{\"asset\":{\"version\":\"2.0\"},\"scene\":0,\"scenes\":[{\"nodes\":[0,1]}],"
+            "\"nodes\":[{\"mesh\":0,\"skin\":0},{\"children\":[2]},{\"translation\":[0,1,0]}],"
+            "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"JOINTS_0\":6,\"WEIGHTS_0\":7},\"indices\":1,"
+            "\"targets\":[{\"POSITION\":4}]}],\"weights\":[0.5]}],"
+            "\"skins\":[{\"joints\":[1,2],\"inverseBindMatrices\":8}],"
+            "\"animations\":[{\"samplers\":[{\"input\":2,\"output\":3},{\"input\":2,\"output\":5,\"interpolation\":\"STEP\"}],"
+            "\"channels\":[{\"sampler\":0,\"target\":{\"node\":2,\"path\":\"rotation\"}},"
+            "{\"sampler\":1,\"target\":{\"node\":0,\"path\":\"weights\"}}]}],"
+            "\"buffers\":[{\"byteLength\":316,\"uri\":\"data:application/octet-stream;base64," + data + "\"}]," + v + "}");
+    }
     // A GLB with the triangle in its BIN chunk.
     {
         std::string json = head + "\"nodes\":[{\"mesh\":0}]," + mesh + "\"buffers\":[{\"byteLength\":42}]," + views + "}";

@@ -140,6 +140,51 @@ TEST_CASE("O toggles the selection outline; the title says so, and that MSAA doe
     CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | msaa 2");
 }
 
+TEST_CASE("an animated scene plays at real time and loops; Space pauses; ',' and '.' step; the title shows the time",
+          "[platform][animation]") {
+    DemoController c = makeController();
+    CHECK_FALSE(c.animated());
+    CHECK(c.modeSummary().find(" | t ") == std::string::npos); // nothing animates: no time shown
+    c.keyDown(Key::Space);                                      // and the keys change nothing
+    c.keyUp(Key::Space);
+    c.keyDown(Key::Period);
+    c.keyUp(Key::Period);
+    CHECK(c.animationTime() == 0.0);
+    CHECK_FALSE(c.animationPlaying());
+    c.setAnimation(2.0, 0.5, 1);
+    CHECK(c.animated());
+    CHECK(c.animationClip() == 1);
+    CHECK(c.animationPlaying());
+    CHECK(c.animationTime() == 0.5);
+    CHECK(c.modeSummary().find(" | t 0.50 s") != std::string::npos);
+    c.update(0.1);
+    CHECK(c.animationTime() == Approx(0.6));
+    for (int i = 0; i < 15; ++i) c.update(0.1); // 2.1 s: looped over the 2 s clip
+    CHECK(c.animationTime() == Approx(0.1).margin(1e-9));
+    CHECK(c.keyDown(Key::Space) == Action::TogglePlay);
+    c.keyUp(Key::Space);
+    CHECK_FALSE(c.animationPlaying());
+    CHECK(c.modeSummary().find(" paused") != std::string::npos);
+    const double paused = c.animationTime();
+    c.update(0.1);
+    CHECK(c.animationTime() == paused); // paused: time stands still
+    CHECK(c.keyDown(Key::Period) == Action::StepForward);
+    c.keyUp(Key::Period);
+    CHECK(c.animationTime() == Approx(paused + DemoController::kAnimationStep));
+    c.keyDown(Key::Comma);
+    c.keyUp(Key::Comma);
+    c.keyDown(Key::Comma);
+    c.keyUp(Key::Comma);
+    CHECK(c.animationTime() == Approx(paused - DemoController::kAnimationStep));
+    for (int i = 0; i < 3; ++i) { // below 0: wraps to the clip's end
+        c.keyDown(Key::Comma);
+        c.keyUp(Key::Comma);
+    }
+    CHECK(c.animationTime() == Approx(2.0 + paused - 4 * DemoController::kAnimationStep));
+    c.keyDown(Key::Space); // plays again
+    CHECK(c.animationPlaying());
+}
+
 TEST_CASE("frame statistics average over the period", "[platform]") {
     FrameStats s(0.25);
     CHECK_FALSE(s.hasAverage());

@@ -36,8 +36,13 @@ class Asset {
 public:
     // Float data as an accessor of `type` ("VEC3", "VEC2", ...); returns the accessor index.
     int floats(const std::vector<float>& values, const std::string& type) {
-        const int components = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : 4;
+        const int components = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : type == "MAT4" ? 16 : 4;
         return add(values.data(), values.size() * 4, 5126, int(values.size()) / components, type);
+    }
+    // Unsigned bytes (5121, not normalised) as an accessor of `type` (JOINTS_0: "VEC4").
+    int unsignedBytes(const std::vector<std::uint8_t>& values, const std::string& type) {
+        const int components = type == "SCALAR" ? 1 : type == "VEC2" ? 2 : type == "VEC3" ? 3 : 4;
+        return add(values.data(), values.size(), 5121, int(values.size()) / components, type);
     }
     // Indices as unsigned bytes (5121), shorts (5123) or ints (5125).
     int indices(const std::vector<std::uint32_t>& values, int componentType) {

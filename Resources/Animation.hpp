@@ -1,0 +1,111 @@
+// Animation: glTF keyframe samplers, node channels, morph targets and skins, and the pose they give a model's mesh at a time.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "Math/DoubleMath.hpp"
+#include "Math/Vec.hpp"
+#include "Raster/Geometry/Mesh.hpp"
+
+namespace sr {
+
+// A keyframe sampler (glTF "animation.sampler"): key times (strictly increasing, finite) and
+// `components` values per key (three elements per key for CUBICSPLINE: in-tangent, value,
+// out-tangent, as the specification stores them).
+struct AnimationSampler {
+    enum class Interpolation { Linear, Step, CubicSpline };
+    Interpolation interpolation = Interpolation::Linear;
+    std::vector<double> times;
+    std::vector<double> values;
+    int components = 1;
+    bool quaternion = false; // a rotation: LINEAR is slerp along the shorter arc, every result normalised
+
+    // The value at time t into out[0 .. components): before the first key the first value, after
+    // the last the last; between keys k and k + 1 with s = (t - t_k) / (t_k+1 - t_k):
+    //  STEP         v_k;
+    //  LINEAR       v_k + s (v_k+1 - v_k); a quaternion slerps (q_k+1 negated when q_k . q_k+1 < 0,
+    //               as three.js does, so it turns the short way), normalised;
+    //  CUBICSPLINE  the Hermite spline (2s^3 - 3s^2 + 1) v_k + (s^3 - 2s^2 + s) d b_k +
+    //               (-2s^3 + 3s^2) v_k+1 + (s^3 - s^2) d a_k+1, d = t_k+1 - t_k, b the out-tangent,
+    //               a the in-tangent (glTF appendix C); a quaternion normalised.
+    void evaluate(double t, double* out) const;
+};
+
+// What a channel drives: a node's translation, rotation, scale, or its mesh's morph weights.
+enum class AnimationPath { Translation, Rotation, Scale, Weights };
+
+struct AnimationChannel {
+    int node = 0; // index into ModelAnimation::nodes
+    AnimationPath path = AnimationPath::Translation;
+    int sampler = 0; // index into its clip's samplers
+};
+
+struct AnimationClip {
+    std::string name;
+    std::vector<AnimationSampler> samplers;
+    std::vector<AnimationChannel> channels;
+    double duration = 0.0; // the last key time of its samplers
+};
+
+// A node of the file: its parent (-1 for a root or a node outside the scene) and its rest
+// transform, TRS (a node given by a matrix cannot be animated: glTF "Animations").
+struct AnimationNode {
+    int parent = -1;
+    bool hasMatrix = false;
+    Mat4d matrix;                                 // hasMatrix
+    std::array<double, 3> translation{0, 0, 0};
+    std::array<double, 4> rotation{0, 0, 0, 1};   // x, y, z, w
+    std::array<double, 3> scale{1, 1, 1};
+    std::vector<double> weights;                  // the rest morph weights: the node's, else its mesh's
+};
+
+struct AnimationSkin {
+    std::vector<int> joints;         // nodes
+    std::vector<Mat4d> inverseBind;  // one per joint (identity when the file gives none)
+};
+
+// One primitive's vertices in the model's mesh, [first, first + count), and what moves them.
+struct AnimatedBlock {
+    int node = 0;       // the node whose mesh it is
+    int skin = -1;      // index into ModelAnimation::skins, or -1
+    std::uint32_t first = 0, count = 0;
+    bool mirrored = false;   // the rest transform mirrors: its triangles were stored reversed
+    bool flatNormals = false; // no NORMAL: each vertex belongs to one triangle (first + 3t ..), the face normal
+    std::vector<Vec3> positions, normals;         // object space, one per vertex (normals: when !flatNormals)
+    std::vector<Vec4> tangents;                   // object space, when the mesh keeps tangents for this block
+    std::vector<std::vector<Vec3>> targetPositions, targetNormals; // morph target deltas (normals may be empty)
+    std::vector<std::array<std::uint16_t, 8>> joints;  // JOINTS_0 and _1 (indices into the skin's joints)
+    std::vector<std::array<float, 8>> weights;         // WEIGHTS_0 and _1, normalised to sum 1
+};
+
+// Everything a glTF file animates, kept beside the model's mesh (Model::animation): null for a
+// file without animations, skins or morph targets, so such a scene runs and allocates nothing for
+// animation.
+struct ModelAnimation {
+    std::vector<AnimationNode> nodes;
+    std::vector<AnimationClip> clips;
+    std::vector<AnimationSkin> skins;
+    std::vector<AnimatedBlock> blocks;
+
+    // The longest clip's duration (all clips: `clip` < 0), or clip `clip`'s.
+    double duration(int clip = -1) const;
+
+    // Writes the blocks' vertices (positions, normals, and tangents where the mesh has them) into
+    // `mesh` (the model's mesh, numbered as loaded) posed at time t: the clips' channels (all of
+    // them in file order, a later channel on the same target winning, or clip `clip` alone;
+    // `clip` beyond the clips: none), each clip at t modulo its duration (looped, as viewers and
+    // three.js play them; t = duration shows its first key), over the rest transforms, then each block's morph targets
+    // (position and normal deltas weighted), its node's world transform, or for a skinned block
+    // sum_j w_j (world(joint j) x inverseBind_j) as the specification says (the mesh node's own
+    // transform ignored), normals by the inverse transpose (renormalised). A block that no clip
+    // moves at any time (no channel on its node, an ancestor or a joint, no weights channel) is
+    // left as it is: `mesh` must hold the rest pose there. `restOnly`: no clip, the rest
+    // transforms and weights, every block written.
+    void pose(double t, int clip, Mesh& mesh, bool restOnly = false) const;
+};
+
+} // namespace sr
