@@ -38,6 +38,7 @@ std::string usage(Subcommand c) {
                "  render   render a scene to an image (.ppm, .png or .bmp) and optionally its depth (.pfm)\n"
                "  bench    time frames of a scene and print one JSON line (stages, counters)\n"
                "  report   measure every quality setting's time and error; writes report.csv/.md/.svg\n"
+               "  compare  the error of one image against another (PSNR, SSIM, ...) and its heat map\n"
                "Without --obj the built-in default scene is used.\n";
     case Subcommand::Render:
         return "usage: softraster render [scene flags] [--out FILE] [--depth-out FILE.pfm] [--quiet]\n"
@@ -68,7 +69,8 @@ std::string usage(Subcommand c) {
                app::sceneFlagsHelp();
     case Subcommand::Report:
         return "usage: softraster report --out-dir DIR [scene flags] [--frames N] [--warmup N] [--rounds N] [--quiet]\n"
-               "  --out-dir DIR         where report.csv, report.md and report.svg go (created)\n"
+               "  --out-dir DIR         where report.csv, report.md, report.svg and the error heat maps of the\n"
+               "                        settings on the Pareto front (report-map-N.png) go (created)\n"
                "  --frames N            timed frames per setting and round (default 30)\n"
                "  --warmup N            untimed frames before each setting's timed ones (default 5)\n"
                "  --rounds N            interleaved timing rounds (default 3): median, min and max\n"

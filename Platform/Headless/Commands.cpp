@@ -2,12 +2,14 @@
 #include "Platform/Headless/Commands.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <ostream>
 #include <sstream>
 #include <thread>
 
 #include "Platform/Headless/CommandArgs.hpp"
 #include "Platform/Headless/Flight.hpp"
+#include "Platform/Headless/ImageCompare.hpp"
 #include "Platform/Headless/Json.hpp"
 #include "Platform/Headless/Timing.hpp"
 #include "Raster/Frame/ShadowPass.hpp"
@@ -186,6 +188,81 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     return kExitOk;
 }
 
+int runCompare(const std::vector<std::string>& args, Streams io) {
+    static const char* const kUsage =
+        "usage: softraster compare A B [--map OUT.png] [--quiet]\n"
+        "  A, B                  two images of one size (.png .ppm .bmp .tga .jpg), A the reference\n"
+        "  --map OUT.png         write the error heat map: per pixel the largest channel difference d,\n"
+        "                        black (0) through blue, magenta, orange to white (d >= 64), at sqrt(d / 64)\n"
+        "  --quiet               no diagnostics on stderr\n"
+        "Prints one JSON line: width, height, mean_abs (levels per channel), psnr_db, max_abs,\n"
+        "differing_pixels, differing_share, ssim (Wang et al. 2004: 11x11 Gaussian window of sigma 1.5,\n"
+        "per R, G, B channel, averaged; 1 = identical).\n";
+    std::vector<std::string> files;
+    std::string map;
+    bool quiet = false;
+    for (std::size_t i = 0; i < args.size(); ++i) {
+        if (args[i] == "--help" || args[i] == "-h") {
+            io.out << kUsage;
+            return kExitOk;
+        }
+        if (args[i] == "--quiet") {
+            quiet = true;
+        } else if (args[i] == "--map" || args[i].rfind("--map=", 0) == 0) {
+            if (args[i] == "--map") {
+                if (i + 1 >= args.size() || args[i + 1].empty()) {
+                    io.err << "softraster compare: missing value for --map\n";
+                    return kExitUsage;
+                }
+                map = args[++i];
+            } else {
+                map = args[i].substr(6);
+            }
+        } else if (args[i].rfind("-", 0) == 0 && args[i].size() > 1) {
+            io.err << "softraster compare: unknown flag '" << args[i] << "' (see softraster compare --help)\n";
+            return kExitUsage;
+        } else {
+            files.push_back(args[i]);
+        }
+    }
+    if (files.size() != 2) {
+        io.err << "softraster compare: expected two images, got " << files.size() << " (see softraster compare --help)\n";
+        return kExitUsage;
+    }
+    Image images[2];
+    for (int k = 0; k < 2; ++k) {
+        auto img = loadImage(files[std::size_t(k)]);
+        if (!img) {
+            io.err << "softraster compare: " << img.error() << "\n";
+            return kExitFailure;
+        }
+        images[k] = std::move(img).value();
+    }
+    if (images[0].width != images[1].width || images[0].height != images[1].height) {
+        io.err << "softraster compare: " << files[0] << " is " << images[0].width << "x" << images[0].height << ", " << files[1]
+               << " is " << images[1].width << "x" << images[1].height << ": the images must be the same size\n";
+        return kExitFailure;
+    }
+    const FrameBuffer a = frameOf(images[0]), b = frameOf(images[1]);
+    const ImageError e = compareImages(a, b, true);
+    if (!map.empty()) {
+        const Status s = writeImage(map, errorHeatMap(a, b));
+        if (!s) {
+            io.err << "softraster compare: " << s.error() << "\n";
+            return kExitFailure;
+        }
+        if (!quiet) io.err << "softraster compare: wrote the error map " << map << "\n";
+    }
+    std::string j = "{\"width\":" + std::to_string(images[0].width) + ",\"height\":" + std::to_string(images[0].height);
+    j += ",\"mean_abs\":" + jsonNumber(e.meanAbs) + ",\"psnr_db\":" + jsonNumber(e.psnrDb);
+    j += ",\"max_abs\":" + std::to_string(e.maxAbs) + ",\"differing_pixels\":" + std::to_string(e.differing);
+    char ssim[32];
+    std::snprintf(ssim, sizeof ssim, "%.6f", e.ssim); // finer than jsonNumber: near 1 the digits matter
+    j += ",\"differing_share\":" + jsonNumber(e.differingShare) + ",\"ssim\":" + ssim + "}";
+    io.out << j << "\n";
+    return kExitOk;
+}
+
 int runHeadless(const std::vector<std::string>& args, Streams io) {
     if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
         (args.empty() ? io.err : io.out) << usage(Subcommand::None);
@@ -195,7 +272,8 @@ int runHeadless(const std::vector<std::string>& args, Streams io) {
     if (args[0] == "render") return runRender(rest, io);
     if (args[0] == "bench") return runBench(rest, io);
     if (args[0] == "report") return runReport(rest, io);
-    io.err << "softraster: unknown command '" << args[0] << "' (expected render, bench or report; see --help)\n";
+    if (args[0] == "compare") return runCompare(rest, io);
+    io.err << "softraster: unknown command '" << args[0] << "' (expected render, bench, report or compare; see --help)\n";
     return kExitUsage;
 }
 

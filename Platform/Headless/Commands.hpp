@@ -1,4 +1,4 @@
-// The headless command's subcommands (render, bench, report); each returns a process exit code.
+// The headless command's subcommands (render, bench, report, compare); each returns a process exit code.
 #pragma once
 
 #include <iosfwd>
@@ -23,6 +23,8 @@ struct Streams {
 int runRender(const std::vector<std::string>& args, Streams io);
 int runBench(const std::vector<std::string>& args, Streams io);
 int runReport(const std::vector<std::string>& args, Streams io);
+// compare A B [--map OUT.png]: the error metrics of two image files (one JSON line) and their heat map.
+int runCompare(const std::vector<std::string>& args, Streams io);
 
 // Top-level dispatch: args exclude the program name ("render ...", "bench ...", "--help").
 int runHeadless(const std::vector<std::string>& args, Streams io);

@@ -15,6 +15,7 @@
 #include "Platform/Headless/Timing.hpp"
 #include "Raster/Frame/Resolve.hpp"
 #include "Resources/FileIO.hpp"
+#include "Resources/Image.hpp"
 
 namespace sr::headless {
 namespace {
@@ -224,7 +225,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
     for (std::size_t k = 0; k < settings.size(); ++k) {
         app::renderFrame(p.context, p.scene, p.view, settings[k].settings);
         if (k == 0) truth = p.framebuffer;
-        errors[k] = compareImages(truth, p.framebuffer);
+        errors[k] = compareImages(truth, p.framebuffer, true);
     }
     // Timing: rounds, each timing every setting once in turn (interleaved, so a slow spell of a
     // shared machine hits every setting alike); per setting the median, min and max of its
@@ -255,7 +256,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
                                 std::to_string(p.threadsUsed) + " render thread" + (p.threadsUsed == 1 ? "" : "s") +
                                 ", span kernels " + isaName(p.settings.isa);
     std::ostringstream csv, md;
-    csv << "ssaa,msaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,max_abs,differing_share,pareto,preset,"
+    csv << "ssaa,msaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,ssim,max_abs,differing_share,pareto,preset,"
            "truth\n";
     md << "# SoftRaster quality report\n\n"
        << "Scene: " << scene << ", " << a.scene.width << "x" << a.scene.height << ", "
@@ -268,14 +269,15 @@ int runReport(const std::vector<std::string>& args, Streams io) {
           "each sample shaded) and the most accurate other settings (trilinear filtering, exact perspective, and the "
           "scene's own material model: "
        << (p.scene.physical ? "the glTF metallic-roughness BRDF in linear light" : "Phong shading on display values")
-       << "). Mean abs error is per colour channel in levels (0-255); PSNR over R, G, B. Every "
+       << "). Mean abs error is per colour channel in levels (0-255); PSNR over R, G, B; SSIM the structural "
+          "similarity of Wang et al. 2004 (11x11 Gaussian window, sigma 1.5, per channel, averaged; 1 = the truth). Every "
           "combination of anti-aliasing (1 sample, MSAA 4: coverage and depth per sample, shaded once per pixel; "
           "SSAA 4: 2x2 samples, each shaded) x texture filter x shading x perspective is measured, and MSAA 8 with "
           "the ground truth's other settings; the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
           "`--quality` presets.\n\n"
-       << "| ssaa | msaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | max abs | "
+       << "| ssaa | msaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | SSIM | max abs | "
           "differing pixels | Pareto | preset |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
         const RenderSettings& st = r.setting.settings;
@@ -284,18 +286,39 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         csv << st.antiAliasing.ssaaSamples() << "," << st.antiAliasing.msaaSamples() << "," << filter << ","
             << shadingLabel(st) << "," << perspectiveModeName(st.perspective) << "," << fmt(r.time.median) << ","
             << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
-            << "," << fmt(r.error.psnrDb, 2) << "," << r.error.maxAbs << "," << fmt(r.error.differingShare, 5) << ","
+            << "," << fmt(r.error.psnrDb, 2) << "," << fmt(r.error.ssim, 6) << "," << r.error.maxAbs << ","
+            << fmt(r.error.differingShare, 5) << ","
             << (front[i] ? 1 : 0) << "," << preset << "," << (r.setting.truth ? 1 : 0) << "\n";
         md << "| " << st.antiAliasing.ssaaSamples() << (r.setting.truth ? " (ground truth)" : "") << " | "
            << st.antiAliasing.msaaSamples() << " | " << filter << " | "
            << shadingLabel(st) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
            << " [" << fmt(r.time.min) << ", " << fmt(r.maxMs) << "] | " << fmt(r.error.meanAbs, 4) << " | "
-           << fmt(r.error.psnrDb, 2) << " | " << r.error.maxAbs << " | " << fmt(100.0 * r.error.differingShare, 2)
+           << fmt(r.error.psnrDb, 2) << " | " << fmt(r.error.ssim, 6) << " | " << r.error.maxAbs << " | "
+           << fmt(100.0 * r.error.differingShare, 2)
            << "% | " << (front[i] ? "yes" : "") << " | " << preset << " |\n";
     }
     md << "\nPlot: `report.svg` (mean abs error against time, the Pareto front and the presets labelled). Depth format "
           "(reversed-Z float32) and sub-pixel precision (8 bits) are fixed by design and have no setting.\n";
+    // Where each setting on the front is wrong: its heat map against the truth (rendered again:
+    // the images are deterministic).
     const std::string base = a.outDir + "/report";
+    md << "\n## Where the error is\n\nPer pixel the largest channel difference d from the ground truth, black (0) "
+          "through blue, magenta, orange to white (64 or more), at sqrt(d / 64) (`softraster compare A B --map` draws the "
+          "same for any two images):\n\n";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+        if (!front[i] || rows[i].setting.truth) continue;
+        app::renderFrame(p.context, p.scene, p.view, rows[i].setting.settings);
+        const std::string name = "report-map-" + std::to_string(i) + ".png";
+        const Status s = writeImage(a.outDir + "/" + name, errorHeatMap(truth, p.framebuffer));
+        if (!s) {
+            io.err << "softraster report: " << s.error() << "\n";
+            return kExitFailure;
+        }
+        io.out << a.outDir << "/" << name << "\n";
+        md << "- " << label(rows[i].setting, textured) << " (" << fmt(rows[i].time.median) << " ms, mean abs "
+           << fmt(rows[i].error.meanAbs, 4) << ", SSIM " << fmt(rows[i].error.ssim, 6) << "):\n  ![" << label(rows[i].setting, textured)
+           << "](" << name << ")\n";
+    }
     for (const auto& [path, text] :
          {std::pair<std::string, std::string>{base + ".csv", csv.str()},
           {base + ".md", md.str()},

@@ -338,14 +338,15 @@ TEST_CASE("bench counters follow the cull mode", "[headless]") {
 
 TEST_CASE("report: every combination against the SSAA 16 ground truth, the front and the presets", "[headless][report]") {
     const std::string dir = tempDir("report");
-    for (const char* f : {"report.csv", "report.md", "report.svg"}) std::filesystem::remove(dir + "/" + f);
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
     const Run r = run({"report", "--out-dir", dir, "--width", "48", "--height", "32", "--frames", "2", "--warmup",
                        "0", "--rounds", "2", "--quiet"});
     REQUIRE(r.rc == kExitOk);
     auto csv = readFileBytes(dir + "/report.csv");
     REQUIRE(csv.ok());
     const std::string text(csv.value().begin(), csv.value().end());
-    CHECK(text.rfind("ssaa,msaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,max_abs,differing_share,"
+    CHECK(text.rfind("ssaa,msaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,ssim,max_abs,differing_share,"
                      "pareto,preset,truth\n", 0) == 0);
     // The built-in scene is textured: the truth + {1 sample, MSAA 4, SSAA 4} x 3 filters x 3 shadings x
     // 2 perspectives + MSAA 8.
@@ -364,8 +365,9 @@ TEST_CASE("report: every combination against the SSAA 16 ground truth, the front
     const std::string truth = row("16,1,trilinear,phong,exact,");
     CHECK(field(truth, 8) == "0.0000");
     CHECK(field(truth, 9) == "inf");
-    CHECK(field(truth, 13) == "accurate");
-    CHECK(field(truth, 14) == "1");
+    CHECK(field(truth, 10) == "1.000000"); // SSIM
+    CHECK(field(truth, 14) == "accurate");
+    CHECK(field(truth, 15) == "1");
     // One sample per pixel is not the truth; four samples (MSAA or SSAA) are closer to it than one,
     // and so are eight multisamples (on this textured scene most of the error left is the
     // texture's, which multisampling does not touch: 8 is not reliably closer than 4 here).
@@ -377,17 +379,41 @@ TEST_CASE("report: every combination against the SSAA 16 ground truth, the front
     CHECK(mae4 < mae1);
     CHECK(msaa4 < mae1);
     CHECK(msaa8 < mae1);
+    // SSIM agrees: below 1 with one sample, closer to 1 with four supersamples.
+    const double ssim1 = std::stod(field(row("1,1,trilinear,phong,exact,"), 10));
+    CHECK(ssim1 < 1.0);
+    CHECK(std::stod(field(row("4,1,trilinear,phong,exact,"), 10)) > ssim1);
     CHECK(std::stod(field(row("1,1,trilinear,phong,exact,"), 6)) <= std::stod(field(row("1,1,trilinear,phong,exact,"), 5)));
-    CHECK(field(row("4,1,trilinear,phong,exact,"), 13) == "balanced");
-    CHECK(field(row("1,1,nearest,gouraud,exact,"), 13) == "fast");
+    CHECK(field(row("4,1,trilinear,phong,exact,"), 14) == "balanced");
+    CHECK(field(row("1,1,nearest,gouraud,exact,"), 14) == "fast");
     // The truth is on the Pareto front: nothing else has zero error.
-    CHECK(field(truth, 12) == "1");
+    CHECK(field(truth, 13) == "1");
     auto md = readFileBytes(dir + "/report.md");
     REQUIRE(md.ok());
     const std::string mdText(md.value().begin(), md.value().end());
     CHECK(mdText.find("measured against the ground truth") != std::string::npos);
     CHECK(mdText.find("| ssaa | msaa | filter | shading | persp | ms/frame median [min, max] | mean abs") != std::string::npos);
     CHECK(mdText.find("2 interleaved rounds") != std::string::npos);
+    // A heat map per setting on the front (the truth aside), shown in report.md, of the image's size.
+    CHECK(mdText.find("## Where the error is") != std::string::npos);
+    int maps = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::u8path(dir))) {
+        const std::string name = entry.path().filename().u8string();
+        if (name.rfind("report-map-", 0) != 0) continue;
+        ++maps;
+        CHECK(mdText.find("](" + name + ")") != std::string::npos);
+        auto map = loadImage(entry.path().u8string());
+        REQUIRE(map.ok());
+        CHECK(map.value().width == 48);
+        CHECK(map.value().height == 32);
+    }
+    int frontRows = 0; // on the front and not the truth
+    for (std::size_t at = text.find('\n'); at != std::string::npos && at + 1 < text.size(); at = text.find('\n', at + 1)) {
+        const std::string line = text.substr(at + 1, text.find('\n', at + 1) - at - 1);
+        frontRows += field(line, 13) == "1" && field(line, 15) == "0";
+    }
+    CHECK(maps >= 1);
+    CHECK(maps == frontRows);
     auto svg = readFileBytes(dir + "/report.svg");
     REQUIRE(svg.ok());
     const std::string s(svg.value().begin(), svg.value().end());
