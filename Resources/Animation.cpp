@@ -182,7 +182,7 @@ void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
         for (const AnimationChannel& ch : c.channels) (ch.path == AnimationPath::Weights ? morphing : movable)[std::size_t(ch.node)] = 1;
     for (std::size_t n = 0; n < nodes.size(); ++n)
         for (int k = nodes[n].parent; k >= 0 && !movable[n]; k = nodes[std::size_t(k)].parent) movable[n] = movable[std::size_t(k)];
-    std::vector<Vec3d> objectPositions, objectNormals;
+    std::vector<Vec3d> objectPositions, objectNormals, objectTangents;
     for (const AnimatedBlock& b : blocks) {
         if (!restOnly) {
             bool moves = morphing[std::size_t(b.node)] != 0;
@@ -200,14 +200,18 @@ void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
             objectPositions[i] = Vec3d(b.positions[i]);
             if (!b.flatNormals) objectNormals[i] = Vec3d(b.normals[i]);
         }
+        const bool hasTangents = !b.tangents.empty() && mesh.hasTangents();
+        objectTangents.assign(hasTangents ? b.count : 0, Vec3d{});
+        for (std::size_t i = 0; i < objectTangents.size(); ++i) objectTangents[i] = Vec3d{b.tangents[i].x, b.tangents[i].y, b.tangents[i].z};
         for (std::size_t k = 0; k < b.targetPositions.size(); ++k) {
             const double wk = k < w.size() ? w[k] : 0.0;
             if (wk == 0.0) continue;
             for (std::size_t i = 0; i < b.count; ++i) objectPositions[i] = objectPositions[i] + Vec3d(b.targetPositions[k][i]) * wk;
             if (!b.flatNormals && k < b.targetNormals.size() && !b.targetNormals[k].empty())
                 for (std::size_t i = 0; i < b.count; ++i) objectNormals[i] = objectNormals[i] + Vec3d(b.targetNormals[k][i]) * wk;
+            if (hasTangents && k < b.targetTangents.size() && !b.targetTangents[k].empty())
+                for (std::size_t i = 0; i < b.count; ++i) objectTangents[i] = objectTangents[i] + Vec3d(b.targetTangents[k][i]) * wk;
         }
-        const bool hasTangents = !b.tangents.empty() && mesh.hasTangents();
         for (std::size_t i = 0; i < b.count; ++i) {
             Mat4d m;
             if (b.skin >= 0) {
@@ -227,7 +231,7 @@ void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
             if (!b.flatNormals) mesh.normals[at] = transformNormal(m, objectNormals[i]);
             if (hasTangents) {
                 const Vec4 t = b.tangents[i];
-                const Vec3d tObj{t.x, t.y, t.z};
+                const Vec3d tObj = objectTangents[i];
                 const Vec3d tw = transformDirection(m, tObj);
                 const double l = length(tw);
                 const Vec3d tn = l > 0.0 && std::isfinite(l) ? tw / l : Vec3d{1, 0, 0};

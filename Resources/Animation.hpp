@@ -77,7 +77,8 @@ struct AnimatedBlock {
     bool flatNormals = false; // no NORMAL: each vertex belongs to one triangle (first + 3t ..), the face normal
     std::vector<Vec3> positions, normals;         // object space, one per vertex (normals: when !flatNormals)
     std::vector<Vec4> tangents;                   // object space, when the mesh keeps tangents for this block
-    std::vector<std::vector<Vec3>> targetPositions, targetNormals; // morph target deltas (normals may be empty)
+    // Morph target deltas, one list per target (normals and tangents may be empty: none).
+    std::vector<std::vector<Vec3>> targetPositions, targetNormals, targetTangents;
     std::vector<std::array<std::uint16_t, 8>> joints;  // JOINTS_0 and _1 (indices into the skin's joints)
     std::vector<std::array<float, 8>> weights;         // WEIGHTS_0 and _1, normalised to sum 1
 };
@@ -101,7 +102,8 @@ struct ModelAnimation {
     // three.js play them; t = duration shows its first key), over the rest transforms, then each block's morph targets
     // (position and normal deltas weighted), its node's world transform, or for a skinned block
     // sum_j w_j (world(joint j) x inverseBind_j) as the specification says (the mesh node's own
-    // transform ignored), normals by the inverse transpose (renormalised). A block that no clip
+    // transform ignored), normals by the inverse transpose (renormalised), tangents by the
+    // matrix (their morph deltas added first). A block that no clip
     // moves at any time (no channel on its node, an ancestor or a joint, no weights channel) is
     // left as it is: `mesh` must hold the rest pose there. `restOnly`: no clip, the rest
     // transforms and weights, every block written.

@@ -684,8 +684,22 @@ Status addAnimatedBlock(Builder& b, const tinygltf::Model& g, const tinygltf::Pr
                 if (!finite3(out[i])) return Status::failure(name + " " + attribute + ": vertex " + std::to_string(src(i)) + " is not finite");
             }
         }
+        // TANGENT deltas, where the block keeps the file's tangents (a normal-mapped primitive).
+        std::vector<Vec3> dt;
+        if (const auto it = prim.targets[k].find("TANGENT"); keepTangents && it != prim.targets[k].end()) {
+            auto v = accessorView(g, it->second, name + " TANGENT");
+            if (!v) return Status::failure(v.error());
+            if (v.value().components != 3 || v.value().count != pos.count)
+                return Status::failure(name + " TANGENT: must be VEC3 with POSITION's count (" + std::to_string(pos.count) + ")");
+            dt.resize(vertices);
+            for (std::size_t i = 0; i < vertices; ++i) {
+                dt[i] = vec3(v.value(), src(i));
+                if (!finite3(dt[i])) return Status::failure(name + " TANGENT: vertex " + std::to_string(src(i)) + " is not finite");
+            }
+        }
         block.targetPositions.push_back(std::move(dp));
         block.targetNormals.push_back(std::move(dn));
+        block.targetTangents.push_back(std::move(dt));
     }
     const int skin = b.node->skin;
     const auto joints0 = prim.attributes.find("JOINTS_0");

@@ -174,6 +174,34 @@ TEST_CASE("morph targets: weights 0 and 1 give the base and the target exactly; 
     m.animation->pose(0.0, -1, m.mesh, true); // the rest pose again
     CHECK(m.mesh.positions[0] == Vec3(1, 1, 0));
 
+    // A normal-mapped primitive with its own tangents: a TANGENT target moves them too.
+    Asset t;
+    const int tp = t.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int tn = t.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+    const int tt = t.floats({1, 0, 0, 1, 1, 0, 0, 1, 1, 0, 0, 1}, "VEC4");
+    const int tuv = t.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    const int td = t.floats({0, 0, 0, 0, 0, 0, 0, 0, 0}, "VEC3");
+    const int tdt = t.floats({-1, 1, 0, -1, 1, 0, -1, 1, 0}, "VEC3");
+    const int tin = t.floats({0, 1, 2}, "SCALAR");
+    const int tout = t.floats({0, 1, 1}, "SCALAR");
+    t.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(tp) + ",\"NORMAL\":" + std::to_string(tn) +
+               ",\"TANGENT\":" + std::to_string(tt) + ",\"TEXCOORD_0\":" + std::to_string(tuv) + "},\"material\":0,\"targets\":[{\"POSITION\":" +
+               std::to_string(td) + ",\"TANGENT\":" + std::to_string(tdt) + "}]}]}]";
+    t.nodes = "[{\"mesh\":0}]";
+    t.materials = "[{\"normalTexture\":{\"index\":0}}]";
+    t.extra = ",\"textures\":[{\"source\":0}],\"images\":[{\"uri\":\"none.png\"}],\"animations\":[{\"samplers\":[{\"input\":" +
+              std::to_string(tin) + ",\"output\":" + std::to_string(tout) +
+              ",\"interpolation\":\"STEP\"}],\"channels\":[{\"sampler\":0,\"target\":{\"node\":0,\"path\":\"weights\"}}]}]";
+    auto tr = loadGltf(writeText(dir, "tangents.gltf", t.embedded()));
+    REQUIRE(tr.ok());
+    Model tm = std::move(tr).value();
+    REQUIRE(tm.mesh.hasTangents());
+    CHECK(tm.mesh.tangents[0] == Vec4(1, 0, 0, 1)); // weight 0 at rest
+    tm.animation->pose(1.5, -1, tm.mesh);           // weight 1: (1, 0, 0) + (-1, 1, 0)
+    CHECK(tm.mesh.tangents[0].x == Approx(0.0f).margin(1e-7));
+    CHECK(tm.mesh.tangents[0].y == Approx(1.0f));
+    CHECK(tm.mesh.tangents[0].w == 1.0f);
+
     // A file without animations, skins or morph targets keeps nothing for them.
     Asset plain;
     const int p2 = plain.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
