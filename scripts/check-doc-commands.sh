@@ -15,7 +15,7 @@
 #   --out / --depth-out / --out-dir     -> files in a temporary folder (the commands run there)
 #   --obj / --model PATH that does not exist -> the Debian file of the same name (bunny.obj:
 #       glmark2-data; spider.obj, BoxTextured.glb: assimp-testmodels), else one of the same kind
-#   --texture / --skybox that do not exist -> images made by softraster itself
+#   --texture / --skybox, and compare's images, that do not exist -> images made by softraster itself
 #   --shadow-size above 512             -> 512
 # A flag kept on a subcommand that does not take it still exits 2: that is what is checked. Exit 1
 # (the command ran but failed, e.g. a substituted model without the camera asked for) is listed,
@@ -188,6 +188,8 @@ while IFS=$'\t' read -r file line block text; do
   args=("${WORDS[@]:1}")
   sub=""
   [[ ${#args[@]} -gt 0 && ${args[0]} =~ ^(render|bench|report)$ ]] && sub=${args[0]}
+  compare=0
+  [[ ${#args[@]} -gt 0 && ${args[0]} == compare ]] && compare=1
   n=$((n + 1))
   out=()
   i=0
@@ -204,7 +206,10 @@ while IFS=$'\t' read -r file line block text; do
       --texture) take; [[ -f $value || -f $root/$value ]] || value=$(texture_file); out+=("$flag" "$value"); i=$((i + 1)); continue ;;
       --skybox) take; [[ -d $value || -d $root/$value ]] || value=$(skybox_dir); out+=("$flag" "$value"); i=$((i + 1)); continue ;;
       --shadow-size) take; [[ $value =~ ^[0-9]+$ ]] && ((value > 512)) && value=512; out+=("$flag" "$value"); i=$((i + 1)); continue ;;
+      --map) take; out+=("$flag" "$work/$n-${value##*/}"); i=$((i + 1)); continue ;;
     esac
+    # compare's images: one softraster made, when the doc's do not exist here.
+    if ((compare && i > 0)) && [[ $a != -* && ! -f $a && ! -f $root/$a ]]; then out+=("$(texture_file)"); i=$((i + 1)); continue; fi
     out+=("$a")
     i=$((i + 1))
   done

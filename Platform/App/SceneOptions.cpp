@@ -104,7 +104,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     static const char* const kFlags[] = {"--obj",   "--model",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
-                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--materials", "--camera", "--time", "--animation",
+                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--budget-ms", "--max-error", "--materials", "--camera", "--time", "--animation",
                                          "--sky",   "--skybox",  "--outline", "--ibl", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
@@ -295,9 +295,22 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         }
         (super ? o.explicitSsaa : o.explicitMsaa) = true;
     } else if (flag == "--quality") {
+        if (value == "auto") {
+            o.autoQuality = true;
+            return FlagResult::Consumed;
+        }
         const auto q = parseQuality(value);
-        if (!q) return bad("fast, balanced or accurate");
+        if (!q) return bad("fast, balanced, accurate or auto");
+        o.autoQuality = false;
         applyQuality(o, *q);
+    } else if (flag == "--budget-ms") {
+        const auto v = parseNumber(value);
+        if (!v || !(*v > 0.0 && *v <= 1e6)) return bad("milliseconds above 0");
+        o.budgetMs = *v;
+    } else if (flag == "--max-error") {
+        const auto v = parseNumber(value);
+        if (!v || !(*v >= 0.0 && *v <= 2.0)) return bad("an error from 0 (1 - SSIM against the ground truth)");
+        o.maxError = *v;
     } else if (flag == "--wrap") {
         const auto m = parseWrap(value);
         if (!m) return bad("repeat, clamp or mirror");
@@ -322,6 +335,8 @@ std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
     if (o.eye && o.target && *o.eye == *o.target) return "--eye and --target must differ";
     if (length(o.light) == 0.0f) return "--light must not be the zero vector";
     if (o.ibl && o.sky == Sky::Kind::None) return "--ibl lights the model from the sky: it needs --sky gradient or --skybox DIR";
+    if ((o.budgetMs || o.maxError) && !o.autoQuality) return "--budget-ms and --max-error choose for --quality auto: give it too";
+    if (o.budgetMs && o.maxError) return "--budget-ms and --max-error are two ways to choose: give one";
     const AntiAliasing aa = o.antiAliasing;
     if (!msaaFits(o.width, o.height, aa.msaaSamples()))
         return "--msaa " + std::to_string(aa.msaaSamples()) + " at " + std::to_string(o.width) + "x" +
@@ -376,7 +391,9 @@ std::string sceneFlagsHelp() {
            "  --quality Q           fast | balanced | accurate: a preset of --ssaa, --filter, --shading\n"
            "                        and --persp (fast: 1, nearest, gouraud, exact; balanced: 4,\n"
            "                        trilinear, phong, exact; accurate: 16, trilinear, phong, exact);\n"
-           "                        those flags, given too, win\n"
+           "                        those flags, given too, win. auto (render, bench): a short probe of\n"
+           "                        the scene picks the most accurate setting within --budget-ms MS\n"
+           "                        (default 16.7), or the cheapest within --max-error E (1 - SSIM)\n"
            "  --ssaa N              supersampling: 1 (off, default), 4 (2x2) or 16 (4x4) samples per pixel,\n"
            "                        each shaded, box-filtered; width and height at most 8192 / sqrt(N)\n"
            "  --msaa N              multisampling: 1 (off, default), 2, 4 or 8 samples per pixel at the\n"

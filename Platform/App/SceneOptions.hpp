@@ -85,6 +85,11 @@ struct SceneOptions {
     // --shadows / --no-shadows, --shadow-size N, --shadow-pcf K, --shadow-bias C,S (Raster/Shade/Shadow.hpp)
     ShadowSettings shadows;
     std::optional<Quality> quality; // --quality, if given (its values are already in the fields above)
+    // --quality auto (the headless command): a setting chosen by a short probe of the scene, the
+    // most accurate within --budget-ms MS, or the cheapest within --max-error E (1 - SSIM against
+    // the ground truth); neither given: a budget of 16.7 ms.
+    bool autoQuality = false;
+    std::optional<double> budgetMs, maxError;
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
     bool explicitSsaa = false, explicitMsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
     bool explicitWrap = false; // --wrap given (a glTF sampler's wrap applies otherwise)

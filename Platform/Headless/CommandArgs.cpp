@@ -3,8 +3,11 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <ostream>
+
+#include "Platform/Headless/QualityProbe.hpp"
 
 namespace sr::headless {
 namespace {
@@ -167,6 +170,7 @@ ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& 
     }
     if (!a.help) {
         if (command == Subcommand::Report && a.outDir.empty()) return fail("--out-dir DIR is required");
+        if (command == Subcommand::Report && a.scene.autoQuality) return fail("--quality auto chooses one setting: report measures them all");
         if (const auto problem = app::validateSceneOptions(a.scene)) return fail(*problem);
     }
     result.args = std::move(a);
@@ -216,6 +220,19 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
         err << "softraster: warning: --wireframe draws on one thread (its lines cross the thread bands)\n";
     for (const SceneDraw& d : p->scene.scene.draws) p->textured |= d.texture >= 0;
     p->textured |= p->scene.textureOverride.has_value();
+    if (p->options.autoQuality) {
+        const QualityChoice c = probeQuality(*p);
+        p->settings = c.settings;
+        if (!a.quiet) {
+            char line[320];
+            std::snprintf(line, sizeof line, "quality auto (%s %g): %s: %.3f ms a frame, error %.5f (1 - SSIM); probed %d settings in %.2f s",
+                          p->options.maxError ? "--max-error" : "--budget-ms",
+                          p->options.maxError ? *p->options.maxError : p->options.budgetMs.value_or(1000.0 / 60.0), c.label.c_str(), c.ms,
+                          c.error, c.candidates, c.probeSeconds);
+            err << "softraster: " << line << "\n";
+        }
+        p->autoQuality = c;
+    }
     return p;
 }
 

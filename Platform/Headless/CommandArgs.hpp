@@ -47,6 +47,16 @@ ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& 
 std::string usage(Subcommand command);
 
 // A loaded scene with its framebuffer, context, view and settings, ready to render.
+// What --quality auto chose (QualityProbe.hpp).
+struct QualityChoice {
+    RenderSettings settings;
+    std::string label;
+    double ms = 0.0;      // its median frame time in the probe (the scene's size and threads)
+    double error = 0.0;   // 1 - SSIM against the ground truth, at half the size
+    int candidates = 0;
+    double probeSeconds = 0.0;
+};
+
 struct PreparedScene {
     app::LoadedScene scene;
     app::SceneOptions options; // the flags with the scene's own defaults applied (applySceneDefaults)
@@ -57,6 +67,7 @@ struct PreparedScene {
     RenderContext context{framebuffer};
     int threadsUsed = 1;
     bool textured = false;
+    std::optional<QualityChoice> autoQuality; // --quality auto's choice (then in `settings`)
 };
 
 // Loads the scene, resolves the camera (printed on err as flags, like the reference), builds

@@ -177,6 +177,10 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"ssaa\":" + std::to_string(settings.antiAliasing.ssaaSamples());
     j += ",\"msaa\":" + std::to_string(settings.antiAliasing.msaaSamples());
     j += ",\"textured\":" + std::string(p.textured ? "true" : "false");
+    if (p.autoQuality)
+        j += ",\"quality_auto\":{\"setting\":\"" + p.autoQuality->label + "\",\"probe_ms\":" + jsonNumber(p.autoQuality->ms) +
+             ",\"error\":" + jsonNumber(p.autoQuality->error) + ",\"candidates\":" + std::to_string(p.autoQuality->candidates) +
+             ",\"probe_s\":" + jsonNumber(p.autoQuality->probeSeconds) + "}";
     j += ",\"hardware_threads\":" + std::to_string(std::thread::hardware_concurrency()) + "}";
 
     // The image (if asked) goes first so that stdout's last line is the JSON.

@@ -12,6 +12,7 @@
 #include "Platform/Headless/CommandArgs.hpp"
 #include "Platform/Headless/Commands.hpp"
 #include "Platform/Headless/ImageCompare.hpp"
+#include "Platform/Headless/QualityProbe.hpp"
 #include "Platform/Headless/Timing.hpp"
 #include "Raster/Frame/Resolve.hpp"
 #include "Resources/FileIO.hpp"
@@ -92,20 +93,7 @@ std::string fmt(double v, int decimals = 3) {
     return buf;
 }
 
-// The shading model, and "gamma" after pbr on display values (its truth is in linear light).
-std::string shadingLabel(const RenderSettings& r) {
-    return std::string(shadingModeName(r.shading)) + (r.shading == ShadingMode::Pbr && r.colour == ColorMode::Gamma ? " gamma" : "");
-}
-
-std::string label(const Setting& s, bool textured) {
-    const RenderSettings& r = s.settings;
-    const AntiAliasing aa = r.antiAliasing;
-    std::string l =
-        aa.multisampled() ? "msaa" + std::to_string(aa.samples()) : "ssaa" + std::to_string(aa.ssaaSamples());
-    if (textured) l += " " + std::string(filterName(r.filter));
-    l += " " + shadingLabel(r) + " " + perspectiveModeName(r.perspective);
-    return l;
-}
+std::string label(const Setting& s, bool textured) { return settingLabel(s.settings, textured); }
 
 // Points on the Pareto front: no other point is both faster and at least as accurate (mean
 // absolute error against the ground truth).

@@ -562,3 +562,39 @@ TEST_CASE("--time poses a glTF file's animation; the kernels equal the scalar pa
     CHECK_FALSE(hasKey(plain.out, "animate"));
 }
 #endif
+
+TEST_CASE("--quality auto: a probe chooses by --budget-ms or --max-error and says what it chose", "[headless][auto]") {
+    const std::vector<std::string> small = {"--width", "48", "--height", "32", "--frames", "1", "--warmup", "0"};
+    const auto bench = [&](std::vector<std::string> flags) {
+        std::vector<std::string> args = {"bench"};
+        args.insert(args.end(), small.begin(), small.end());
+        args.insert(args.end(), flags.begin(), flags.end());
+        const Run r = run(args);
+        INFO(r.err);
+        REQUIRE(r.rc == kExitOk);
+        return r;
+    };
+    // A budget nothing meets: the fastest candidate, one sample; an unlimited one: the truth.
+    const Run tight = bench({"--quality", "auto", "--budget-ms", "0.000001"});
+    CHECK(tight.err.find("quality auto (--budget-ms 1e-06): ssaa1 ") != std::string::npos);
+    CHECK(numberOf(tight.out, "ssaa") == 1);
+    CHECK(numberOf(tight.out, "msaa") == 1);
+    CHECK(hasKey(tight.out, "quality_auto"));
+    const Run loose = bench({"--quality", "auto", "--budget-ms", "1000000", "--quiet"});
+    CHECK(numberOf(loose.out, "ssaa") == 16);
+    CHECK(loose.out.find("\"setting\":\"ssaa16 trilinear phong exact\"") != std::string::npos);
+    CHECK(numberOf(loose.out, "error") == 0.0);
+    CHECK(loose.err.empty()); // --quiet
+    // An error bound of 0: only the truth; a bound of 1 (anything): the cheapest, one sample.
+    const Run exact = bench({"--quality", "auto", "--max-error", "0"});
+    CHECK(exact.err.find("ssaa16 trilinear phong exact") != std::string::npos);
+    const Run any = bench({"--quality", "auto", "--max-error", "1"});
+    CHECK(numberOf(any.out, "ssaa") == 1);
+    CHECK(numberOf(any.out, "msaa") == 1);
+    CHECK(numberOf(any.out, "candidates") >= 9);
+    // Usage errors: the bounds without auto, both at once, auto for report, and in the demo.
+    CHECK(run({"render", "--budget-ms", "5"}).rc == kExitUsage);
+    CHECK(run({"render", "--quality", "auto", "--budget-ms", "5", "--max-error", "0.1"}).rc == kExitUsage);
+    CHECK(run({"render", "--quality", "auto", "--budget-ms", "-1"}).rc == kExitUsage);
+    CHECK(run({"report", "--out-dir", tempDir("auto-report"), "--quality", "auto"}).rc == kExitUsage);
+}

@@ -235,3 +235,10 @@ TEST_CASE("--isa picks the span kernels; an unknown or unavailable one is refuse
         if (!r.ok) CHECK(r.error.find("not available") != std::string::npos);
     }
 }
+
+TEST_CASE("the demo refuses --quality auto with a clear line (the headless command has it)", "[platform][auto]") {
+    const auto r = parseCommandLine({"--quality", "auto"});
+    CHECK(r.error.find("--quality auto is the headless command's") != std::string::npos);
+    CHECK(parseCommandLine({"--quality", "balanced"}).error.empty());
+    CHECK(parseCommandLine({"--budget-ms", "5"}).error.find("give it too") != std::string::npos);
+}
