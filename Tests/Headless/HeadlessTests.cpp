@@ -466,7 +466,7 @@ TEST_CASE("--quality selects a preset; explicit flags win in any order", "[headl
     CHECK(str(multi, "filter") == "trilinear");
     const Run bad = run({"render", "--quality", "ultra"});
     CHECK(bad.rc == kExitUsage);
-    CHECK(bad.err.find("bad value for --quality: 'ultra' (expected fast, balanced or accurate)") != std::string::npos);
+    CHECK(bad.err.find("bad value for --quality: 'ultra' (expected fast, balanced, accurate or auto)") != std::string::npos);
 }
 
 TEST_CASE("render of the default scene matches its golden image", "[headless][golden]") {
