@@ -1,6 +1,13 @@
 // --quality auto's choice rules over measured points (AutoQuality.hpp).
 #include "Platform/App/AutoQuality.hpp"
 
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+
+#include "Platform/App/ImageMetrics.hpp"
+
 namespace sr::app {
 namespace {
 
@@ -29,6 +36,122 @@ int chooseForError(const std::vector<QualityPoint>& points, double maxError) {
         if (best < 0 || ahead(p.ms, p.error, points[std::size_t(best)].ms, points[std::size_t(best)].error)) best = i;
     }
     return best >= 0 ? best : accurate;
+}
+
+std::string shadingLabel(const RenderSettings& r) {
+    return std::string(shadingModeName(r.shading)) + (r.shading == ShadingMode::Pbr && r.colour == ColorMode::Gamma ? " gamma" : "");
+}
+
+std::string settingLabel(const RenderSettings& r, bool textured) {
+    const AntiAliasing aa = r.antiAliasing;
+    std::string l = aa.multisampled() ? "msaa" + std::to_string(aa.samples()) : "ssaa" + std::to_string(aa.ssaaSamples());
+    if (textured) l += " " + std::string(filterName(r.filter));
+    return l + " " + shadingLabel(r) + " " + perspectiveModeName(r.perspective);
+}
+
+QualityProbe probeQuality(RenderContext& ctx, LoadedScene& scene, const CameraSetup& camera, const FrameView& view,
+                          const SceneOptions& options, const RenderSettings& baseIn, bool textured) {
+    using Clock = std::chrono::steady_clock;
+    const auto start = Clock::now();
+    const bool physical = scene.physical;
+    RenderSettings base = baseIn;
+    base.perspective = PerspectiveMode::Exact;
+    base.filterFromFile = false;
+    base.shading = physical ? ShadingMode::Pbr : ShadingMode::Phong;
+    base.colour = physical ? ColorMode::Linear : ColorMode::Gamma;
+    QualityProbe probe;
+    const std::vector<TextureFilter> filters =
+        textured ? std::vector<TextureFilter>{TextureFilter::Bilinear, TextureFilter::Trilinear} : std::vector<TextureFilter>{TextureFilter::Trilinear};
+    const int w = ctx.target().width(), h = ctx.target().height();
+    const auto fits = [&](AntiAliasing aa) {
+        const int g = aa.gridSide();
+        return msaaFits(w, h, aa.msaaSamples()) && w <= FrameBuffer::kMaxDimension / g && h <= FrameBuffer::kMaxDimension / g;
+    };
+    for (AntiAliasing aa : {AntiAliasing::none(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4), *AntiAliasing::multisample(8)})
+        for (TextureFilter f : filters)
+            for (ShadingMode m : {ShadingMode::Gouraud, base.shading}) {
+                RenderSettings s = base;
+                s.antiAliasing = aa;
+                s.filter = f;
+                s.shading = m;
+                if (fits(aa)) probe.settings.push_back(s);
+            }
+    RenderSettings truthSettings = base; // the ground truth: a candidate too (error 0)
+    truthSettings.antiAliasing = *AntiAliasing::supersample(16);
+    truthSettings.filter = TextureFilter::Trilinear;
+    if (fits(truthSettings.antiAliasing)) probe.settings.push_back(truthSettings);
+    // Errors at half size: the truth first.
+    const int pw = std::max(16, w / 2), ph = std::max(16, h / 2);
+    FrameBuffer small(pw, ph);
+    RenderContext smallContext(small);
+    smallContext.setThreads(ctx.threads());
+    const FrameView smallView = makeFrameView(camera, pw, ph, options.light, scene.lights, physical, scene.ibl.get());
+    renderFrame(smallContext, scene, smallView, truthSettings);
+    const FrameBuffer truth = small;
+    std::optional<AntiAliasing> warmed; // the anti-aliasing whose buffers the last frames used
+    for (const RenderSettings& s : probe.settings) {
+        renderFrame(smallContext, scene, smallView, s);
+        QualityPoint q;
+        q.error = 1.0 - structuralSimilarity(truth, small);
+        // One frame to warm up (the first of each anti-aliasing mode: its buffers), then up to
+        // three timed ones while they take under 60 ms in all.
+        const auto frame = [&] { renderFrame(ctx, scene, view, s); };
+        if (!(warmed && *warmed == s.antiAliasing)) frame();
+        warmed = s.antiAliasing;
+        std::vector<double> ms;
+        double spent = 0.0;
+        while (ms.size() < 3 && (ms.empty() || spent < 60.0)) {
+            const auto t0 = Clock::now();
+            frame();
+            ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+            spent += ms.back();
+        }
+        std::sort(ms.begin(), ms.end());
+        q.ms = ms.size() == 2 ? 0.5 * (ms[0] + ms[1]) : ms[ms.size() / 2];
+        probe.points.push_back(q);
+    }
+    probe.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    return probe;
+}
+
+AutoQualitySelector::AutoQualitySelector(std::vector<QualityPoint> points, double budgetMs, int holdFrames)
+    : points_(std::move(points)), budgetMs_(budgetMs), holdFrames_(std::max(holdFrames, 1)) {
+    current_ = chooseForBudget(points_, budgetMs_);
+}
+
+int AutoQualitySelector::update(double frameMs) {
+    if (current_ < 0 || !(frameMs > 0.0) || !std::isfinite(frameMs)) return current_;
+    const double probed = points_[std::size_t(current_)].ms;
+    if (probed > 0.0) ratio_ += 0.25 * (frameMs / probed - ratio_);
+    std::vector<QualityPoint> predicted = points_;
+    for (QualityPoint& p : predicted) p.ms *= ratio_;
+    // Over the budget: the best that fits it; within it: a dearer setting only with 10% to spare.
+    int want = current_;
+    if (predicted[std::size_t(current_)].ms > budgetMs_) {
+        want = chooseForBudget(predicted, budgetMs_);
+    } else {
+        const int up = chooseForBudget(predicted, 0.9 * budgetMs_);
+        if (up >= 0 && predicted[std::size_t(up)].error < predicted[std::size_t(current_)].error) want = up;
+    }
+    if (want == current_) {
+        pending_ = -1;
+        held_ = 0;
+    } else if (want == pending_) {
+        if (++held_ >= holdFrames_) {
+            current_ = want;
+            pending_ = -1;
+            held_ = 0;
+        }
+    } else {
+        pending_ = want;
+        held_ = 1;
+        if (holdFrames_ <= 1) {
+            current_ = want;
+            pending_ = -1;
+            held_ = 0;
+        }
+    }
+    return current_;
 }
 
 } // namespace sr::app

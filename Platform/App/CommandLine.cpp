@@ -115,8 +115,8 @@ ParseResult parseCommandLine(const std::vector<std::string>& args) {
     }
     if (const auto problem = validateSceneOptions(o.scene))
         return failure(*problem);
-    if (o.scene.autoQuality)
-        return failure("--quality auto is the headless command's (softraster render / bench): the demo takes fast, balanced or accurate");
+    if (o.scene.maxError)
+        return failure("--max-error is the headless command's: the demo's --quality auto keeps a frame time (--budget-ms MS)");
     // The demo renders on every hardware thread unless --threads says otherwise (the headless
     // command keeps 1, as the reference renderer does).
     if (!threadsGiven) o.scene.threads = defaultDemoThreads();

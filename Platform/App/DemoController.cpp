@@ -98,6 +98,10 @@ Action DemoController::keyDown(Key key, bool repeat) {
     if (repeat)
         return Action::None; // toggles flip once per press, not at the auto-repeat rate
     const Action action = actionForKey(key);
+    // A quality chosen by hand holds: --quality auto stops following the budget (U resumes).
+    if (action == Action::CycleShading || action == Action::ToggleColour || action == Action::CycleFilter ||
+        action == Action::CyclePerspective || action == Action::CycleAntialiasing)
+        autoOn_ = false;
     switch (action) {
     case Action::CycleCull: settings_.cull = next(settings_.cull, 3); break;
     case Action::CycleShading: settings_.shading = next(settings_.shading, physical_ ? 5 : 4); break; // pbr: glTF only
@@ -117,6 +121,10 @@ Action DemoController::keyDown(Key key, bool repeat) {
     case Action::ResetView: resetView(); break;
     case Action::CycleCamera: cycleCamera(); break;
     case Action::ToggleHelp: help_ = !help_; break;
+    case Action::ToggleAutoQuality:
+        if (!autoSettings_.empty())
+            autoOn_ = !autoOn_;
+        break;
     case Action::TogglePlay:
         if (animated_)
             playing_ = !playing_;
@@ -145,6 +153,36 @@ void DemoController::releaseAllKeys() { held_.fill(false); }
 void DemoController::mouseDrag(int dx, int dy) {
     // Dragging right turns right (negative yaw); dragging down looks down.
     camera_.turn(-float(dx) * tuning_.mouseRadiansPerPixel, -float(dy) * tuning_.mouseRadiansPerPixel);
+}
+
+void DemoController::setAutoQuality(const QualityProbe& probe, double budgetMs, bool textured) {
+    autoSettings_ = probe.settings;
+    autoPoints_ = probe.points;
+    autoTextured_ = textured;
+    autoSelector_ = AutoQualitySelector(autoPoints_, budgetMs);
+    autoOn_ = !autoSettings_.empty();
+    applyAutoSetting(autoSelector_.current());
+}
+
+void DemoController::applyAutoSetting(int index) {
+    if (index < 0 || std::size_t(index) >= autoSettings_.size())
+        return;
+    const RenderSettings& s = autoSettings_[std::size_t(index)];
+    settings_.antiAliasing = s.antiAliasing;
+    settings_.filter = s.filter;
+    settings_.filterFromFile = false;
+    settings_.shading = s.shading;
+    settings_.perspective = s.perspective;
+    settings_.colour = s.colour;
+}
+
+void DemoController::frameRendered(double renderMs) {
+    if (!autoOn_)
+        return;
+    const int before = autoSelector_.current();
+    const int now = autoSelector_.update(renderMs);
+    if (now != before)
+        applyAutoSetting(now);
 }
 
 void DemoController::setAnimation(double duration, double start, int clip) {
@@ -223,6 +261,15 @@ std::string DemoController::modeSummary() const {
         s += aa.multisampled() ? " | outline (not with msaa)" : " | outline";
     if (depthView_)
         s += " | depth view";
+    if (!autoSettings_.empty()) {
+        char a[64];
+        const int k = autoSelector_.current();
+        if (autoOn_ && k >= 0)
+            std::snprintf(a, sizeof a, " | auto %.1f ms: err %.4f", autoSelector_.budgetMs(), autoPoints_[std::size_t(k)].error);
+        else
+            std::snprintf(a, sizeof a, " | auto held");
+        s += a;
+    }
     if (animated_) {
         char t[48];
         std::snprintf(t, sizeof t, " | t %.2f s%s", animTime_, playing_ ? "" : " paused");

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "Platform/App/AutoQuality.hpp"
 #include "Platform/App/Input.hpp"
 #include "Platform/App/SceneSetup.hpp"
 #include "Raster/Frame/RenderSettings.hpp"
@@ -88,6 +89,13 @@ public:
     double animationTime() const { return animTime_; }
     int animationClip() const { return animClip_; }
     static constexpr double kAnimationStep = 1.0 / 30.0;
+    // --quality auto: the probe's settings (AutoQuality.hpp) and the frame-time budget. The
+    // setting follows the budget (AutoQualitySelector) as frames are rendered; U holds it and
+    // follows again.
+    void setAutoQuality(const QualityProbe& probe, double budgetMs, bool textured);
+    bool autoQuality() const { return autoOn_; }
+    // A frame took renderMs to render: under auto, the setting of the next one.
+    void frameRendered(double renderMs);
 
     // The camera as a setup for the one view builder (makeFrameView): the starting setup while
     // the camera is where it started, else eye = position, target = position + forward, up = +Y.
@@ -95,7 +103,8 @@ public:
     FrameView frameView(int width, int height) const { return makeFrameView(cameraSetup(), width, height, toLight_, lights_, physical_, ibl_); }
 
     // "cull none | phong | bilinear | exact | ssaa 4" (or "| msaa 4" while multisampling; + " | wireframe",
-    // " | depth view", " | help"; an animated scene " | t 1.23 s", " paused" when paused).
+    // " | depth view", " | help"; an animated scene " | t 1.23 s", " paused" when paused; under
+    // --quality auto " | auto 16.7 ms: err 0.0234", " | auto held" after U).
     std::string modeSummary() const;
 
 private:
@@ -116,6 +125,11 @@ private:
     MotionTuning tuning_;
     bool depthView_ = false;
     bool help_ = false;
+    std::vector<RenderSettings> autoSettings_;
+    std::vector<QualityPoint> autoPoints_;
+    AutoQualitySelector autoSelector_;
+    bool autoOn_ = false, autoTextured_ = false;
+    void applyAutoSetting(int index);
     bool animated_ = false, playing_ = true;
     double animTime_ = 0.0, animDuration_ = 0.0;
     int animClip_ = -1;

@@ -13,7 +13,7 @@ enum class Key {
     W, A, S, D, Q, E,          // fly: forward / strafe left / back / strafe right / down / up
     Up, Down, Left, Right,     // turn
     Shift,                     // held: move faster
-    C, M, T, P, N, L, O, H, Z, R, V, G, // toggles, reset and camera (see actionForKey)
+    C, M, T, P, N, L, O, H, Z, R, V, G, U, // toggles, reset and camera (see actionForKey)
     Space, Comma, Period,      // animation: play / pause, step back, step forward
     F1, F12,
     Count
@@ -41,7 +41,8 @@ enum class Action {
     Screenshot,
     TogglePlay,       // a glTF file's animation: play <-> pause
     StepBack,         // pause, one step (1/30 s) back
-    StepForward       // pause, one step forward
+    StepForward,      // pause, one step forward
+    ToggleAutoQuality // --quality auto: keep the budget <-> hold the current setting
 };
 
 constexpr Action actionForKey(Key key) {
@@ -64,6 +65,7 @@ constexpr Action actionForKey(Key key) {
     case Key::Space: return Action::TogglePlay;
     case Key::Comma: return Action::StepBack;
     case Key::Period: return Action::StepForward;
+    case Key::U: return Action::ToggleAutoQuality;
     default: break;
     }
     return Action::None;
@@ -75,7 +77,7 @@ struct KeyHelp {
     const char* what;
 };
 
-inline constexpr std::array<KeyHelp, 22> kKeyHelp{{
+inline constexpr std::array<KeyHelp, 23> kKeyHelp{{
     {"W / S", "fly forward / back"},
     {"A / D", "strafe left / right"},
     {"Q / E", "fly down / up"},
@@ -95,6 +97,7 @@ inline constexpr std::array<KeyHelp, 22> kKeyHelp{{
     {"Z", "depth view (near = white) on / off"},
     {"Space", "animation (glTF): play / pause"},
     {", / .", "animation: pause and step 1/30 s back / forward"},
+    {"U", "--quality auto: follow the budget <-> hold the setting"},
     {"F1", "this help on / off"},
     {"F12", "save a screenshot (PNG, current folder)"},
     {"Esc", "quit"},

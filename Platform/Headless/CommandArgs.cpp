@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <ostream>
 
-#include "Platform/Headless/QualityProbe.hpp"
+#include "Platform/App/AutoQuality.hpp"
 
 namespace sr::headless {
 namespace {
@@ -221,7 +221,18 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
     for (const SceneDraw& d : p->scene.scene.draws) p->textured |= d.texture >= 0;
     p->textured |= p->scene.textureOverride.has_value();
     if (p->options.autoQuality) {
-        const QualityChoice c = probeQuality(*p);
+        const app::QualityProbe probe =
+            app::probeQuality(p->context, p->scene, p->camera, p->view, p->options, p->settings, p->textured);
+        const app::SceneOptions& o = p->options;
+        const int k = o.maxError ? app::chooseForError(probe.points, *o.maxError)
+                                 : app::chooseForBudget(probe.points, o.budgetMs.value_or(1000.0 / 60.0));
+        QualityChoice c;
+        c.settings = probe.settings[std::size_t(k)];
+        c.label = app::settingLabel(c.settings, p->textured);
+        c.ms = probe.points[std::size_t(k)].ms;
+        c.error = probe.points[std::size_t(k)].error;
+        c.candidates = int(probe.points.size());
+        c.probeSeconds = probe.seconds;
         p->settings = c.settings;
         if (!a.quiet) {
             char line[320];

@@ -47,7 +47,7 @@ ParsedArgs parseCommandArgs(Subcommand command, const std::vector<std::string>& 
 std::string usage(Subcommand command);
 
 // A loaded scene with its framebuffer, context, view and settings, ready to render.
-// What --quality auto chose (QualityProbe.hpp).
+// What --quality auto chose (Platform/App/AutoQuality.hpp: the probe and the rules).
 struct QualityChoice {
     RenderSettings settings;
     std::string label;

@@ -4,6 +4,7 @@
 #include <cstdint>
 
 #include "Raster/Frame/FrameBuffer.hpp"
+#include "Platform/App/ImageMetrics.hpp" // structuralSimilarity
 #include "Resources/Image.hpp"
 
 namespace sr::headless {
@@ -20,17 +21,6 @@ struct ImageError {
 // Compares the colour buffers of two framebuffers of the same size (asserted); with `withSsim`
 // also the structural similarity (the costly one: about 10 ns a pixel).
 ImageError compareImages(const FrameBuffer& reference, const FrameBuffer& test, bool withSsim = false);
-
-// The structural similarity index (Wang, Bovik, Sheikh and Simoncelli, "Image Quality Assessment:
-// From Error Visibility to Structural Similarity", IEEE Trans. Image Processing 13(4), 2004) with
-// the paper's constants, as its authors' reference code and scikit-image (gaussian_weights=True,
-// use_sample_covariance=False) compute it: local means, variances and covariance under an 11 x 11
-// Gaussian window of sigma 1.5 (normalised), K1 = 0.01, K2 = 0.03, L = 255,
-//   SSIM = (2 mx my + C1)(2 sxy + C2) / ((mx^2 + my^2 + C1)(sx^2 + sy^2 + C2)),
-// averaged over every pixel whose window lies inside the image, per R, G, B channel, and the
-// three channels averaged. An image under 11 pixels on a side gets the largest odd window that
-// fits (the Gaussian cut there and normalised again). 1 for identical images; lower is worse.
-double structuralSimilarity(const FrameBuffer& reference, const FrameBuffer& test);
 
 // The error heat map of two images of the same size: per pixel the largest channel difference d
 // (0..255) as a colour from black (d = 0) through blue, magenta, red and orange to white, at

@@ -9,10 +9,10 @@
 #include <sstream>
 #include <thread>
 
+#include "Platform/App/AutoQuality.hpp"
 #include "Platform/Headless/CommandArgs.hpp"
 #include "Platform/Headless/Commands.hpp"
 #include "Platform/Headless/ImageCompare.hpp"
-#include "Platform/Headless/QualityProbe.hpp"
 #include "Platform/Headless/Timing.hpp"
 #include "Raster/Frame/Resolve.hpp"
 #include "Resources/FileIO.hpp"
@@ -93,7 +93,7 @@ std::string fmt(double v, int decimals = 3) {
     return buf;
 }
 
-std::string label(const Setting& s, bool textured) { return settingLabel(s.settings, textured); }
+std::string label(const Setting& s, bool textured) { return app::settingLabel(s.settings, textured); }
 
 // Points on the Pareto front: no other point is both faster and at least as accurate (mean
 // absolute error against the ground truth).
@@ -272,14 +272,14 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         const std::string filter = textured ? filterName(st.filter) : "-";
         const std::string preset = r.setting.preset ? app::qualityName(*r.setting.preset) : "";
         csv << st.antiAliasing.ssaaSamples() << "," << st.antiAliasing.msaaSamples() << "," << filter << ","
-            << shadingLabel(st) << "," << perspectiveModeName(st.perspective) << "," << fmt(r.time.median) << ","
+            << app::shadingLabel(st) << "," << perspectiveModeName(st.perspective) << "," << fmt(r.time.median) << ","
             << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
             << "," << fmt(r.error.psnrDb, 2) << "," << fmt(r.error.ssim, 6) << "," << r.error.maxAbs << ","
             << fmt(r.error.differingShare, 5) << ","
             << (front[i] ? 1 : 0) << "," << preset << "," << (r.setting.truth ? 1 : 0) << "\n";
         md << "| " << st.antiAliasing.ssaaSamples() << (r.setting.truth ? " (ground truth)" : "") << " | "
            << st.antiAliasing.msaaSamples() << " | " << filter << " | "
-           << shadingLabel(st) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
+           << app::shadingLabel(st) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
            << " [" << fmt(r.time.min) << ", " << fmt(r.maxMs) << "] | " << fmt(r.error.meanAbs, 4) << " | "
            << fmt(r.error.psnrDb, 2) << " | " << fmt(r.error.ssim, 6) << " | " << r.error.maxAbs << " | "
            << fmt(100.0 * r.error.differingShare, 2)

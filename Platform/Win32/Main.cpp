@@ -119,6 +119,28 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
         controller.setAnimation(scene.animation->duration(options.scene.animation.value_or(-1)), options.scene.time.value_or(0.0),
                                 options.scene.animation.value_or(-1));
 
+    if (options.scene.autoQuality) {
+        // --quality auto: the probe at the size the window will have (its default when no size
+        // was given), before the window exists; the budget defaults to the display's refresh.
+        const int w = options.sizeGiven ? options.scene.width : kDefaultClientWidth;
+        const int h = options.sizeGiven ? options.scene.height : kDefaultClientHeight;
+        FrameBuffer probeFrame(w, h);
+        RenderContext probeContext(probeFrame);
+        probeContext.setThreads(ThreadPool::threadsWorthStarting(options.scene.threads));
+        const FrameView view = app::makeFrameView(setup, w, h, options.scene.light, scene.lights, scene.physical, scene.ibl.get());
+        bool textured = scene.textureOverride.has_value();
+        for (const SceneDraw& d : scene.scene.draws) textured |= d.texture >= 0;
+        const app::QualityProbe probe = app::probeQuality(probeContext, scene, setup, view, options.scene,
+                                                          app::makeRenderSettings(options.scene), textured);
+        double budget = 1000.0 / 60.0;
+        if (HDC screen = GetDC(nullptr)) {
+            const int hz = GetDeviceCaps(screen, VREFRESH); // 0 or 1: the hardware default, unknown
+            ReleaseDC(nullptr, screen);
+            if (hz >= 24) budget = 1000.0 / hz;
+        }
+        controller.setAutoQuality(probe, options.scene.budgetMs.value_or(budget), textured);
+    }
+
     win32::enableDpiAwareness(); // before any window exists
     win32::MainWindow window(scene, controller);
     window.setThreads(ThreadPool::threadsWorthStarting(options.scene.threads)); // more would take turns on the CPUs

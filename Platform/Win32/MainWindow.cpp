@@ -84,7 +84,9 @@ void MainWindow::renderFrame() {
     haveLastFrame_ = true;
 
     controller_.update(dt);
+    const Clock::time_point drawStart = Clock::now();
     draw();
+    controller_.frameRendered(std::chrono::duration<double, std::milli>(Clock::now() - drawStart).count()); // --quality auto
     present();
     if (stats_.addFrame(dt) || (!status_.empty() && now >= statusUntil_))
         updateTitle();

@@ -13,6 +13,7 @@
 
 using namespace sr;
 using namespace sr::headless;
+using sr::app::structuralSimilarity;
 
 namespace {
 

@@ -236,9 +236,11 @@ TEST_CASE("--isa picks the span kernels; an unknown or unavailable one is refuse
     }
 }
 
-TEST_CASE("the demo refuses --quality auto with a clear line (the headless command has it)", "[platform][auto]") {
-    const auto r = parseCommandLine({"--quality", "auto"});
-    CHECK(r.error.find("--quality auto is the headless command's") != std::string::npos);
-    CHECK(parseCommandLine({"--quality", "balanced"}).error.empty());
+TEST_CASE("the demo takes --quality auto with a frame-time budget, not an error bound", "[platform][auto]") {
+    const auto r = parseCommandLine({"--quality", "auto", "--budget-ms", "8"});
+    CHECK(r.error.empty());
+    CHECK(r.options.scene.autoQuality);
+    CHECK(*r.options.scene.budgetMs == 8.0);
+    CHECK(parseCommandLine({"--quality", "auto", "--max-error", "0.01"}).error.find("--max-error is the headless command's") != std::string::npos);
     CHECK(parseCommandLine({"--budget-ms", "5"}).error.find("give it too") != std::string::npos);
 }

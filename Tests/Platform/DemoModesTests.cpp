@@ -262,3 +262,38 @@ TEST_CASE("screenshot names carry the date, time and counter", "[platform]") {
     CHECK_FALSE(s.ok());
     CHECK(s.error().find("never-written.png") != std::string::npos);
 }
+
+TEST_CASE("--quality auto in the demo: the probe's setting applied, followed as frames come, held by U and by a hand-picked mode",
+          "[platform][auto]") {
+    DemoController c = makeController();
+    QualityProbe probe;
+    RenderSettings cheap, dear;
+    cheap.antiAliasing = AntiAliasing::none();
+    cheap.shading = ShadingMode::Gouraud;
+    dear.antiAliasing = *AntiAliasing::supersample(4);
+    dear.filter = TextureFilter::Trilinear;
+    probe.settings = {cheap, dear};
+    probe.points = {{4.0, 0.05}, {12.0, 0.01}};
+    c.setAutoQuality(probe, 20.0, true);
+    CHECK(c.autoQuality());
+    CHECK(c.settings().antiAliasing.ssaaSamples() == 4); // 12 ms fits 20
+    CHECK(c.modeSummary().find(" | auto 20.0 ms: err 0.0100") != std::string::npos);
+    for (int f = 0; f < 40; ++f) c.frameRendered(30.0); // 2.5x dearer now: 30 > 20
+    CHECK(c.settings().antiAliasing.ssaaSamples() == 1);
+    CHECK(c.settings().shading == ShadingMode::Gouraud);
+    // U holds the setting: the frames no longer move it.
+    CHECK(c.keyDown(Key::U) == Action::ToggleAutoQuality);
+    c.keyUp(Key::U);
+    CHECK_FALSE(c.autoQuality());
+    CHECK(c.modeSummary().find(" | auto held") != std::string::npos);
+    for (int f = 0; f < 60; ++f) c.frameRendered(1.0);
+    CHECK(c.settings().antiAliasing.ssaaSamples() == 1);
+    c.keyDown(Key::U); // follows again: cheap frames, up to the dear setting
+    c.keyUp(Key::U);
+    for (int f = 0; f < 60; ++f) c.frameRendered(1.0);
+    CHECK(c.settings().antiAliasing.ssaaSamples() == 4);
+    // A mode picked by hand holds too.
+    c.keyDown(Key::N);
+    c.keyUp(Key::N);
+    CHECK_FALSE(c.autoQuality());
+}

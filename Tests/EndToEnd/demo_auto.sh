@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# The demo's --quality auto under Xvfb + Wine: with a budget no setting meets it draws the cheapest
+# (one sample), with a budget every setting meets the ground truth (SSAA 16); the title says so.
+# Usage: demo_auto.sh <path/to/SoftRaster.exe> [artifacts dir (default build/artifacts)]
+set -euo pipefail
+
+exe=${1:?usage: demo_auto.sh <SoftRaster.exe> [artifacts dir]}
+artifacts=${2:-build/artifacts}/demo_auto
+window_timeout=120 # the probe runs before the window opens
+poll_timeout=40
+exit_timeout=15
+
+[[ -f "$exe" ]] || { echo "demo_auto: $exe not found" >&2; exit 1; }
+exe=$(readlink -f "$exe")
+rm -rf "$artifacts"
+mkdir -p "$artifacts"
+
+e2e_name=demo_auto
+source "$(dirname "$0")/xsession.sh"
+start_xvfb 141 190
+log "Xvfb on $DISPLAY"
+
+poll() {
+  local what=$1; shift
+  local deadline=$(( $(date +%s) + poll_timeout ))
+  while (( $(date +%s) < deadline )); do
+    "$@" && return 0
+    kill -0 "$app_pid" 2>/dev/null || fail "SoftRaster.exe exited while waiting for: $what"
+    sleep 0.3
+  done
+  fail "timed out (${poll_timeout} s) waiting for: $what (last: ${last:-})"
+}
+title_has() { last=$(xdotool getwindowname "$win" 2>/dev/null || true); [[ "$last" == *"$1"* && "$last" == *"$2"* ]]; }
+quit() {
+  xdotool windowfocus --sync "$win" 2>/dev/null || xdotool windowfocus "$win" || true
+  xdotool key Escape
+  wait_exit Escape
+}
+
+# --- A budget nothing meets: the cheapest setting, one sample -----------------------------------
+start_app "$exe" --width 320 --height 240 --threads 1 --quality auto --budget-ms 0.001
+poll "the title to show auto at one sample" title_has "| auto " "| ssaa 1 |"
+log "budget 0.001 ms: '$last'"
+import -window "$win" "$artifacts/tight.png" 2>/dev/null || true
+quit
+
+# --- A budget everything meets: the ground truth, 16 samples ------------------------------------
+start_app "$exe" --width 320 --height 240 --threads 1 --quality auto --budget-ms 100000
+poll "the title to show auto at 16 samples" title_has "| auto " "| ssaa 16 |"
+log "budget 100000 ms: '$last'"
+import -window "$win" "$artifacts/loose.png" 2>/dev/null || true
+quit
+log PASS
