@@ -243,6 +243,7 @@ std::unique_ptr<PreparedScene> prepareScene(const CommandArgs& a, std::ostream& 
             err << "softraster: " << line << "\n";
         }
         p->autoQuality = c;
+        p->autoProbe = probe;
     }
     return p;
 }

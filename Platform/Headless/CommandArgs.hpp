@@ -10,6 +10,7 @@
 
 #include "Platform/App/SceneSetup.hpp"
 #include "Raster/Frame/FrameBuffer.hpp"
+#include "Platform/App/AutoQuality.hpp"
 #include "Raster/Frame/RenderContext.hpp"
 
 namespace sr::headless {
@@ -68,6 +69,7 @@ struct PreparedScene {
     int threadsUsed = 1;
     bool textured = false;
     std::optional<QualityChoice> autoQuality; // --quality auto's choice (then in `settings`)
+    app::QualityProbe autoProbe;               // and what it chose from (a flight follows the budget with it)
 };
 
 // Loads the scene, resolves the camera (printed on err as flags, like the reference), builds

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "Platform/App/AutoQuality.hpp"
 #include "Platform/Headless/Json.hpp"
 #include "Platform/Headless/Timing.hpp"
 
@@ -131,14 +132,22 @@ int runFlight(const CommandArgs& a, PreparedScene& p, std::uint32_t seed, Stream
     std::vector<double> ms(std::size_t(a.frames), 0.0);
     using Clock = std::chrono::steady_clock;
     (void)currentMemoryUsage(); // the first reading pages in its own code: keep that out of the numbers
+    // --quality auto with a budget: the setting follows it frame by frame, as in the demo.
+    const bool following = p.autoQuality && !p.options.maxError && !p.autoProbe.points.empty();
+    app::AutoQualitySelector selector;
+    if (following) selector = app::AutoQualitySelector(p.autoProbe.points, p.options.budgetMs.value_or(1000.0 / 60.0));
+    std::vector<int> chosen;
     for (int frame = 1; frame <= a.frames; ++frame) {
+        const RenderSettings& settings = following ? p.autoProbe.settings[std::size_t(selector.current())] : p.settings;
+        if (following) chosen.push_back(selector.current());
         const Pose pose = nextPose(rnd, p.scene);
         ++poses[pose.kind];
         const auto t0 = Clock::now();
         FrameView view = app::makeFrameView(pose.camera, w, h, a.scene.light, p.scene.lights, p.scene.physical);
         view.ibl = p.scene.ibl.get();
-        app::renderFrame(p.context, p.scene, view, p.settings);
+        app::renderFrame(p.context, p.scene, view, settings);
         ms[std::size_t(frame - 1)] = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
+        if (following) selector.update(ms[std::size_t(frame - 1)]);
         long long bad = 0;
         const float* depth = p.framebuffer.depthData();
         for (std::size_t i = 0; i < pixels; ++i) bad += !std::isfinite(depth[i]);
@@ -161,6 +170,14 @@ int runFlight(const CommandArgs& a, PreparedScene& p, std::uint32_t seed, Stream
     j += ",\"rss_kb_frame_100\":" + std::to_string(atFrame100.rssKb) + ",\"rss_kb_end\":" + std::to_string(atEnd.rssKb);
     j += ",\"peak_kb_frame_100\":" + std::to_string(atFrame100.peakKb) + ",\"peak_kb_end\":" + std::to_string(atEnd.peakKb);
     j += ",\"anon_kb_frame_100\":" + std::to_string(atFrame100.anonKb) + ",\"anon_kb_end\":" + std::to_string(atEnd.anonKb);
+    if (following) { // the probe's settings, and the one each frame was drawn with
+        j += ",\"quality_auto\":{\"budget_ms\":" + jsonNumber(p.options.budgetMs.value_or(1000.0 / 60.0)) + ",\"settings\":[";
+        for (std::size_t k = 0; k < p.autoProbe.settings.size(); ++k)
+            j += std::string(k ? "," : "") + "\"" + app::settingLabel(p.autoProbe.settings[k], p.textured) + "\"";
+        j += "],\"per_frame\":[";
+        for (std::size_t k = 0; k < chosen.size(); ++k) j += std::string(k ? "," : "") + std::to_string(chosen[k]);
+        j += "]}";
+    }
     j += ",\"poses\":{";
     for (int k = 0; k < kPoseKinds; ++k)
         j += std::string(k ? "," : "") + "\"" + kPoseNames[k] + "\":" + std::to_string(poses[k]);

@@ -598,3 +598,38 @@ TEST_CASE("--quality auto: a probe chooses by --budget-ms or --max-error and say
     CHECK(run({"render", "--quality", "auto", "--budget-ms", "-1"}).rc == kExitUsage);
     CHECK(run({"report", "--out-dir", tempDir("auto-report"), "--quality", "auto"}).rc == kExitUsage);
 }
+
+TEST_CASE("bench --flight with --quality auto reports the setting each frame was drawn with", "[headless][auto]") {
+    // The labels of the probe's settings and the index each frame used.
+    const auto flight = [&](const char* budget) {
+        const Run r = run({"bench", "--width", "48", "--height", "32", "--frames", "6", "--flight", "3", "--quality", "auto",
+                           "--budget-ms", budget, "--quiet"});
+        INFO(r.err);
+        REQUIRE(r.rc == kExitOk);
+        const auto list = [&](const std::string& key) {
+            const auto at = r.out.find("\"" + key + "\":[");
+            REQUIRE(at != std::string::npos);
+            const auto begin = at + key.size() + 4;
+            std::vector<std::string> items;
+            std::stringstream in(r.out.substr(begin, r.out.find(']', begin) - begin));
+            for (std::string item; std::getline(in, item, ',');) items.push_back(item);
+            return items;
+        };
+        std::vector<std::string> labels = list("settings");
+        std::vector<std::string> used;
+        for (const std::string& k : list("per_frame")) {
+            const int i = std::stoi(k);
+            REQUIRE(i >= 0);
+            REQUIRE(i < int(labels.size()));
+            used.push_back(labels[std::size_t(i)]);
+        }
+        return used;
+    };
+    // Nothing fits: every frame at one sample (the fastest); everything fits: the truth.
+    const auto tight = flight("0.000001");
+    REQUIRE(tight.size() == 6);
+    for (const std::string& l : tight) CHECK(l.rfind("\"ssaa1 ", 0) == 0);
+    const auto loose = flight("1000000");
+    REQUIRE(loose.size() == 6);
+    for (const std::string& l : loose) CHECK(l == "\"ssaa16 trilinear phong exact\"");
+}
