@@ -707,6 +707,7 @@ Status addAnimatedBlock(Builder& b, const tinygltf::Model& g, const tinygltf::Pr
     if (skin >= 0 && joints0 != prim.attributes.end() && weights0 != prim.attributes.end()) {
         if (std::size_t(skin) >= g.skins.size()) return Status::failure("node " + std::to_string(b.nodeIndex) + ": skin " + std::to_string(skin) + " does not exist");
         const std::size_t jointCount = g.skins[std::size_t(skin)].joints.size();
+        if (jointCount == 0) return Status::failure("skin " + std::to_string(skin) + " has no joints");
         block.skin = skin;
         block.joints.assign(vertices, {});
         block.weights.assign(vertices, {});

@@ -250,6 +250,12 @@ TEST_CASE("animated files with bad data are one-line errors naming the file and 
         a.extra.replace(at, a.extra.find('}', at) - at, std::to_string(zero));
         CHECK(contains(errorOf("singular.gltf", a.embedded()), "singular"));
     }
+    // A skin without joints (the schema asks for at least one).
+    {
+        Asset a = skinAsset();
+        a.extra.replace(a.extra.find("\"joints\":[1,2]"), 14, "\"joints\":[]");
+        CHECK(contains(errorOf("nojoints.gltf", a.embedded()), "has no joints"));
+    }
     // Weights animated on a mesh without morph targets.
     {
         Asset a = skinAsset();
