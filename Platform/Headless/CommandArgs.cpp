@@ -67,7 +67,7 @@ std::string usage(Subcommand c) {
                "  --out, --depth-out    also write the last frame (as render does)\n"
                "Prints one JSON line: size, triangles, frames, threads, ms_per_frame_median/min/mean,\n"
                "mpix_per_s, stages_ms (clear, transform_clip_cull, setup, fill_shade: from timing\n"
-               "partial pipelines) and counters (triangles in/rejected/clipped/culled/rasterized, pixels\n"
+               "partial pipelines; resolve with SSAA/MSAA: its mean, timed around it) and counters (triangles in/rejected/clipped/culled/rasterized, pixels\n"
                "shaded/covered, overdraw). Vertex data is prepared once, before the timed frames.\n" +
                app::sceneFlagsHelp();
     case Subcommand::Report:

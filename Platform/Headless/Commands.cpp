@@ -99,7 +99,9 @@ int runBench(const std::vector<std::string>& args, Streams io) {
         }
         app::renderFrame(p.context, p.scene, p.view, settings);
     };
+    p.context.stats = {};
     const TimingSummary full = summarise(timeFrames(a.warmup, a.frames, frame));
+    const double resolveMs = p.context.stats.resolveMs / double(a.warmup + a.frames); // mean per frame
     p.context.stats = {};
     frame(); // one more frame for the counters and the output image
     const RenderStats counters = p.context.stats;
@@ -153,7 +155,9 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"stages_ms\":{\"clear\":" + jsonNumber(clearOnly.median);
     j += ",\"transform_clip_cull\":" + jsonNumber(positive(geometry.median - clearOnly.median - animate.median));
     j += ",\"setup\":" + jsonNumber(positive(setup.median - geometry.median));
-    j += ",\"fill_shade\":" + jsonNumber(positive(noSky.median - setup.median - shadowPass.median));
+    const bool resolves = settings.antiAliasing.samples() > 1;
+    j += ",\"fill_shade\":" + jsonNumber(positive(noSky.median - setup.median - shadowPass.median - (resolves ? resolveMs : 0.0)));
+    if (resolves) j += ",\"resolve\":" + jsonNumber(resolveMs);
     if (settings.shadows.on) j += ",\"shadow_pass\":" + jsonNumber(shadowPass.median);
     if (p.scene.scene.sky.on()) j += ",\"sky\":" + jsonNumber(positive(full.median - noSky.median));
     if (animating) j += ",\"animate\":" + jsonNumber(animate.median);

@@ -31,6 +31,9 @@ struct RenderStats {
     std::uint64_t fragmentsShaded = 0;  // pixels that passed the depth test and were shaded
     std::uint64_t verticesTransformed = 0; // vertex-stage runs (not counting reused vertices)
     std::uint64_t trianglesSorted = 0;     // transparent triangles sorted back to front (renderScene)
+    // Milliseconds in the SSAA / MSAA resolve (MSAA's pass also clears the samples for the next
+    // frame): one clock reading around each frame's resolve, none inside the fill.
+    double resolveMs = 0.0;
 
     RenderStats& operator+=(const RenderStats& o) {
         trianglesIn += o.trianglesIn;
@@ -43,6 +46,7 @@ struct RenderStats {
         fragmentsShaded += o.fragmentsShaded;
         verticesTransformed += o.verticesTransformed;
         trianglesSorted += o.trianglesSorted;
+        resolveMs += o.resolveMs;
         return *this;
     }
 };

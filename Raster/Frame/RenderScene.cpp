@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -216,9 +217,11 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
         renderScene(ctx, scene, view, settings, textureOverride);
         ctx.multisampling = false;
         // Resolved and cleared for the next frame in one pass over the samples.
+        const auto resolveStart = std::chrono::steady_clock::now();
         ctx.forRows(out.height(), [&](int y0, int y1) {
             resolveAndClearMsaaRows(ctx.msaa, out, y0, y1, clearColour, FrameBuffer::kFarDepth, linear);
         });
+        ctx.stats.resolveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - resolveStart).count();
         ctx.msaa.markCleared(clearColour, FrameBuffer::kFarDepth);
         return true;
     }
@@ -236,7 +239,9 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
     ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
     renderScene(ctx, scene, view, settings, textureOverride);
     ctx.setTarget(out);
+    const auto resolveStart = std::chrono::steady_clock::now();
     ctx.forRows(out.height(), [&](int y0, int y1) { resolveBoxRows(ctx.supersampleTarget, factor, out, y0, y1, linear); });
+    ctx.stats.resolveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - resolveStart).count();
     return true;
 }
 

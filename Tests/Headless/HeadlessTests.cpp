@@ -633,3 +633,21 @@ TEST_CASE("bench --flight with --quality auto reports the setting each frame was
     REQUIRE(loose.size() == 6);
     for (const std::string& l : loose) CHECK(l == "\"ssaa16 trilinear phong exact\"");
 }
+
+TEST_CASE("bench's stages: the SSAA and MSAA resolve timed on its own, only where there is one", "[headless]") {
+    const auto bench = [](std::vector<std::string> extra) {
+        std::vector<std::string> args{"bench", "--width", "64", "--height", "48", "--frames", "3", "--warmup", "1", "--quiet"};
+        args.insert(args.end(), extra.begin(), extra.end());
+        const Run r = run(args);
+        REQUIRE(r.rc == kExitOk);
+        return r.out;
+    };
+    const std::string plain = bench({});
+    CHECK_FALSE(hasKey(plain, "resolve"));
+    for (const char* aa : {"--ssaa", "--msaa"}) {
+        const std::string out = bench({aa, "4"});
+        CHECK(hasKey(out, "resolve"));
+        CHECK(numberOf(out, "resolve") > 0.0);
+        CHECK(numberOf(out, "resolve") < numberOf(out, "ms_per_frame_median") * 2.0); // a part of the frame (a mean, so some slack)
+    }
+}
