@@ -107,6 +107,21 @@ void AnimationSampler::evaluate(double t, double* out) const {
     if (quaternion) normalizeQuaternion(out);
 }
 
+void ModelAnimation::markMovingBlocks() {
+    std::vector<std::uint8_t> movable(nodes.size(), 0), morphing(nodes.size(), 0);
+    for (const AnimationClip& c : clips)
+        for (const AnimationChannel& ch : c.channels) (ch.path == AnimationPath::Weights ? morphing : movable)[std::size_t(ch.node)] = 1;
+    for (std::size_t n = 0; n < nodes.size(); ++n)
+        for (int k = nodes[n].parent; k >= 0 && !movable[n]; k = nodes[std::size_t(k)].parent) movable[n] = movable[std::size_t(k)];
+    for (AnimatedBlock& b : blocks) {
+        b.moves = morphing[std::size_t(b.node)] != 0;
+        if (b.skin >= 0)
+            for (int j : skins[std::size_t(b.skin)].joints) b.moves = b.moves || movable[std::size_t(j)];
+        else
+            b.moves = b.moves || movable[std::size_t(b.node)];
+    }
+}
+
 double ModelAnimation::duration(int clip) const {
     double d = 0.0;
     for (std::size_t i = 0; i < clips.size(); ++i)
@@ -175,23 +190,9 @@ void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
         for (std::size_t j = 0; j < skin.joints.size(); ++j)
             jointMatrices[s][j] = world[std::size_t(skin.joints[j])] * skin.inverseBind[j];
     }
-    // Nodes that some clip moves (at any time, itself or an ancestor) and nodes whose weights some
-    // clip drives: a block none of them touches keeps the rest pose the mesh already holds.
-    std::vector<std::uint8_t> movable(nodes.size(), 0), morphing(nodes.size(), 0);
-    for (const AnimationClip& c : clips)
-        for (const AnimationChannel& ch : c.channels) (ch.path == AnimationPath::Weights ? morphing : movable)[std::size_t(ch.node)] = 1;
-    for (std::size_t n = 0; n < nodes.size(); ++n)
-        for (int k = nodes[n].parent; k >= 0 && !movable[n]; k = nodes[std::size_t(k)].parent) movable[n] = movable[std::size_t(k)];
     std::vector<Vec3d> objectPositions, objectNormals, objectTangents;
     for (const AnimatedBlock& b : blocks) {
-        if (!restOnly) {
-            bool moves = morphing[std::size_t(b.node)] != 0;
-            if (b.skin >= 0)
-                for (int j : skins[std::size_t(b.skin)].joints) moves = moves || movable[std::size_t(j)];
-            else
-                moves = moves || movable[std::size_t(b.node)];
-            if (!moves) continue;
-        }
+        if (!restOnly && !b.moves) continue;
         // Morphed object-space attributes.
         const std::vector<double>& w = weights[std::size_t(b.node)];
         objectPositions.assign(b.count, Vec3d{});

@@ -74,6 +74,7 @@ struct AnimatedBlock {
     int skin = -1;      // index into ModelAnimation::skins, or -1
     std::uint32_t first = 0, count = 0;
     bool mirrored = false;   // the rest transform mirrors: its triangles were stored reversed
+    bool moves = true;        // some clip moves it (markMovingBlocks); false: pose leaves it at rest
     bool flatNormals = false; // no NORMAL: each vertex belongs to one triangle (first + 3t ..), the face normal
     std::vector<Vec3> positions, normals;         // object space, one per vertex (normals: when !flatNormals)
     std::vector<Vec4> tangents;                   // object space, when the mesh keeps tangents for this block
@@ -91,6 +92,10 @@ struct ModelAnimation {
     std::vector<AnimationClip> clips;
     std::vector<AnimationSkin> skins;
     std::vector<AnimatedBlock> blocks;
+
+    // Sets each block's `moves`: a channel of some clip on its node or an ancestor, on one of its
+    // skin's joints or their ancestors, or on its node's weights. Once, after loading.
+    void markMovingBlocks();
 
     // The longest clip's duration (all clips: `clip` < 0), or clip `clip`'s.
     double duration(int clip = -1) const;

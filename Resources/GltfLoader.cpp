@@ -1340,6 +1340,7 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
     if (b.animation) {
         const Status s = addAnimation(*b.animation, g, b.model.warnings, path, limits);
         if (!s) return R::failure(path + ": " + s.error());
+        b.animation->markMovingBlocks();
     }
     Model& model = b.model;
     if (b.triangles == 0 && model.lineSets.empty()) return R::failure(path + ": the scene has nothing to draw");

@@ -62,6 +62,7 @@ public:
     AutoQualitySelector(std::vector<QualityPoint> points, double budgetMs, int holdFrames = 15);
     int current() const { return current_; }
     double budgetMs() const { return budgetMs_; }
+    const std::vector<QualityPoint>& points() const { return points_; }
     // A frame drawn at current() took frameMs: returns the setting for the next frame.
     int update(double frameMs);
 

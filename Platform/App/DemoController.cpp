@@ -157,9 +157,8 @@ void DemoController::mouseDrag(int dx, int dy) {
 
 void DemoController::setAutoQuality(const QualityProbe& probe, double budgetMs, bool textured) {
     autoSettings_ = probe.settings;
-    autoPoints_ = probe.points;
     autoTextured_ = textured;
-    autoSelector_ = AutoQualitySelector(autoPoints_, budgetMs);
+    autoSelector_ = AutoQualitySelector(probe.points, budgetMs);
     autoOn_ = !autoSettings_.empty();
     applyAutoSetting(autoSelector_.current());
 }
@@ -265,7 +264,7 @@ std::string DemoController::modeSummary() const {
         char a[64];
         const int k = autoSelector_.current();
         if (autoOn_ && k >= 0)
-            std::snprintf(a, sizeof a, " | auto %.1f ms: err %.4f", autoSelector_.budgetMs(), autoPoints_[std::size_t(k)].error);
+            std::snprintf(a, sizeof a, " | auto %.1f ms: err %.4f", autoSelector_.budgetMs(), autoSelector_.points()[std::size_t(k)].error);
         else
             std::snprintf(a, sizeof a, " | auto held");
         s += a;

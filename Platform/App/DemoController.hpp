@@ -126,7 +126,6 @@ private:
     bool depthView_ = false;
     bool help_ = false;
     std::vector<RenderSettings> autoSettings_;
-    std::vector<QualityPoint> autoPoints_;
     AutoQualitySelector autoSelector_;
     bool autoOn_ = false, autoTextured_ = false;
     void applyAutoSetting(int index);
