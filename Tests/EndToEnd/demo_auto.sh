@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# The demo's --quality auto under Xvfb + Wine: with a budget no setting meets it draws the cheapest
-# (one sample), with a budget every setting meets the ground truth (SSAA 16); the title says so.
+# The demo's --quality auto under Xvfb + Wine: with a budget no setting meets it draws the one the
+# probe found fastest (not the truth), with a budget every setting meets the ground truth (SSAA
+# 16); the title says so.
 # Usage: demo_auto.sh <path/to/SoftRaster.exe> [artifacts dir (default build/artifacts)]
 set -euo pipefail
 
@@ -39,7 +40,10 @@ quit() {
 
 # --- A budget nothing meets: the cheapest setting, one sample -----------------------------------
 start_app "$exe" --width 320 --height 240 --threads 1 --quality auto --budget-ms 0.001
-poll "the title to show auto at one sample" title_has "| auto " "| ssaa 1 |"
+# (Which setting is fastest is the probe's measurement: under a loaded Wine, MSAA 4 has come out
+# ahead of one sample. What must hold: auto is on, and it is not the truth.)
+not_truth() { title_has "| auto " "| shadows" && [[ "$last" != *"| ssaa 16 |"* ]]; }
+poll "the title to show auto below the ground truth" not_truth
 log "budget 0.001 ms: '$last'"
 import -window "$win" "$artifacts/tight.png" 2>/dev/null || true
 quit
