@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Regenerates the plot and the table of README "Speed or accuracy: which setting": `softraster
 # report` on the spider close-up (a textured OBJ from Debian's assimp-testmodels) at a small size on
-# 1 render thread, the plot copied to docs/images/trade-spider.svg, the five-line Markdown table
+# 1 render thread, the plot copied to docs/images/trade-spider.svg, the six-line Markdown table
 # (time per frame and error of the presets and two settings between them) printed on stdout.
 # Usage: scripts/make-readme-trade.sh [REPORT_DIR]   (run from anywhere; default REPORT_DIR: a
 #        temporary folder, deleted at the end)
@@ -39,17 +39,18 @@ echo "Spider close-up (\`--obj spider.obj ${close[*]}\`), ${W}x${H}, 1 render th
 echo
 echo "| setting | flags | ms per frame, median [min, max] | mean abs error | PSNR dB |"
 echo "|---|---|---|---|---|"
-# report.csv: ssaa,msaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,...
-row() { # label, flags, ssaa/msaa/filter/shading/persp
-  awk -F, -v key="$3" -v label="$1" -v flags="$2" 'NR > 1 && $1"/"$2"/"$3"/"$4"/"$5 == key {
-      printf "| %s | %s | %s [%s, %s] | %s | %s |\n", label, flags, $6, $7, $8, $9, $10; found = 1 }
+# report.csv: ssaa,msaa,fxaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,...
+row() { # label, flags, ssaa/msaa/fxaa/filter/shading/persp
+  awk -F, -v key="$3" -v label="$1" -v flags="$2" 'NR > 1 && $1"/"$2"/"$3"/"$4"/"$5"/"$6 == key {
+      printf "| %s | %s | %s [%s, %s] | %s | %s |\n", label, flags, $7, $8, $9, $10, $11; found = 1 }
     END { if (!found) { print "make-readme-trade: no row " key " in report.csv" > "/dev/stderr"; exit 1 } }' \
     "$out/report.csv"
 }
-row "fast" '`--quality fast`' "1/1/nearest/gouraud/exact"
-row "the defaults (1 sample, bilinear, Phong)" "(none)" "1/1/bilinear/phong/exact"
-row "MSAA 4, trilinear" '`--msaa 4 --filter trilinear`' "1/4/trilinear/phong/exact"
-row "balanced (the demo's start)" '`--quality balanced`' "4/1/trilinear/phong/exact"
-row "accurate (the ground truth)" '`--quality accurate`' "16/1/trilinear/phong/exact"
+row "fast" '`--quality fast`' "1/1/0/bilinear/gouraud/exact"
+row "the defaults (1 sample, bilinear, Phong)" "(none)" "1/1/0/bilinear/phong/exact"
+row "FXAA" '`--fxaa`' "1/1/1/bilinear/phong/exact"
+row "MSAA 4, trilinear" '`--msaa 4 --filter trilinear`' "1/4/0/trilinear/phong/exact"
+row "balanced (the demo's start)" '`--quality balanced`' "4/1/0/trilinear/phong/exact"
+row "accurate (the ground truth)" '`--quality accurate`' "16/1/0/trilinear/phong/exact"
 echo
 echo "make-readme-trade: plot written to docs/images/trade-spider.svg" >&2

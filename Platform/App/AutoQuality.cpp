@@ -44,7 +44,9 @@ std::string shadingLabel(const RenderSettings& r) {
 
 std::string settingLabel(const RenderSettings& r, bool textured) {
     const AntiAliasing aa = r.antiAliasing;
-    std::string l = aa.multisampled() ? "msaa" + std::to_string(aa.samples()) : "ssaa" + std::to_string(aa.ssaaSamples());
+    std::string l = aa.multisampled()   ? "msaa" + std::to_string(aa.samples())
+                    : aa.postFiltered() ? std::string("fxaa")
+                                        : "ssaa" + std::to_string(aa.ssaaSamples());
     if (textured) l += " " + std::string(filterName(r.filter));
     return l + " " + shadingLabel(r) + " " + perspectiveModeName(r.perspective);
 }
@@ -67,7 +69,8 @@ QualityProbe probeQuality(RenderContext& ctx, LoadedScene& scene, const CameraSe
         const int g = aa.gridSide();
         return msaaFits(w, h, aa.msaaSamples()) && w <= FrameBuffer::kMaxDimension / g && h <= FrameBuffer::kMaxDimension / g;
     };
-    for (AntiAliasing aa : {AntiAliasing::none(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4), *AntiAliasing::multisample(8)})
+    for (AntiAliasing aa : {AntiAliasing::none(), AntiAliasing::fxaa(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4),
+                            *AntiAliasing::multisample(8)})
         for (TextureFilter f : filters)
             for (ShadingMode m : {ShadingMode::Gouraud, base.shading}) {
                 RenderSettings s = base;

@@ -229,8 +229,8 @@ void DemoController::update(double dtSeconds) {
 }
 
 void DemoController::cycleAntialiasing() {
-    // off -> MSAA 2 -> 4 -> 8 -> SSAA 4 -> 16 -> off.
-    static constexpr AntiAliasing kCycle[] = {AntiAliasing::none(),          *AntiAliasing::multisample(2),
+    // off -> FXAA -> MSAA 2 -> 4 -> 8 -> SSAA 4 -> 16 -> off.
+    static constexpr AntiAliasing kCycle[] = {AntiAliasing::none(),          AntiAliasing::fxaa(), *AntiAliasing::multisample(2),
                                               *AntiAliasing::multisample(4), *AntiAliasing::multisample(8),
                                               *AntiAliasing::supersample(4), *AntiAliasing::supersample(16)};
     constexpr int n = int(sizeof kCycle / sizeof kCycle[0]);
@@ -249,7 +249,9 @@ std::string DemoController::modeSummary() const {
     s += " | ";
     s += perspectiveModeName(settings_.perspective);
     const AntiAliasing aa = settings_.antiAliasing;
-    s += aa.multisampled() ? " | msaa " + std::to_string(aa.samples()) : " | ssaa " + std::to_string(aa.ssaaSamples());
+    s += aa.multisampled()   ? " | msaa " + std::to_string(aa.samples())
+         : aa.postFiltered() ? std::string(" | fxaa")
+                             : " | ssaa " + std::to_string(aa.ssaaSamples());
     if (cameraIndex_ >= 0)
         s += " | camera " + std::to_string(cameraIndex_);
     if (settings_.wireframe)

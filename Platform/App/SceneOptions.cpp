@@ -37,7 +37,7 @@ QualitySettings qualitySettings(Quality quality, bool physical) {
     if (physical) {
         switch (quality) {
         case Quality::Fast:
-            return {AntiAliasing::none(), TextureFilter::Nearest, ShadingMode::Pbr, PerspectiveMode::Exact};
+            return {AntiAliasing::none(), TextureFilter::Bilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
         case Quality::Balanced:
             return {*AntiAliasing::multisample(4), TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
         case Quality::Accurate:
@@ -46,7 +46,7 @@ QualitySettings qualitySettings(Quality quality, bool physical) {
     }
     switch (quality) {
     case Quality::Fast:
-        return {AntiAliasing::none(), TextureFilter::Nearest, ShadingMode::Gouraud, PerspectiveMode::Exact};
+        return {AntiAliasing::none(), TextureFilter::Bilinear, ShadingMode::Gouraud, PerspectiveMode::Exact};
     case Quality::Balanced:
         return {*AntiAliasing::supersample(4), TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
     case Quality::Accurate:
@@ -104,18 +104,28 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     static const char* const kFlags[] = {"--obj",   "--model",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
-                                         "--isa",   "--ssaa",   "--msaa",   "--quality", "--budget-ms", "--max-error", "--materials", "--camera", "--time", "--animation",
+                                         "--isa",   "--ssaa",   "--msaa",   "--fxaa",   "--quality", "--budget-ms", "--max-error", "--materials", "--camera", "--time", "--animation",
                                          "--sky",   "--skybox",  "--outline", "--ibl", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
 
-    if (flag == "--wireframe" || flag == "--outline" || flag == "--ibl" || flag == "--shadows" || flag == "--no-shadows") {
+    if (flag == "--wireframe" || flag == "--outline" || flag == "--ibl" || flag == "--shadows" || flag == "--no-shadows" ||
+        flag == "--fxaa") {
         if (inlineValue) {
             error = flag + " takes no value";
             return FlagResult::Error;
         }
-        if (flag == "--wireframe") o.wireframe = true;
+        if (flag == "--fxaa") {
+            // One way of anti-aliasing, as --ssaa and --msaa: an explicit other mode is refused.
+            if ((o.explicitSsaa && o.antiAliasing.supersampled()) || (o.explicitMsaa && o.antiAliasing.multisampled())) {
+                error = "--fxaa and --" + std::string(o.antiAliasing.supersampled() ? "ssaa " : "msaa ") +
+                        std::to_string(o.antiAliasing.samples()) + ": choose one way of anti-aliasing";
+                return FlagResult::Error;
+            }
+            o.antiAliasing = AntiAliasing::fxaa();
+            o.explicitFxaa = true;
+        } else if (flag == "--wireframe") o.wireframe = true;
         else if (flag == "--outline") o.outline = true;
         else if (flag == "--ibl") o.ibl = true;
         else o.shadows.on = flag == "--shadows";
@@ -281,6 +291,10 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         const std::optional<AntiAliasing> aa =
             !v ? std::nullopt : super ? AntiAliasing::supersample(*v) : AntiAliasing::multisample(*v);
         if (!aa) return bad(super ? "1, 4 or 16 samples per pixel" : "1, 2, 4 or 8 samples per pixel");
+        if (o.explicitFxaa && *aa != AntiAliasing::none()) {
+            error = "--fxaa and " + flag + " " + value + ": choose one way of anti-aliasing";
+            return FlagResult::Error;
+        }
         const bool otherExplicit = super ? o.explicitMsaa : o.explicitSsaa;
         const bool otherOn = super ? o.antiAliasing.multisampled() : o.antiAliasing.supersampled();
         if (otherExplicit && otherOn) {
@@ -290,7 +304,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
                         ": choose one way of anti-aliasing (the other must be 1)";
                 return FlagResult::Error;
             }
-        } else {
+        } else if (!o.explicitFxaa) {
             o.antiAliasing = *aa;
         }
         (super ? o.explicitSsaa : o.explicitMsaa) = true;
@@ -323,7 +337,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
 void applyQuality(SceneOptions& o, Quality quality, bool physical) {
     o.quality = quality;
     const QualitySettings p = qualitySettings(quality, physical);
-    if (!o.explicitSsaa && !o.explicitMsaa) o.antiAliasing = p.antiAliasing;
+    if (!o.explicitSsaa && !o.explicitMsaa && !o.explicitFxaa) o.antiAliasing = p.antiAliasing;
     if (!o.explicitFilter) o.filter = p.filter;
     if (!o.explicitShading) o.shading = p.shading;
     if (!o.explicitPerspective) o.perspective = p.perspective;
@@ -389,7 +403,7 @@ std::string sceneFlagsHelp() {
            "  --wrap W              repeat | clamp | mirror (default repeat)\n"
            "  --persp P             exact | affine: perspective correction (default exact)\n"
            "  --quality Q           fast | balanced | accurate: a preset of --ssaa, --filter, --shading\n"
-           "                        and --persp (fast: 1, nearest, gouraud, exact; balanced: 4,\n"
+           "                        and --persp (fast: 1, bilinear, gouraud, exact; balanced: 4,\n"
            "                        trilinear, phong, exact; accurate: 16, trilinear, phong, exact);\n"
            "                        those flags, given too, win. auto (render, bench): a short probe of\n"
            "                        the scene picks the most accurate setting within --budget-ms MS\n"
@@ -399,6 +413,8 @@ std::string sceneFlagsHelp() {
            "  --msaa N              multisampling: 1 (off, default), 2, 4 or 8 samples per pixel at the\n"
            "                        Direct3D positions, coverage and depth per sample, shaded once per\n"
            "                        pixel (centre, or centroid on edges), box-filtered; not with --ssaa\n"
+           "  --fxaa                one sample, then FXAA 3.11 (quality) over the finished image: edges\n"
+           "                        smoothed for a fraction of a sample's cost; not with --ssaa or --msaa\n"
            "  --isa I               auto | scalar | sse2 | avx2 | avx512: span kernels (default auto, the\n"
            "                        widest this CPU has; scalar = the reference loop; same image for all)\n"
            "  --kd r,g,b            colour of untextured surfaces without a material (default 0.8,0.8,0.8)\n"

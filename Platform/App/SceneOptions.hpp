@@ -70,7 +70,7 @@ struct SceneOptions {
     TextureFilter filter = TextureFilter::Bilinear;
     WrapMode wrap = WrapMode::Repeat;
     PerspectiveMode perspective = PerspectiveMode::Exact;
-    AntiAliasing antiAliasing; // --ssaa 1|4|16 or --msaa 1|2|4|8 (Raster/Frame/AntiAliasing.hpp)
+    AntiAliasing antiAliasing; // --ssaa 1|4|16, --msaa 1|2|4|8 or --fxaa (Raster/Frame/AntiAliasing.hpp)
     Isa isa = bestIsa(); // --isa: which span kernels fill (auto = the widest this CPU has)
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
     MaterialRule materials = MaterialRule::Mtl; // --materials
@@ -91,7 +91,7 @@ struct SceneOptions {
     bool autoQuality = false;
     std::optional<double> budgetMs, maxError;
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
-    bool explicitSsaa = false, explicitMsaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
+    bool explicitSsaa = false, explicitMsaa = false, explicitFxaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
     bool explicitWrap = false; // --wrap given (a glTF sampler's wrap applies otherwise)
     bool explicitLight = false; // --light given (ignored, with a warning, by a file with its own lights)
     // The sky behind the scene: --sky none (default: the black clear colour) | gradient (the

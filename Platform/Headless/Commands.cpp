@@ -155,7 +155,7 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"stages_ms\":{\"clear\":" + jsonNumber(clearOnly.median);
     j += ",\"transform_clip_cull\":" + jsonNumber(positive(geometry.median - clearOnly.median - animate.median));
     j += ",\"setup\":" + jsonNumber(positive(setup.median - geometry.median));
-    const bool resolves = settings.antiAliasing.samples() > 1;
+    const bool resolves = settings.antiAliasing.samples() > 1 || settings.antiAliasing.postFiltered(); // FXAA: its pass
     j += ",\"fill_shade\":" + jsonNumber(positive(noSky.median - setup.median - shadowPass.median - (resolves ? resolveMs : 0.0)));
     if (resolves) j += ",\"resolve\":" + jsonNumber(resolveMs);
     if (settings.shadows.on) j += ",\"shadow_pass\":" + jsonNumber(shadowPass.median);
@@ -180,6 +180,7 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"isa\":\"" + std::string(isaName(settings.isa)) + "\"";
     j += ",\"ssaa\":" + std::to_string(settings.antiAliasing.ssaaSamples());
     j += ",\"msaa\":" + std::to_string(settings.antiAliasing.msaaSamples());
+    j += std::string(",\"fxaa\":") + (settings.antiAliasing.postFiltered() ? "true" : "false");
     j += ",\"textured\":" + std::string(p.textured ? "true" : "false");
     if (p.autoQuality)
         j += ",\"quality_auto\":{\"setting\":\"" + p.autoQuality->label + "\",\"probe_ms\":" + jsonNumber(p.autoQuality->ms) +

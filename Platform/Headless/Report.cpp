@@ -35,10 +35,12 @@ struct Row {
 };
 
 // The ground truth: 16 samples per pixel (4x4, each shaded), exact perspective, trilinear
-// mipmaps, per-pixel (Phong) lighting. Then every combination of anti-aliasing (1 sample, MSAA 4
-// or SSAA 4) x texture filter x shading frequency x perspective mode, and MSAA 8 with the truth's
-// other settings. A scene without textures skips the filter (it changes nothing there); unlit is
-// left out (it drops the lighting: another picture, not an approximation of this one).
+// mipmaps, per-pixel (Phong) lighting. Then every combination of anti-aliasing (1 sample, FXAA,
+// MSAA 4 or SSAA 4) x texture filter (bilinear, trilinear) x shading frequency, exact
+// perspective, and MSAA 8 with the truth's other settings. A scene without textures skips the
+// filter (it changes nothing there); unlit is left out (it drops the lighting: another picture,
+// not an approximation of this one). Nearest and affine are not rungs: they save no time
+// (docs/PERFORMANCE.md: nearest 0.89-1.03x bilinear, affine 0.94-1.02x exact).
 // A physical (glTF) scene's truth is its own material model, pbr in linear light; Phong is then
 // one more rung of the shading sweep, and pbr on display values (gamma) one more setting.
 std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool physical) {
@@ -50,19 +52,17 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool 
     base.antiAliasing = *AntiAliasing::supersample(16);
     std::vector<Setting> out{{base, true, {}}};
     std::vector<TextureFilter> filters{TextureFilter::Trilinear};
-    if (textured) filters = {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear};
-    for (AntiAliasing aa : {AntiAliasing::none(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4)})
+    if (textured) filters = {TextureFilter::Bilinear, TextureFilter::Trilinear};
+    for (AntiAliasing aa : {AntiAliasing::none(), AntiAliasing::fxaa(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4)})
         for (TextureFilter f : filters)
-            for (ShadingMode m : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong, ShadingMode::Pbr})
-                for (PerspectiveMode p : {PerspectiveMode::Affine, PerspectiveMode::Exact}) {
-                    if (m == ShadingMode::Pbr && !physical) continue;
-                    Setting s{base, false, {}};
-                    s.settings.antiAliasing = aa;
-                    s.settings.filter = f;
-                    s.settings.shading = m;
-                    s.settings.perspective = p;
-                    out.push_back(s);
-                }
+            for (ShadingMode m : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong, ShadingMode::Pbr}) {
+                if (m == ShadingMode::Pbr && !physical) continue;
+                Setting s{base, false, {}};
+                s.settings.antiAliasing = aa;
+                s.settings.filter = f;
+                s.settings.shading = m;
+                out.push_back(s);
+            }
     Setting msaa8{base, false, {}};
     msaa8.settings.antiAliasing = *AntiAliasing::multisample(8);
     out.push_back(msaa8);
@@ -244,7 +244,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
                                 std::to_string(p.threadsUsed) + " render thread" + (p.threadsUsed == 1 ? "" : "s") +
                                 ", span kernels " + isaName(p.settings.isa);
     std::ostringstream csv, md;
-    csv << "ssaa,msaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,ssim,max_abs,differing_share,pareto,preset,"
+    csv << "ssaa,msaa,fxaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,ssim,max_abs,differing_share,pareto,preset,"
            "truth\n";
     md << "# SoftRaster quality report\n\n"
        << "Scene: " << scene << ", " << a.scene.width << "x" << a.scene.height << ", "
@@ -259,26 +259,28 @@ int runReport(const std::vector<std::string>& args, Streams io) {
        << (p.scene.physical ? "the glTF metallic-roughness BRDF in linear light" : "Phong shading on display values")
        << "). Mean abs error is per colour channel in levels (0-255); PSNR over R, G, B; SSIM the structural "
           "similarity of Wang et al. 2004 (11x11 Gaussian window, sigma 1.5, per channel, averaged; 1 = the truth). Every "
-          "combination of anti-aliasing (1 sample, MSAA 4: coverage and depth per sample, shaded once per pixel; "
-          "SSAA 4: 2x2 samples, each shaded) x texture filter x shading x perspective is measured, and MSAA 8 with "
-          "the ground truth's other settings; the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
+          "combination of anti-aliasing (1 sample; FXAA: 1 sample, its edges filtered; MSAA 4: coverage and depth per "
+          "sample, shaded once per pixel; SSAA 4: 2x2 samples, each shaded) x texture filter (bilinear, trilinear) x "
+          "shading is measured with exact perspective, and MSAA 8 with "
+          "the ground truth's other settings (nearest and affine save no time: they are not measured); the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
           "`--quality` presets.\n\n"
-       << "| ssaa | msaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | SSIM | max abs | "
+       << "| ssaa | msaa | fxaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | SSIM | max abs | "
           "differing pixels | Pareto | preset |\n"
-       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+       << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
         const RenderSettings& st = r.setting.settings;
         const std::string filter = textured ? filterName(st.filter) : "-";
         const std::string preset = r.setting.preset ? app::qualityName(*r.setting.preset) : "";
-        csv << st.antiAliasing.ssaaSamples() << "," << st.antiAliasing.msaaSamples() << "," << filter << ","
+        csv << st.antiAliasing.ssaaSamples() << "," << st.antiAliasing.msaaSamples() << ","
+            << (st.antiAliasing.postFiltered() ? 1 : 0) << "," << filter << ","
             << app::shadingLabel(st) << "," << perspectiveModeName(st.perspective) << "," << fmt(r.time.median) << ","
             << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
             << "," << fmt(r.error.psnrDb, 2) << "," << fmt(r.error.ssim, 6) << "," << r.error.maxAbs << ","
             << fmt(r.error.differingShare, 5) << ","
             << (front[i] ? 1 : 0) << "," << preset << "," << (r.setting.truth ? 1 : 0) << "\n";
         md << "| " << st.antiAliasing.ssaaSamples() << (r.setting.truth ? " (ground truth)" : "") << " | "
-           << st.antiAliasing.msaaSamples() << " | " << filter << " | "
+           << st.antiAliasing.msaaSamples() << " | " << (st.antiAliasing.postFiltered() ? "yes" : "") << " | " << filter << " | "
            << app::shadingLabel(st) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
            << " [" << fmt(r.time.min) << ", " << fmt(r.maxMs) << "] | " << fmt(r.error.meanAbs, 4) << " | "
            << fmt(r.error.psnrDb, 2) << " | " << fmt(r.error.ssim, 6) << " | " << r.error.maxAbs << " | "

@@ -13,11 +13,13 @@ enum class AaMode : std::uint8_t {
     None,        // one sample per pixel, at its centre
     Supersample, // SSAA: every sample shaded on a 2x2 or 4x4 grid, box-filtered (Resolve.hpp)
     Multisample, // MSAA: coverage and depth per sample, shaded once per pixel (Msaa.hpp)
+    PostFilter,  // FXAA: one sample, the finished image's edges filtered (Fxaa.hpp)
 };
 
-// One sample, or supersampling with 4 or 16 samples, or multisampling with 2, 4 or 8. Only
-// none(), supersample(n) and multisample(n) make one, and the latter two check n (the one place
-// the counts are validated), so a value cannot hold both modes or a count its mode lacks.
+// One sample, or supersampling with 4 or 16 samples, or multisampling with 2, 4 or 8, or one
+// sample with FXAA. Only none(), supersample(n), multisample(n) and fxaa() make one, and the
+// counted two check n (the one place the counts are validated), so a value cannot hold two
+// modes or a count its mode lacks.
 class AntiAliasing {
 public:
     constexpr AntiAliasing() = default;
@@ -33,10 +35,13 @@ public:
         return samples == 1 ? none() : AntiAliasing(AaMode::Multisample, samples);
     }
 
+    static constexpr AntiAliasing fxaa() { return AntiAliasing(AaMode::PostFilter, 1); }
+
     constexpr AaMode mode() const { return mode_; }
     constexpr int samples() const { return samples_; } // per pixel: 1 without anti-aliasing
     constexpr bool supersampled() const { return mode_ == AaMode::Supersample; }
     constexpr bool multisampled() const { return mode_ == AaMode::Multisample; }
+    constexpr bool postFiltered() const { return mode_ == AaMode::PostFilter; }
     // The count of one mode, 1 when the other mode (or none) is on: --ssaa's and --msaa's values.
     constexpr int ssaaSamples() const { return supersampled() ? samples_ : 1; }
     constexpr int msaaSamples() const { return multisampled() ? samples_ : 1; }

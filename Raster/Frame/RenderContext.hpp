@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "Raster/Frame/FrameBuffer.hpp"
+#include "Raster/Frame/Fxaa.hpp"
 #include "Raster/Frame/Msaa.hpp"
 #include "Raster/Frame/ThreadPool.hpp"
 #include "Raster/Geometry/Clipper.hpp"
@@ -170,6 +171,9 @@ public:
     // target's colour rows serve as the per-pixel shading scratch) until the frame resolves it.
     MsaaBuffer msaa;
     bool multisampling = false;
+    // FXAA's luma and source copy (renderSceneFrame with AntiAliasing::fxaa()); kept between
+    // frames, released when the mode changes.
+    FxaaScratch fxaa;
     MsaaBuffer* multisampleTarget() {
         const bool active = multisampling && msaa.width() == target_->width() && msaa.height() == target_->height() &&
                             !msaa.empty();

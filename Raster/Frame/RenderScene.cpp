@@ -232,6 +232,14 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
         plain.antiAliasing = AntiAliasing::none(); // drawn at the output size (also what the wireframe width follows)
         ctx.clearTarget(clearColour, FrameBuffer::kFarDepth);
         renderScene(ctx, scene, view, plain, textureOverride);
+        if (aa.postFiltered() && !out.empty() && settings.stopAfter == PipelineStop::Fill) {
+            const auto filterStart = std::chrono::steady_clock::now();
+            ctx.fxaa.resize(out.width(), out.height());
+            ctx.forRows(out.height(), [&](int y0, int y1) { fxaaPrepareRows(out, ctx.fxaa, y0, y1, settings.isa); });
+            ctx.forRows(out.height(), [&](int y0, int y1) { fxaaFilterRows(ctx.fxaa, out, y0, y1, settings.isa); });
+            ctx.stats.resolveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - filterStart).count();
+        }
+        if (!aa.postFiltered() && !ctx.fxaa.luma.empty()) ctx.fxaa = FxaaScratch{}; // its memory only while on
         return (factor <= 1 && !multisample) || out.empty();
     }
     // The same view: clip space does not depend on the target size, only the viewport does.

@@ -346,11 +346,13 @@ TEST_CASE("report: every combination against the SSAA 16 ground truth, the front
     auto csv = readFileBytes(dir + "/report.csv");
     REQUIRE(csv.ok());
     const std::string text(csv.value().begin(), csv.value().end());
-    CHECK(text.rfind("ssaa,msaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,ssim,max_abs,differing_share,"
+    CHECK(text.rfind("ssaa,msaa,fxaa,filter,shading,persp,ms_median,ms_min,ms_max,mean_abs,psnr_db,ssim,max_abs,differing_share,"
                      "pareto,preset,truth\n", 0) == 0);
-    // The built-in scene is textured: the truth + {1 sample, MSAA 4, SSAA 4} x 3 filters x 3 shadings x
-    // 2 perspectives + MSAA 8.
-    CHECK(std::count(text.begin(), text.end(), '\n') == 1 + 1 + 3 * 3 * 3 * 2 + 1);
+    // The built-in scene is textured: the truth + {1 sample, FXAA, MSAA 4, SSAA 4} x 2 filters
+    // (bilinear, trilinear) x 3 shadings + MSAA 8; nearest and affine are not rungs.
+    CHECK(std::count(text.begin(), text.end(), '\n') == 1 + 1 + 4 * 2 * 3 + 1);
+    CHECK(text.find(",nearest,") == std::string::npos);
+    CHECK(text.find(",affine,") == std::string::npos);
     auto row = [&](const std::string& prefix) {
         const auto at = text.find("\n" + prefix);
         REQUIRE(at != std::string::npos);
@@ -362,37 +364,40 @@ TEST_CASE("report: every combination against the SSAA 16 ground truth, the front
         return line.substr(at, line.find(',', at) - at);
     };
     // The truth against itself: no error; it is the accurate preset.
-    const std::string truth = row("16,1,trilinear,phong,exact,");
-    CHECK(field(truth, 8) == "0.0000");
-    CHECK(field(truth, 9) == "inf");
-    CHECK(field(truth, 10) == "1.000000"); // SSIM
-    CHECK(field(truth, 14) == "accurate");
-    CHECK(field(truth, 15) == "1");
+    const std::string truth = row("16,1,0,trilinear,phong,exact,");
+    CHECK(field(truth, 9) == "0.0000");
+    CHECK(field(truth, 10) == "inf");
+    CHECK(field(truth, 11) == "1.000000"); // SSIM
+    CHECK(field(truth, 15) == "accurate");
+    CHECK(field(truth, 16) == "1");
     // One sample per pixel is not the truth; four samples (MSAA or SSAA) are closer to it than one,
     // and so are eight multisamples (on this textured scene most of the error left is the
     // texture's, which multisampling does not touch: 8 is not reliably closer than 4 here).
-    const double mae1 = std::stod(field(row("1,1,trilinear,phong,exact,"), 8));
-    const double mae4 = std::stod(field(row("4,1,trilinear,phong,exact,"), 8));
-    const double msaa4 = std::stod(field(row("1,4,trilinear,phong,exact,"), 8));
-    const double msaa8 = std::stod(field(row("1,8,trilinear,phong,exact,"), 8));
+    const double mae1 = std::stod(field(row("1,1,0,trilinear,phong,exact,"), 9));
+    const double mae4 = std::stod(field(row("4,1,0,trilinear,phong,exact,"), 9));
+    const double msaa4 = std::stod(field(row("1,4,0,trilinear,phong,exact,"), 9));
+    const double msaa8 = std::stod(field(row("1,8,0,trilinear,phong,exact,"), 9));
     CHECK(mae1 > 0.0);
     CHECK(mae4 < mae1);
     CHECK(msaa4 < mae1);
     CHECK(msaa8 < mae1);
     // SSIM agrees: below 1 with one sample, closer to 1 with four supersamples.
-    const double ssim1 = std::stod(field(row("1,1,trilinear,phong,exact,"), 10));
+    const double ssim1 = std::stod(field(row("1,1,0,trilinear,phong,exact,"), 11));
     CHECK(ssim1 < 1.0);
-    CHECK(std::stod(field(row("4,1,trilinear,phong,exact,"), 10)) > ssim1);
-    CHECK(std::stod(field(row("1,1,trilinear,phong,exact,"), 6)) <= std::stod(field(row("1,1,trilinear,phong,exact,"), 5)));
-    CHECK(field(row("4,1,trilinear,phong,exact,"), 14) == "balanced");
-    CHECK(field(row("1,1,nearest,gouraud,exact,"), 14) == "fast");
+    CHECK(std::stod(field(row("4,1,0,trilinear,phong,exact,"), 11)) > ssim1);
+    CHECK(std::stod(field(row("1,1,0,trilinear,phong,exact,"), 7)) <= std::stod(field(row("1,1,0,trilinear,phong,exact,"), 6)));
+    CHECK(field(row("4,1,0,trilinear,phong,exact,"), 15) == "balanced");
+    CHECK(field(row("1,1,0,bilinear,gouraud,exact,"), 15) == "fast");
+    // FXAA: one sample with its edges filtered, another image (whether closer to the truth depends
+    // on the scene and size: Tests/Frame/FxaaTests.cpp measures edges).
+    CHECK(std::stod(field(row("1,1,1,trilinear,phong,exact,"), 9)) != mae1);
     // The truth is on the Pareto front: nothing else has zero error.
-    CHECK(field(truth, 13) == "1");
+    CHECK(field(truth, 14) == "1");
     auto md = readFileBytes(dir + "/report.md");
     REQUIRE(md.ok());
     const std::string mdText(md.value().begin(), md.value().end());
     CHECK(mdText.find("measured against the ground truth") != std::string::npos);
-    CHECK(mdText.find("| ssaa | msaa | filter | shading | persp | ms/frame median [min, max] | mean abs") != std::string::npos);
+    CHECK(mdText.find("| ssaa | msaa | fxaa | filter | shading | persp | ms/frame median [min, max] | mean abs") != std::string::npos);
     CHECK(mdText.find("2 interleaved rounds") != std::string::npos);
     // A heat map per setting on the front (the truth aside), shown in report.md, of the image's size.
     CHECK(mdText.find("## Where the error is") != std::string::npos);
@@ -410,7 +415,7 @@ TEST_CASE("report: every combination against the SSAA 16 ground truth, the front
     int frontRows = 0; // on the front and not the truth
     for (std::size_t at = text.find('\n'); at != std::string::npos && at + 1 < text.size(); at = text.find('\n', at + 1)) {
         const std::string line = text.substr(at + 1, text.find('\n', at + 1) - at - 1);
-        frontRows += field(line, 13) == "1" && field(line, 15) == "0";
+        frontRows += field(line, 14) == "1" && field(line, 16) == "0";
     }
     CHECK(maps >= 1);
     CHECK(maps == frontRows);
@@ -439,7 +444,7 @@ TEST_CASE("--quality selects a preset; explicit flags win in any order", "[headl
     };
     const std::string fast = bench({"--quality", "fast"});
     CHECK(numberOf(fast, "ssaa") == 1);
-    CHECK(str(fast, "filter") == "nearest");
+    CHECK(str(fast, "filter") == "bilinear");
     CHECK(str(fast, "shading") == "gouraud");
     CHECK(str(fast, "persp") == "exact");
     const std::string balanced = bench({"--quality", "balanced"});

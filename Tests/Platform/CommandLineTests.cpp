@@ -171,7 +171,7 @@ TEST_CASE("the demo starts at the balanced quality preset; --quality and explici
     const auto fast = parseCommandLine({"--quality", "fast"});
     REQUIRE(fast.ok);
     CHECK(fast.options.scene.antiAliasing.ssaaSamples() == 1);
-    CHECK(fast.options.scene.filter == sr::TextureFilter::Nearest);
+    CHECK(fast.options.scene.filter == sr::TextureFilter::Bilinear);
     CHECK(fast.options.scene.shading == sr::ShadingMode::Gouraud);
     CHECK(fast.options.scene.perspective == sr::PerspectiveMode::Exact);
     // An explicit knob without --quality keeps the balanced preset for the others.
@@ -207,6 +207,19 @@ TEST_CASE("anti-aliasing: one value; --ssaa and --msaa replace a preset's, 1 tur
     CHECK(both.error.find("--ssaa 16 and --msaa 2: choose one way of anti-aliasing") != std::string::npos);
     CHECK_FALSE(parseCommandLine({"--msaa", "3"}).ok);
     CHECK_FALSE(parseCommandLine({"--ssaa", "2"}).ok);
+    // --fxaa: a mode of its own, over any preset's, refused beside another mode's samples.
+    CHECK(aaOf({"--fxaa"}) == AntiAliasing::fxaa());
+    CHECK(aaOf({"--quality", "accurate", "--fxaa"}) == AntiAliasing::fxaa());
+    CHECK(aaOf({"--fxaa", "--quality", "balanced"}) == AntiAliasing::fxaa());
+    CHECK(aaOf({"--fxaa", "--msaa", "1"}) == AntiAliasing::fxaa());
+    CHECK(aaOf({"--ssaa", "1", "--fxaa"}) == AntiAliasing::fxaa());
+    const auto fxaaMsaa = parseCommandLine({"--fxaa", "--msaa", "4"});
+    CHECK_FALSE(fxaaMsaa.ok);
+    CHECK(fxaaMsaa.error.find("--fxaa and --msaa 4: choose one way of anti-aliasing") != std::string::npos);
+    const auto ssaaFxaa = parseCommandLine({"--ssaa", "4", "--fxaa"});
+    CHECK_FALSE(ssaaFxaa.ok);
+    CHECK(ssaaFxaa.error.find("--fxaa and --ssaa 4: choose one way of anti-aliasing") != std::string::npos);
+    CHECK_FALSE(parseCommandLine({"--fxaa=1"}).ok);
 }
 
 TEST_CASE("the demo starts with shadows in the built-in scene, without in a model; --shadows and --no-shadows win", "[platform]") {

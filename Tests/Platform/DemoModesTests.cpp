@@ -77,13 +77,16 @@ TEST_CASE("shading, filter, perspective and anti-aliasing cycle through every mo
         c.keyDown(Key::P);
         CHECK(c.settings().perspective == p);
     }
-    // off -> MSAA 2, 4, 8 -> SSAA 4, 16 -> off: one kind at a time.
-    const std::pair<int, int> cycle[] = {{2, 1}, {4, 1}, {8, 1}, {1, 4}, {1, 16}, {1, 1}};
-    for (const auto& [msaa, ssaa] : cycle) {
+    // off -> FXAA -> MSAA 2, 4, 8 -> SSAA 4, 16 -> off: one kind at a time.
+    const AntiAliasing cycle[] = {AntiAliasing::fxaa(),          *AntiAliasing::multisample(2), *AntiAliasing::multisample(4),
+                                  *AntiAliasing::multisample(8), *AntiAliasing::supersample(4), *AntiAliasing::supersample(16),
+                                  AntiAliasing::none()};
+    for (const AntiAliasing aa : cycle) {
         CHECK(c.keyDown(Key::N) == Action::CycleAntialiasing);
-        CHECK(c.settings().antiAliasing.msaaSamples() == msaa);
-        CHECK(c.settings().antiAliasing.ssaaSamples() == ssaa);
+        CHECK(c.settings().antiAliasing == aa);
     }
+    c.keyDown(Key::N);
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | fxaa");
     c.keyDown(Key::N);
     c.keyDown(Key::N);
     CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | msaa 4");
@@ -133,6 +136,8 @@ TEST_CASE("O toggles the selection outline; the title says so, and that MSAA doe
     CHECK(c.keyDown(Key::O) == Action::ToggleOutline);
     CHECK(c.settings().outline.pickCentre);
     CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 1 | outline");
+    c.keyDown(Key::N); // FXAA: a post-filter, the outline is drawn
+    CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | fxaa | outline");
     c.keyDown(Key::N); // MSAA 2
     CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | msaa 2 | outline (not with msaa)");
     c.keyDown(Key::O);

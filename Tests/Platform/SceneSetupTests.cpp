@@ -225,7 +225,7 @@ TEST_CASE("a glTF scene's --quality presets are its own model's: pbr in linear l
     const SceneOptions fast = resolve({"--quality", "fast"}, true);
     CHECK(fast.antiAliasing.ssaaSamples() == 1);
     CHECK(fast.antiAliasing.msaaSamples() == 1);
-    CHECK(fast.filter == TextureFilter::Nearest);
+    CHECK(fast.filter == TextureFilter::Bilinear);
     CHECK(fast.shading == ShadingMode::Pbr);
     CHECK(fast.colour == ColorMode::Linear);
     const SceneOptions balanced = resolve({"--quality", "balanced"}, true);
