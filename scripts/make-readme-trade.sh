@@ -51,6 +51,6 @@ row "the defaults (1 sample, bilinear, Phong)" "(none)" "1/1/0/bilinear/phong/ex
 row "FXAA" '`--fxaa`' "1/1/1/bilinear/phong/exact"
 row "MSAA 4, trilinear" '`--msaa 4 --filter trilinear`' "1/4/0/trilinear/phong/exact"
 row "balanced (the demo's start)" '`--quality balanced`' "4/1/0/trilinear/phong/exact"
-row "accurate (the ground truth)" '`--quality accurate`' "16/1/0/trilinear/phong/exact"
+row "accurate (the ground truth)" '`--quality accurate`' "16/1/0/trilinear+aniso16/phong/exact"
 echo
 echo "make-readme-trade: plot written to docs/images/trade-spider.svg" >&2

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "Platform/App/ImageMetrics.hpp"
+#include "Raster/Texture/TextureLod.hpp" // kMaxAnisotropy
 
 namespace sr::app {
 namespace {
@@ -47,7 +48,7 @@ std::string settingLabel(const RenderSettings& r, bool textured) {
     std::string l = aa.multisampled()   ? "msaa" + std::to_string(aa.samples())
                     : aa.postFiltered() ? std::string("fxaa")
                                         : "ssaa" + std::to_string(aa.ssaaSamples());
-    if (textured) l += " " + std::string(filterName(r.filter));
+    if (textured) l += " " + std::string(filterName(r.filter)) + (r.aniso > 1 ? " aniso" + std::to_string(r.aniso) : "");
     return l + " " + shadingLabel(r) + " " + perspectiveModeName(r.perspective);
 }
 
@@ -62,26 +63,42 @@ QualityProbe probeQuality(RenderContext& ctx, LoadedScene& scene, const CameraSe
     base.shading = physical ? ShadingMode::Pbr : ShadingMode::Phong;
     base.colour = physical ? ColorMode::Linear : ColorMode::Gamma;
     QualityProbe probe;
-    const std::vector<TextureFilter> filters =
-        textured ? std::vector<TextureFilter>{TextureFilter::Bilinear, TextureFilter::Trilinear} : std::vector<TextureFilter>{TextureFilter::Trilinear};
+    // Per anti-aliasing mode, the texture and shading rungs: Gouraud with the cheapest filter,
+    // then the scene's model with bilinear, trilinear and 16 anisotropic taps (untextured: Gouraud
+    // and the model); MSAA 8 only with the most accurate rest. 18 candidates with the truth, so
+    // that the probe of the built-in scene stays within 2 s.
+    struct Rung {
+        TextureFilter filter;
+        int aniso;
+        ShadingMode shading;
+    };
+    const Rung texturedRungs[] = {{TextureFilter::Bilinear, 1, ShadingMode::Gouraud},
+                                  {TextureFilter::Bilinear, 1, base.shading},
+                                  {TextureFilter::Trilinear, 1, base.shading},
+                                  {TextureFilter::Trilinear, kMaxAnisotropy, base.shading}};
+    const Rung plainRungs[] = {{TextureFilter::Trilinear, 1, ShadingMode::Gouraud}, {TextureFilter::Trilinear, 1, base.shading}};
+    const Rung* rungs = textured ? texturedRungs : plainRungs;
+    const int rungCount = textured ? 4 : 2;
     const int w = ctx.target().width(), h = ctx.target().height();
     const auto fits = [&](AntiAliasing aa) {
         const int g = aa.gridSide();
         return msaaFits(w, h, aa.msaaSamples()) && w <= FrameBuffer::kMaxDimension / g && h <= FrameBuffer::kMaxDimension / g;
     };
-    for (AntiAliasing aa : {AntiAliasing::none(), AntiAliasing::fxaa(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4),
-                            *AntiAliasing::multisample(8)})
-        for (TextureFilter f : filters)
-            for (ShadingMode m : {ShadingMode::Gouraud, base.shading}) {
-                RenderSettings s = base;
-                s.antiAliasing = aa;
-                s.filter = f;
-                s.shading = m;
-                if (fits(aa)) probe.settings.push_back(s);
-            }
+    const auto add = [&](AntiAliasing aa, const Rung& r) {
+        RenderSettings s = base;
+        s.antiAliasing = aa;
+        s.filter = r.filter;
+        s.aniso = r.aniso;
+        s.shading = r.shading;
+        if (fits(aa)) probe.settings.push_back(s);
+    };
+    for (AntiAliasing aa : {AntiAliasing::none(), AntiAliasing::fxaa(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4)})
+        for (int k = 0; k < rungCount; ++k) add(aa, rungs[k]);
+    add(*AntiAliasing::multisample(8), rungs[rungCount - 1]);
     RenderSettings truthSettings = base; // the ground truth: a candidate too (error 0)
     truthSettings.antiAliasing = *AntiAliasing::supersample(16);
     truthSettings.filter = TextureFilter::Trilinear;
+    truthSettings.aniso = kMaxAnisotropy;
     if (fits(truthSettings.antiAliasing)) probe.settings.push_back(truthSettings);
     // Errors at half size: the truth first.
     const int pw = std::max(16, w / 2), ph = std::max(16, h / 2);

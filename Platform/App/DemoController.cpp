@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "Raster/Texture/TextureLod.hpp" // kMaxAnisotropy
+
 namespace sr::app {
 
 namespace {
@@ -109,7 +111,13 @@ Action DemoController::keyDown(Key key, bool repeat) {
         settings_.colour = settings_.colour == ColorMode::Linear ? ColorMode::Gamma : ColorMode::Linear;
         break;
     case Action::CycleFilter:
-        settings_.filter = next(settings_.filter, 3);
+        // nearest -> bilinear -> trilinear -> trilinear with 16 anisotropic taps -> nearest.
+        if (settings_.filter == TextureFilter::Trilinear && settings_.aniso == 1) {
+            settings_.aniso = kMaxAnisotropy;
+        } else {
+            settings_.filter = next(settings_.filter, 3);
+            settings_.aniso = 1;
+        }
         settings_.filterFromFile = false; // the user's choice from now on, over any glTF sampler
         break;
     case Action::CyclePerspective: settings_.perspective = next(settings_.perspective, 2); break;
@@ -169,6 +177,7 @@ void DemoController::applyAutoSetting(int index) {
     const RenderSettings& s = autoSettings_[std::size_t(index)];
     settings_.antiAliasing = s.antiAliasing;
     settings_.filter = s.filter;
+    settings_.aniso = s.aniso;
     settings_.filterFromFile = false;
     settings_.shading = s.shading;
     settings_.perspective = s.perspective;
@@ -246,6 +255,7 @@ std::string DemoController::modeSummary() const {
     s += shadingModeName(settings_.shading);
     s += settings_.colour == ColorMode::Linear ? " linear | " : " | ";
     s += filterName(settings_.filter);
+    if (settings_.aniso > 1) s += " aniso " + std::to_string(settings_.aniso);
     s += " | ";
     s += perspectiveModeName(settings_.perspective);
     const AntiAliasing aa = settings_.antiAliasing;

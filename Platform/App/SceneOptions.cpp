@@ -8,6 +8,7 @@
 #include "Raster/Frame/FrameBuffer.hpp"
 #include "Raster/Frame/Msaa.hpp"
 #include "Raster/Geometry/Camera.hpp"
+#include "Raster/Texture/TextureLod.hpp" // kMaxAnisotropy
 
 namespace sr::app {
 namespace {
@@ -41,7 +42,7 @@ QualitySettings qualitySettings(Quality quality, bool physical) {
         case Quality::Balanced:
             return {*AntiAliasing::multisample(4), TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
         case Quality::Accurate:
-            return {*AntiAliasing::supersample(16), TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact};
+            return {*AntiAliasing::supersample(16), TextureFilter::Trilinear, ShadingMode::Pbr, PerspectiveMode::Exact, kMaxAnisotropy};
         }
     }
     switch (quality) {
@@ -50,7 +51,7 @@ QualitySettings qualitySettings(Quality quality, bool physical) {
     case Quality::Balanced:
         return {*AntiAliasing::supersample(4), TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
     case Quality::Accurate:
-        return {*AntiAliasing::supersample(16), TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact};
+        return {*AntiAliasing::supersample(16), TextureFilter::Trilinear, ShadingMode::Phong, PerspectiveMode::Exact, kMaxAnisotropy};
     }
     return {};
 }
@@ -103,7 +104,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     }
     static const char* const kFlags[] = {"--obj",   "--model",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
-                                         "--cull",  "--threads", "--filter", "--wrap",    "--kd",     "--wireframe", "--persp",
+                                         "--cull",  "--threads", "--filter", "--aniso", "--wrap",    "--kd",     "--wireframe", "--persp",
                                          "--isa",   "--ssaa",   "--msaa",   "--fxaa",   "--quality", "--budget-ms", "--max-error", "--materials", "--camera", "--time", "--animation",
                                          "--sky",   "--skybox",  "--outline", "--ibl", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
     bool known = false;
@@ -261,6 +262,17 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         if (!m) return bad("nearest, bilinear or trilinear");
         o.filter = *m;
         o.explicitFilter = true;
+        if (*m != TextureFilter::Trilinear && !o.explicitAniso) o.aniso = 1; // a preset's taps go with its filter
+    } else if (flag == "--aniso") {
+        const auto v = parseInt(value);
+        if (!v || (*v != 1 && *v != 2 && *v != 4 && *v != 8 && *v != 16)) return bad("1, 2, 4, 8 or 16 taps");
+        o.aniso = *v;
+        o.explicitAniso = true;
+        // Anisotropic taps are trilinear ones: the flag brings the filter unless one was given.
+        if (*v > 1 && !o.explicitFilter) {
+            o.filter = TextureFilter::Trilinear;
+            o.explicitFilter = true;
+        }
     } else if (flag == "--persp") {
         const auto m = parsePerspectiveMode(value);
         if (!m && isRetiredPerspectiveMode(value)) {
@@ -339,6 +351,7 @@ void applyQuality(SceneOptions& o, Quality quality, bool physical) {
     const QualitySettings p = qualitySettings(quality, physical);
     if (!o.explicitSsaa && !o.explicitMsaa && !o.explicitFxaa) o.antiAliasing = p.antiAliasing;
     if (!o.explicitFilter) o.filter = p.filter;
+    if (!o.explicitAniso && o.filter == TextureFilter::Trilinear) o.aniso = p.aniso;
     if (!o.explicitShading) o.shading = p.shading;
     if (!o.explicitPerspective) o.perspective = p.perspective;
 }
@@ -348,6 +361,10 @@ std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
         return "--far (" + std::to_string(*o.farZ) + ") must be greater than --near (" + std::to_string(*o.nearZ) + ")";
     if (o.eye && o.target && *o.eye == *o.target) return "--eye and --target must differ";
     if (length(o.light) == 0.0f) return "--light must not be the zero vector";
+    if (o.aniso > 1 && o.filter != TextureFilter::Trilinear)
+        return "--aniso " + std::to_string(o.aniso) + " takes trilinear taps: not with --filter " + filterName(o.filter);
+    if (o.aniso > 1 && o.perspective == PerspectiveMode::Affine)
+        return "--aniso " + std::to_string(o.aniso) + " follows each pixel's footprint: not with --persp affine";
     if (o.ibl && o.sky == Sky::Kind::None) return "--ibl lights the model from the sky: it needs --sky gradient or --skybox DIR";
     if ((o.budgetMs || o.maxError) && !o.autoQuality) return "--budget-ms and --max-error choose for --quality auto: give it too";
     if (o.budgetMs && o.maxError) return "--budget-ms and --max-error are two ways to choose: give one";
@@ -400,11 +417,13 @@ std::string sceneFlagsHelp() {
            "  --threads N           render threads (default 1)\n"
            "quality:\n"
            "  --filter F            nearest | bilinear | trilinear (default bilinear)\n"
+           "  --aniso N             anisotropic filtering: up to N trilinear taps along each pixel's\n"
+           "                        footprint, 1 (off, default), 2, 4, 8 or 16; brings --filter trilinear\n"
            "  --wrap W              repeat | clamp | mirror (default repeat)\n"
            "  --persp P             exact | affine: perspective correction (default exact)\n"
            "  --quality Q           fast | balanced | accurate: a preset of --ssaa, --filter, --shading\n"
            "                        and --persp (fast: 1, bilinear, gouraud, exact; balanced: 4,\n"
-           "                        trilinear, phong, exact; accurate: 16, trilinear, phong, exact);\n"
+           "                        trilinear, phong, exact; accurate: 16, trilinear, --aniso 16, phong);\n"
            "                        those flags, given too, win. auto (render, bench): a short probe of\n"
            "                        the scene picks the most accurate setting within --budget-ms MS\n"
            "                        (default 16.7), or the cheapest within --max-error E (1 - SSIM)\n"

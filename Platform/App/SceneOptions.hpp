@@ -33,12 +33,14 @@ struct QualitySettings {
     TextureFilter filter = TextureFilter::Bilinear;
     ShadingMode shading = ShadingMode::Phong;
     PerspectiveMode perspective = PerspectiveMode::Exact;
+    int aniso = 1; // anisotropic taps with the trilinear filter
 };
 
-// fast: 1 sample, nearest, Gouraud, exact. balanced: 4 samples (2x2), trilinear, Phong, exact.
-// accurate: 16 samples (4x4), trilinear, Phong, exact - the report's ground truth. In a physical
-// (glTF) scene, whose model is pbr in linear light: fast: 1 sample, nearest, pbr, exact;
-// balanced: MSAA 4, trilinear, pbr, exact; accurate: 16 samples, trilinear, pbr, exact. Each is on
+// fast: 1 sample, bilinear, Gouraud, exact. balanced: 4 samples (2x2), trilinear, Phong, exact.
+// accurate: 16 samples (4x4), trilinear with 16 anisotropic taps, Phong, exact - the report's
+// ground truth. In a physical (glTF) scene, whose model is pbr in linear light: fast: 1 sample,
+// bilinear, pbr, exact; balanced: MSAA 4, trilinear, pbr, exact; accurate: 16 samples, trilinear
+// with 16 anisotropic taps, pbr, exact. Each is on
 // or next to the measured Pareto front of docs/reports (docs/PERFORMANCE.md says where and why).
 QualitySettings qualitySettings(Quality quality, bool physical = false);
 const char* qualityName(Quality quality);
@@ -68,6 +70,7 @@ struct SceneOptions {
     int threads = 1;
     // Quality knobs.
     TextureFilter filter = TextureFilter::Bilinear;
+    int aniso = 1; // --aniso: trilinear taps along the footprint (RenderSettings::aniso)
     WrapMode wrap = WrapMode::Repeat;
     PerspectiveMode perspective = PerspectiveMode::Exact;
     AntiAliasing antiAliasing; // --ssaa 1|4|16, --msaa 1|2|4|8 or --fxaa (Raster/Frame/AntiAliasing.hpp)
@@ -91,7 +94,7 @@ struct SceneOptions {
     bool autoQuality = false;
     std::optional<double> budgetMs, maxError;
     // Which of the preset-covered knobs a flag set explicitly (they win over --quality).
-    bool explicitSsaa = false, explicitMsaa = false, explicitFxaa = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
+    bool explicitSsaa = false, explicitMsaa = false, explicitFxaa = false, explicitAniso = false, explicitFilter = false, explicitShading = false, explicitPerspective = false;
     bool explicitWrap = false; // --wrap given (a glTF sampler's wrap applies otherwise)
     bool explicitLight = false; // --light given (ignored, with a warning, by a file with its own lights)
     // The sky behind the scene: --sky none (default: the black clear colour) | gradient (the

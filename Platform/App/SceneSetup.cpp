@@ -349,6 +349,7 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     s.shading = o.shading;
     s.cull = o.cull;
     s.filter = o.filter;
+    s.aniso = o.aniso;
     s.wrap = o.wrap;
     s.filterFromFile = !o.explicitFilter; // a --quality preset's filter yields to the file's sampler
     s.wrapFromFile = !o.explicitWrap;

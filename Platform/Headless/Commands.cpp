@@ -176,6 +176,7 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"shading\":\"" + std::string(shadingModeName(settings.shading)) + "\"";
     j += ",\"cull\":\"" + std::string(cullModeName(settings.cull)) + "\"";
     j += ",\"filter\":\"" + std::string(filterName(settings.filter)) + "\"";
+    j += ",\"aniso\":" + std::to_string(settings.aniso);
     j += ",\"persp\":\"" + std::string(perspectiveModeName(settings.perspective)) + "\"";
     j += ",\"isa\":\"" + std::string(isaName(settings.isa)) + "\"";
     j += ",\"ssaa\":" + std::to_string(settings.antiAliasing.ssaaSamples());

@@ -15,6 +15,7 @@
 #include "Platform/Headless/ImageCompare.hpp"
 #include "Platform/Headless/Timing.hpp"
 #include "Raster/Frame/Resolve.hpp"
+#include "Raster/Texture/TextureLod.hpp" // kMaxAnisotropy
 #include "Resources/FileIO.hpp"
 #include "Resources/Image.hpp"
 
@@ -35,9 +36,9 @@ struct Row {
 };
 
 // The ground truth: 16 samples per pixel (4x4, each shaded), exact perspective, trilinear
-// mipmaps, per-pixel (Phong) lighting. Then every combination of anti-aliasing (1 sample, FXAA,
-// MSAA 4 or SSAA 4) x texture filter (bilinear, trilinear) x shading frequency, exact
-// perspective, and MSAA 8 with the truth's other settings. A scene without textures skips the
+// mipmaps with 16 anisotropic taps, per-pixel (Phong) lighting. Then every combination of
+// anti-aliasing (1 sample, FXAA, MSAA 4 or SSAA 4) x texture filter (bilinear, trilinear,
+// trilinear with 16 anisotropic taps) x shading frequency, exact perspective, and MSAA 8 with the truth's other settings. A scene without textures skips the
 // filter (it changes nothing there); unlit is left out (it drops the lighting: another picture,
 // not an approximation of this one). Nearest and affine are not rungs: they save no time
 // (docs/PERFORMANCE.md: nearest 0.89-1.03x bilinear, affine 0.94-1.02x exact).
@@ -46,20 +47,26 @@ struct Row {
 std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool physical) {
     base.perspective = PerspectiveMode::Exact;
     base.filter = TextureFilter::Trilinear;
+    base.aniso = kMaxAnisotropy;
     base.filterFromFile = false; // the report measures each filter itself
     base.shading = physical ? ShadingMode::Pbr : ShadingMode::Phong;
     base.colour = physical ? ColorMode::Linear : ColorMode::Gamma;
     base.antiAliasing = *AntiAliasing::supersample(16);
     std::vector<Setting> out{{base, true, {}}};
-    std::vector<TextureFilter> filters{TextureFilter::Trilinear};
-    if (textured) filters = {TextureFilter::Bilinear, TextureFilter::Trilinear};
+    struct Filter {
+        TextureFilter filter;
+        int aniso;
+    };
+    std::vector<Filter> filters{{TextureFilter::Trilinear, 1}};
+    if (textured) filters = {{TextureFilter::Bilinear, 1}, {TextureFilter::Trilinear, 1}, {TextureFilter::Trilinear, kMaxAnisotropy}};
     for (AntiAliasing aa : {AntiAliasing::none(), AntiAliasing::fxaa(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4)})
-        for (TextureFilter f : filters)
+        for (Filter f : filters)
             for (ShadingMode m : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong, ShadingMode::Pbr}) {
                 if (m == ShadingMode::Pbr && !physical) continue;
                 Setting s{base, false, {}};
                 s.settings.antiAliasing = aa;
-                s.settings.filter = f;
+                s.settings.filter = f.filter;
+                s.settings.aniso = f.aniso;
                 s.settings.shading = m;
                 out.push_back(s);
             }
@@ -78,7 +85,8 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool 
         for (Setting& s : out)
             if (s.settings.antiAliasing == qs.antiAliasing && s.settings.shading == qs.shading &&
                 s.settings.colour == base.colour &&
-                s.settings.perspective == qs.perspective && (!textured || s.settings.filter == qs.filter)) {
+                s.settings.perspective == qs.perspective &&
+                (!textured || (s.settings.filter == qs.filter && s.settings.aniso == qs.aniso))) {
                 s.preset = q;
                 break;
             }
@@ -270,7 +278,8 @@ int runReport(const std::vector<std::string>& args, Streams io) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
         const Row& r = rows[i];
         const RenderSettings& st = r.setting.settings;
-        const std::string filter = textured ? filterName(st.filter) : "-";
+        const std::string filter =
+            textured ? std::string(filterName(st.filter)) + (st.aniso > 1 ? "+aniso" + std::to_string(st.aniso) : "") : "-";
         const std::string preset = r.setting.preset ? app::qualityName(*r.setting.preset) : "";
         csv << st.antiAliasing.ssaaSamples() << "," << st.antiAliasing.msaaSamples() << ","
             << (st.antiAliasing.postFiltered() ? 1 : 0) << "," << filter << ","

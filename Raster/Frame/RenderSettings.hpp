@@ -44,6 +44,10 @@ struct RenderSettings {
     TextureFilter filter = TextureFilter::Bilinear;
     WrapMode wrap = WrapMode::Repeat;
     PerspectiveMode perspective = PerspectiveMode::Exact;
+    // Anisotropic filtering: at most this many trilinear taps along a pixel's footprint
+    // (1, 2, 4, 8 or 16; TextureLod.hpp's sampleAnisotropic). Only with the trilinear filter and
+    // exact perspective; 1: plain trilinear.
+    int aniso = 1;
     bool wireframe = false; // overlay triangle edges (DDA lines) on the shaded image
     PipelineStop stopAfter = PipelineStop::Fill; // partial pipelines, for per-stage timing only
     Isa isa = bestIsa(); // which span kernels fill (Raster/Fill/Kernels/Isa.hpp); Scalar = the reference loop

@@ -75,10 +75,11 @@ inline Color sampleTextureAt(const DrawContext& d, const TriangleSetup* setup, c
     float lod = 0.0f;
     if (d.settings.filter == TextureFilter::Trilinear) {
         constexpr int kU = kPlaneVarying0, kV = kPlaneVarying0 + 1;
-        const UvDerivatives g = d.settings.perspective == PerspectiveMode::Affine
-                                    ? UvDerivatives{float(setup->ddx[kU]), float(setup->ddx[kV]), float(setup->ddy[kU]),
-                                                    float(setup->ddy[kV])}
-                                    : uvDerivatives(*setup, kU, kV, f.invW, uv.x, uv.y);
+        const bool affine = d.settings.perspective == PerspectiveMode::Affine;
+        const UvDerivatives g = affine ? UvDerivatives{float(setup->ddx[kU]), float(setup->ddx[kV]), float(setup->ddy[kU]),
+                                                       float(setup->ddy[kV])}
+                                       : uvDerivatives(*setup, kU, kV, f.invW, uv.x, uv.y);
+        if (d.settings.aniso > 1 && !affine) return sampleAnisotropic(texture, uv, g, d.settings.aniso, d.settings.wrap, decode);
         lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, texture.width(), texture.height());
     }
     return decode ? texture.sampleSrgb(uv, lod, d.settings.filter, d.settings.wrap)

@@ -4,7 +4,9 @@
 #include <cstdint>
 #include <cstring>
 
+#include "Math/Vec.hpp"
 #include "Raster/Setup/TriangleSetup.hpp"
+#include "Raster/Texture/Texture.hpp"
 
 namespace sr {
 
@@ -83,5 +85,24 @@ float mipLevel(float dudx, float dvdx, float dudy, float dvdy, int width, int he
 inline float mipLevel(const UvDerivatives& d, int width, int height) {
     return mipLevel(d.dudx, d.dvdx, d.dudy, d.dvdy, width, height);
 }
+
+// Anisotropic filtering (the model of EXT_texture_filter_anisotropic, as GPUs and llvmpipe
+// sample): the pixel's footprint in texels is Px = |(du/dx W, dv/dx H)| along screen x and Py
+// along y; the longer, Pmax, is covered by N = min(ceil(Pmax / Pmin), maxAniso) trilinear taps
+// spaced evenly along it, at level log2(Pmax / N) instead of log2(Pmax): the shorter axis sets the
+// blur, not the longer. In float, as the vector kernels repeat it lane by lane:
+//   N = 1 + #{k in [1, maxAniso) : k^2 < Pmax^2 / Pmin^2}   (NaN derivatives: N = 1, level 0),
+//   lod = log2(clamp(Pmax^2 / N^2, kMinRho2, kMaxRho2)) / 2  (mipLevel's form: N = 1 is trilinear),
+//   tap i at uv + (du, dv)_major ((i + 0.5) / N - 0.5), the taps' sum divided by N.
+// taps is 1 for an isotropic footprint or maxAniso 1: exactly sampleTrilinear.
+inline constexpr int kMaxAnisotropy = 16;
+struct AnisoFootprint {
+    int taps = 1;
+    float lod = 0.0f;
+    float du = 0.0f, dv = 0.0f; // the uv step of the major axis (one pixel along it)
+};
+AnisoFootprint anisoFootprint(const UvDerivatives& d, int width, int height, int maxAniso);
+// The filtered colour (all four channels averaged); `decode`: sRGB-decoded texels (sampleSrgb).
+Color sampleAnisotropic(const Texture& texture, Vec2 uv, const UvDerivatives& d, int maxAniso, WrapMode wrap, bool decode);
 
 } // namespace sr

@@ -222,6 +222,38 @@ TEST_CASE("anti-aliasing: one value; --ssaa and --msaa replace a preset's, 1 tur
     CHECK_FALSE(parseCommandLine({"--fxaa=1"}).ok);
 }
 
+TEST_CASE("--aniso: 1, 2, 4, 8 or 16 trilinear taps; it brings the trilinear filter; accurate's own; refused with another filter",
+          "[platform][aniso]") {
+    const auto opts = [](std::vector<std::string> args) {
+        const auto r = parseCommandLine(args);
+        REQUIRE(r.ok);
+        return r.options.scene;
+    };
+    CHECK(opts({}).aniso == 1);
+    const auto a8 = opts({"--aniso", "8"});
+    CHECK(a8.aniso == 8);
+    CHECK(a8.filter == sr::TextureFilter::Trilinear);
+    CHECK(opts({"--aniso", "4", "--quality", "fast"}).filter == sr::TextureFilter::Trilinear); // explicit wins
+    CHECK(opts({"--quality", "accurate"}).aniso == 16);
+    CHECK(opts({"--quality", "accurate", "--aniso", "2"}).aniso == 2);
+    CHECK(opts({"--quality", "accurate", "--filter", "bilinear"}).aniso == 1); // the preset's taps go with its filter
+    CHECK(opts({"--quality", "balanced"}).aniso == 1);
+    CHECK(opts({"--aniso", "1", "--filter", "nearest"}).filter == sr::TextureFilter::Nearest);
+    for (const std::vector<std::string>& bad : {std::vector<std::string>{"--aniso", "3"}, {"--aniso", "32"}, {"--aniso", "x"},
+                                               {"--aniso", "0"}}) {
+        CAPTURE(bad);
+        const auto r = parseCommandLine(bad);
+        CHECK_FALSE(r.ok);
+        CHECK(r.error.find("bad value for --aniso") != std::string::npos);
+    }
+    const auto mixed = parseCommandLine({"--filter", "bilinear", "--aniso", "4"});
+    CHECK_FALSE(mixed.ok);
+    CHECK(mixed.error.find("--aniso 4 takes trilinear taps: not with --filter bilinear") != std::string::npos);
+    const auto affine = parseCommandLine({"--aniso", "4", "--persp", "affine"});
+    CHECK_FALSE(affine.ok);
+    CHECK(affine.error.find("not with --persp affine") != std::string::npos);
+}
+
 TEST_CASE("the demo starts with shadows in the built-in scene, without in a model; --shadows and --no-shadows win", "[platform]") {
     CHECK(parseCommandLine({}).options.scene.shadows.on);
     CHECK_FALSE(parseCommandLine({"--no-shadows"}).options.scene.shadows.on);

@@ -67,10 +67,14 @@ TEST_CASE("shading, filter, perspective and anti-aliasing cycle through every mo
         c.keyDown(Key::M);
         CHECK(c.settings().shading == m);
     }
-    const TextureFilter filters[] = {TextureFilter::Trilinear, TextureFilter::Nearest, TextureFilter::Bilinear};
-    for (const TextureFilter f : filters) {
+    // bilinear -> trilinear -> trilinear with 16 anisotropic taps -> nearest -> bilinear.
+    const std::pair<TextureFilter, int> filters[] = {{TextureFilter::Trilinear, 1}, {TextureFilter::Trilinear, 16},
+                                                     {TextureFilter::Nearest, 1}, {TextureFilter::Bilinear, 1}};
+    for (const auto& [f, aniso] : filters) {
         c.keyDown(Key::T);
         CHECK(c.settings().filter == f);
+        CHECK(c.settings().aniso == aniso);
+        if (aniso > 1) CHECK(c.modeSummary() == "cull none | phong | trilinear aniso 16 | exact | ssaa 1");
     }
     const PerspectiveMode modes[] = {PerspectiveMode::Affine, PerspectiveMode::Exact};
     for (const PerspectiveMode p : modes) {

@@ -48,6 +48,82 @@ TEST_CASE("mipLevel is defined for zero, NaN, infinite and extreme derivatives",
     REQUIRE(mipLevel(0, 1e-9f, 0, 0, 1, 1) == Approx(std::log2(1e-9)).epsilon(1e-6));
 }
 
+TEST_CASE("anisoFootprint: ceil(Pmax / Pmin) taps up to the limit, at log2(Pmax / taps), along the major axis", "[texture][lod][aniso]") {
+    // Four texels per pixel along x, one along y: four taps one texel apart, level 0.
+    AnisoFootprint f = anisoFootprint({4.0f / 256, 0.0f, 0.0f, 1.0f / 256}, 256, 256, 16);
+    CHECK(f.taps == 4);
+    CHECK(f.lod == 0.0f);
+    CHECK(f.du == 4.0f / 256);
+    CHECK(f.dv == 0.0f);
+    // The same limited to 2 taps: each covers two texels, level 1 (plain trilinear: level 2).
+    f = anisoFootprint({4.0f / 256, 0.0f, 0.0f, 1.0f / 256}, 256, 256, 2);
+    CHECK(f.taps == 2);
+    CHECK(f.lod == 1.0f);
+    CHECK(mipLevel(4.0f / 256, 0.0f, 0.0f, 1.0f / 256, 256, 256) == 2.0f);
+    // Major axis along screen y, a ratio of 5.5: ceil gives 6 taps, at log2(16 / 6).
+    f = anisoFootprint({0.0f, 16.0f / 5.5f / 64, 16.0f / 64, 0.0f}, 64, 64, 16);
+    CHECK(f.taps == 6);
+    CHECK(f.lod == Approx(std::log2(16.0 / 6.0)).epsilon(1e-6));
+    CHECK(f.du == 16.0f / 64);
+    CHECK(f.dv == 0.0f);
+    // A ratio beyond the limit: the limit's taps; Pmin 0 (a line): the limit too.
+    CHECK(anisoFootprint({100.0f / 64, 0.0f, 0.0f, 1.0f / 64}, 64, 64, 16).taps == 16);
+    CHECK(anisoFootprint({8.0f / 64, 0.0f, 0.0f, 0.0f}, 64, 64, 8).taps == 8);
+    // Isotropic footprints, the limit 1, NaN and all-zero derivatives: one tap at mipLevel's level.
+    for (const UvDerivatives& d : {UvDerivatives{3.0f / 64, 0.0f, 0.0f, 3.0f / 64}, UvDerivatives{2.0f / 64, 1.0f / 64, -1.0f / 64, 2.0f / 64},
+                                   UvDerivatives{0.0f, 0.0f, 0.0f, 0.0f}}) {
+        f = anisoFootprint(d, 64, 64, 16);
+        CHECK(f.taps == 1);
+        CHECK(f.lod == mipLevel(d, 64, 64));
+    }
+    f = anisoFootprint({9.0f / 64, 0.0f, 0.0f, 1.0f / 64}, 64, 64, 1);
+    CHECK(f.taps == 1);
+    CHECK(f.lod == mipLevel(9.0f / 64, 0.0f, 0.0f, 1.0f / 64, 64, 64));
+    f = anisoFootprint({std::nanf(""), 0.0f, 0.0f, 1.0f / 64}, 64, 64, 16);
+    CHECK(f.taps == 1);
+    CHECK(f.lod == 0.0f);
+}
+
+TEST_CASE("sampleAnisotropic: the mean of trilinear taps along the major axis; one tap is trilinear", "[texture][lod][aniso]") {
+    // Horizontal stripes two texels tall on a 64x64 texture, under a footprint of four texels
+    // along x (the stripes' direction) and one along y: trilinear takes level 2, where the
+    // stripes have averaged to grey; four level-0 taps along x stay on the stripe.
+    std::vector<std::uint8_t> rgba(64 * 64 * 4);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) {
+            const std::uint8_t v = (y / 2) % 2 ? 255 : 0; // horizontal stripes two texels tall
+            for (int c = 0; c < 3; ++c) rgba[std::size_t(y * 64 + x) * 4 + std::size_t(c)] = v;
+            rgba[std::size_t(y * 64 + x) * 4 + 3] = 255;
+        }
+    const Texture t = Texture::fromRgba8(64, 64, rgba.data());
+    const UvDerivatives squeezed{4.0f / 64, 0.0f, 0.0f, 1.0f / 64};
+    const Vec2 uv{0.3f, 1.0f / 64}; // the centre of a stripe row (texel row 0.5: rows 0-1 one stripe)
+    const Color tri = t.sample(uv, mipLevel(squeezed, 64, 64), TextureFilter::Trilinear, WrapMode::Repeat);
+    const Color an = sampleAnisotropic(t, uv, squeezed, 16, WrapMode::Repeat, false);
+    INFO("trilinear " << tri.r << ", anisotropic " << an.r);
+    CHECK(std::abs(an.r - tri.r) > 0.2f); // trilinear greys the stripe, the taps keep it
+    // By hand: four level-0 taps at u +- 1.5 and +- 0.5 texels, v on the stripe.
+    Color sum{0, 0, 0, 0};
+    for (float k : {-1.5f, -0.5f, 0.5f, 1.5f}) {
+        const Color c = t.sample({uv.x + k / 64.0f, uv.y}, 0.0f, TextureFilter::Trilinear, WrapMode::Repeat);
+        sum = {sum.r + c.r, sum.g + c.g, sum.b + c.b, sum.a + c.a};
+    }
+    CHECK(an.r == sum.r / 4.0f);
+    CHECK(an.a == 1.0f);
+    // One tap (limit 1, or a round footprint): exactly trilinear, on display values and decoded.
+    const UvDerivatives round{2.0f / 64, 0.0f, 0.0f, 2.0f / 64};
+    for (bool decode : {false, true}) {
+        const Color one = sampleAnisotropic(t, uv, squeezed, 1, WrapMode::Clamp, decode);
+        const Color ref = decode ? t.sampleSrgb(uv, mipLevel(squeezed, 64, 64), TextureFilter::Trilinear, WrapMode::Clamp)
+                                 : t.sample(uv, mipLevel(squeezed, 64, 64), TextureFilter::Trilinear, WrapMode::Clamp);
+        CHECK(one.r == ref.r);
+        const Color r1 = sampleAnisotropic(t, uv, round, 16, WrapMode::Mirror, decode);
+        const Color r2 = decode ? t.sampleSrgb(uv, 1.0f, TextureFilter::Trilinear, WrapMode::Mirror)
+                                : t.sample(uv, 1.0f, TextureFilter::Trilinear, WrapMode::Mirror);
+        CHECK(r1.r == r2.r);
+    }
+}
+
 TEST_CASE("log2Positive: exact at powers of two, within 2^-23 (1 + |log2 x|) elsewhere", "[texture][lod]") {
     for (int e = -126; e <= 127; ++e) REQUIRE(log2Positive(std::ldexp(1.0f, e)) == float(e));
     // Exhaustive over the two binades around 1 (where the result is smallest and the absolute

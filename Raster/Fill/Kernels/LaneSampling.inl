@@ -205,21 +205,28 @@ float affineMipLevel(const Prog& p) {
     return affineMipLevel(p, *p.d->texture);
 }
 
-// The lanes' mip level under exact perspective, as programs::sampleKd computes it per fragment:
-// uvDerivatives (the quotient rule in float) at each lane, then mipLevel (TextureLod.cpp) lane by
-// lane.
+// The lanes' uv derivatives under exact perspective (uvDerivatives, TextureLod.hpp: the quotient
+// rule in float, the same operations).
+struct UvLanes {
+    F dudx, dvdx, dudy, dvdy;
+};
 template <class Prog>
-SR_SIMD_INLINE F mipLevels(const Prog& p, const Texture& texture, F u, F v, F invW) {
+SR_SIMD_INLINE UvLanes uvDerivativeLanes(const Prog& p, F u, F v, F invW) {
     const TriangleSetup& t = *p.setup;
     constexpr int kU = kPlaneVarying0, kVp = kPlaneVarying0 + 1;
     const F dqdx = fset(float(t.ddx[kPlaneInvW])), dqdy = fset(float(t.ddy[kPlaneInvW]));
     const F w = fset(1.0f) / invW;
-    const F dudx = (fset(float(t.ddx[kU])) - u * dqdx) * w;
-    const F dvdx = (fset(float(t.ddx[kVp])) - v * dqdx) * w;
-    const F dudy = (fset(float(t.ddy[kU])) - u * dqdy) * w;
-    const F dvdy = (fset(float(t.ddy[kVp])) - v * dqdy) * w;
+    return {(fset(float(t.ddx[kU])) - u * dqdx) * w, (fset(float(t.ddx[kVp])) - v * dqdx) * w,
+            (fset(float(t.ddy[kU])) - u * dqdy) * w, (fset(float(t.ddy[kVp])) - v * dqdy) * w};
+}
+
+// The lanes' mip level under exact perspective, as programs::sampleKd computes it per fragment:
+// uvDerivatives at each lane, then mipLevel (TextureLod.cpp) lane by lane.
+template <class Prog>
+SR_SIMD_INLINE F mipLevels(const Prog& p, const Texture& texture, F u, F v, F invW) {
+    const UvLanes d = uvDerivativeLanes(p, u, v, invW);
     const F tw = fset(float(texture.width())), th = fset(float(texture.height()));
-    const F ax = dudx * tw, bx = dvdx * th, ay = dudy * tw, by = dvdy * th;
+    const F ax = d.dudx * tw, bx = d.dvdx * th, ay = d.dudy * tw, by = d.dvdy * th;
     const F rx = ax * ax + bx * bx, ry = ay * ay + by * by;
     const M ok = (rx >= fzero()) & (ry >= fzero()); // not NaN
     const F rho2 = fmin(fmax(fmax(rx, ry), fset(kMinRho2)), fset(kMaxRho2));
@@ -392,6 +399,64 @@ SR_SIMD_INLINE Rgb sampleLanes(const Texture& texture, bool linear, F u, F v, F 
     return kd;
 }
 
+// sampleAnisotropic (TextureLod.cpp) lane by lane: anisoFootprint's taps and level with the same
+// operations, then the trilinear taps of every lane at once, as many rounds as the most any lane
+// takes (a lane past its own count keeps its sum), the sums divided by the counts. Lanes whose
+// centre or any tap is off the vector path are redone by the scalar function.
+template <WrapMode kWrap>
+SR_SIMD_NOINLINE Rgb anisotropicLanes(const Texture& texture, bool linear, F u, F v, const UvLanes& d, int maxAniso) {
+    const F tw = fset(float(texture.width())), th = fset(float(texture.height()));
+    const F ax = d.dudx * tw, bx = d.dvdx * th, ay = d.dudy * tw, by = d.dvdy * th;
+    const F rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    const M ok = (rx >= fzero()) & (ry >= fzero());
+    const M xMajor = rx >= ry;
+    const F pMax2 = select(xMajor, rx, ry), pMin2 = select(xMajor, ry, rx);
+    const F ratio2 = pMax2 / pMin2;
+    I taps = iset(1);
+    for (int k = 1; k < std::min(maxAniso, kMaxAnisotropy); ++k) taps = taps + select(fset(float(k * k)) < ratio2, iset(1), iset(0));
+    taps = select(ok, taps, iset(1));
+    const F n = toFloat(taps);
+    const F rho2 = fmin(fmax(pMax2 / (n * n), fset(kMinRho2)), fset(kMaxRho2));
+    const F lod = select(ok, fset(0.5f) * log2Lanes(rho2), fzero());
+    const F du = select(xMajor, d.dudx, d.dudy), dv = select(xMajor, d.dvdx, d.dvdy);
+    const M multi = taps > iset(1);
+    M good = onVectorPath(u) & onVectorPath(v);
+    Rgb sum{fzero(), fzero(), fzero()};
+    for (int i = 0, most = reduceMax(taps); i < most; ++i) {
+        const M active = iset(i) < taps;
+        const F t = (fset(float(i)) + fset(0.5f)) / n - fset(0.5f);
+        const F ui = select(multi, u + du * t, u), vi = select(multi, v + dv * t, v);
+        const M onPath = onVectorPath(ui) & onVectorPath(vi);
+        good = good & (onPath | andNot(mAll(), active));
+        const F uSafe = select(onPath, ui, fzero()), vSafe = select(onPath, vi, fzero());
+        const Rgb c = linear ? trilinearDecodedLanes<kWrap>(texture, uSafe, vSafe, lod) : trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
+        sum = {select(active, sum.r + c.r, sum.r), select(active, sum.g + c.g, sum.g), select(active, sum.b + c.b, sum.b)};
+    }
+    Rgb kd{select(multi, sum.r / n, sum.r), select(multi, sum.g / n, sum.g), select(multi, sum.b / n, sum.b)};
+    if (SR_UNLIKELY(bits(good) != bits(mAll()))) {
+        alignas(64) float us[kLanes], vs[kLanes], g[4][kLanes], r[3][kLanes];
+        fstore(us, u);
+        fstore(vs, v);
+        fstore(g[0], d.dudx);
+        fstore(g[1], d.dvdx);
+        fstore(g[2], d.dudy);
+        fstore(g[3], d.dvdy);
+        fstore(r[0], kd.r);
+        fstore(r[1], kd.g);
+        fstore(r[2], kd.b);
+        for (int i = 0, m = bits(good); i < kLanes; ++i) {
+            if (m & (1 << i)) continue;
+            const Color c = sampleAnisotropic(texture, {us[i], vs[i]}, UvDerivatives{g[0][i], g[1][i], g[2][i], g[3][i]}, maxAniso,
+                                              kWrap, linear);
+            r[0][i] = c.r;
+            r[1][i] = c.g;
+            r[2][i] = c.b;
+        }
+        kd = {fload(r[0]), fload(r[1]), fload(r[2])};
+    }
+    return kd;
+}
+
 // sampleLanes out of line, one copy per filter and wrap (a call per group of lanes): what every
 // kernel would otherwise copy for each map, wrap and colour mode. Only the Blinn-Phong programs'
 // nearest and bilinear on display values are inlined (sampleMap): the cheapest filters, where a
@@ -409,8 +474,20 @@ template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
 SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear, F u, F v, F invW, F triangleLod) {
     F lod = fzero();
     if constexpr (kFilter == TextureFilter::Trilinear) {
-        if constexpr (kPersp == PerspectiveMode::Affine) lod = triangleLod;
-        else lod = mipLevels(p, texture, u, v, invW);
+        if constexpr (kPersp == PerspectiveMode::Affine) {
+            lod = triangleLod;
+        } else {
+            if (const int aniso = p.d->settings.aniso; aniso > 1) {
+                const UvLanes d = uvDerivativeLanes(p, u, v, invW);
+                switch (p.d->settings.wrap) {
+                case WrapMode::Clamp: return anisotropicLanes<WrapMode::Clamp>(texture, linear, u, v, d, aniso);
+                case WrapMode::Mirror: return anisotropicLanes<WrapMode::Mirror>(texture, linear, u, v, d, aniso);
+                case WrapMode::Repeat: break;
+                }
+                return anisotropicLanes<WrapMode::Repeat>(texture, linear, u, v, d, aniso);
+            }
+            lod = mipLevels(p, texture, u, v, invW);
+        }
     } else {
         (void)invW;
         (void)triangleLod;
