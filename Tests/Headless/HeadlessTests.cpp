@@ -612,7 +612,8 @@ TEST_CASE("--quality auto: a probe chooses by --budget-ms or --max-error and say
     };
     // A budget nothing meets: the fastest candidate, one sample; an unlimited one: the truth.
     const Run tight = bench({"--quality", "auto", "--budget-ms", "0.000001"});
-    CHECK(tight.err.find("quality auto (--budget-ms 1e-06): ssaa1 ") != std::string::npos);
+    CHECK((tight.err.find("quality auto (--budget-ms 1e-06): ssaa1 ") != std::string::npos ||
+           tight.err.find("quality auto (--budget-ms 1e-06): fxaa ") != std::string::npos)); // one sample, filtered or not
     CHECK(numberOf(tight.out, "ssaa") == 1);
     CHECK(numberOf(tight.out, "msaa") == 1);
     CHECK(hasKey(tight.out, "quality_auto"));
@@ -661,10 +662,11 @@ TEST_CASE("bench --flight with --quality auto reports the setting each frame was
         }
         return used;
     };
-    // Nothing fits: every frame at one sample (the fastest); everything fits: the truth.
+    // Nothing fits: every frame at one sample (the fastest: plain or FXAA, on a 48x32 image within the
+    // timing noise); everything fits: the truth.
     const auto tight = flight("0.000001");
     REQUIRE(tight.size() == 6);
-    for (const std::string& l : tight) CHECK(l.rfind("\"ssaa1 ", 0) == 0);
+    for (const std::string& l : tight) CHECK((l.rfind("\"ssaa1 ", 0) == 0 || l.rfind("\"fxaa ", 0) == 0)); // one sample
     const auto loose = flight("1000000");
     REQUIRE(loose.size() == 6);
     for (const std::string& l : loose) CHECK(l == "\"ssaa16 trilinear aniso16 phong exact\"");
