@@ -38,12 +38,13 @@ struct Row {
 // The ground truth: 16 samples per pixel (4x4, each shaded), exact perspective, trilinear
 // mipmaps with 16 anisotropic taps, per-pixel (Phong) lighting. Then every combination of
 // anti-aliasing (1 sample, FXAA, MSAA 4 or SSAA 4) x texture filter (bilinear, trilinear,
-// trilinear with 16 anisotropic taps) x shading frequency, exact perspective, and MSAA 8 with the truth's other settings. A scene without textures skips the
-// filter (it changes nothing there); unlit is left out (it drops the lighting: another picture,
-// not an approximation of this one). Nearest and affine are not rungs: they save no time
-// (docs/PERFORMANCE.md: nearest 0.89-1.03x bilinear, affine 0.94-1.02x exact).
-// A physical (glTF) scene's truth is its own material model, pbr in linear light; Phong is then
-// one more rung of the shading sweep, and pbr on display values (gamma) one more setting.
+// trilinear with 16 anisotropic taps) x shading (Gouraud, Phong), exact perspective, and MSAA 8
+// with the truth's other settings. A scene without textures skips the filter (it changes nothing
+// there); unlit is left out (it drops the lighting: another picture, not an approximation of this
+// one). Nearest, affine and flat are not rungs: they save too little (docs/PERFORMANCE.md:
+// nearest 0.89-1.03x bilinear, affine 0.94-1.02x exact, flat 0.84-0.96x Gouraud).
+// A physical (glTF) scene's truth is its own material model, pbr in linear light; Phong and
+// Gouraud are then rungs of the shading sweep, and pbr on display values (gamma) one more setting.
 std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool physical) {
     base.perspective = PerspectiveMode::Exact;
     base.filter = TextureFilter::Trilinear;
@@ -61,7 +62,7 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool 
     if (textured) filters = {{TextureFilter::Bilinear, 1}, {TextureFilter::Trilinear, 1}, {TextureFilter::Trilinear, kMaxAnisotropy}};
     for (AntiAliasing aa : {AntiAliasing::none(), AntiAliasing::fxaa(), *AntiAliasing::multisample(4), *AntiAliasing::supersample(4)})
         for (Filter f : filters)
-            for (ShadingMode m : {ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong, ShadingMode::Pbr}) {
+            for (ShadingMode m : {ShadingMode::Gouraud, ShadingMode::Phong, ShadingMode::Pbr}) {
                 if (m == ShadingMode::Pbr && !physical) continue;
                 Setting s{base, false, {}};
                 s.settings.antiAliasing = aa;
@@ -269,8 +270,8 @@ int runReport(const std::vector<std::string>& args, Streams io) {
           "similarity of Wang et al. 2004 (11x11 Gaussian window, sigma 1.5, per channel, averaged; 1 = the truth). Every "
           "combination of anti-aliasing (1 sample; FXAA: 1 sample, its edges filtered; MSAA 4: coverage and depth per "
           "sample, shaded once per pixel; SSAA 4: 2x2 samples, each shaded) x texture filter (bilinear, trilinear) x "
-          "shading is measured with exact perspective, and MSAA 8 with "
-          "the ground truth's other settings (nearest and affine save no time: they are not measured); the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
+          "shading (Gouraud, Phong, and pbr in glTF) is measured with exact perspective, and MSAA 8 with "
+          "the ground truth's other settings (nearest, affine and flat save too little: they are not measured); the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
           "`--quality` presets.\n\n"
        << "| ssaa | msaa | fxaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | SSIM | max abs | "
           "differing pixels | Pareto | preset |\n"
