@@ -29,16 +29,6 @@ shot() { local f="$artifacts/$1.png"; import -window "$win" "$f" 2>/dev/null || 
 differing() { compare -metric AE "$1" "$2" null: 2>&1 || true; }
 # The animation time the title shows (" | t 1.23 s"), or nothing.
 title_time() { xdotool getwindowname "$win" 2>/dev/null | sed -n 's/.* | t \([0-9.]*\) s.*/\1/p'; }
-poll() {
-  local what=$1; shift
-  local deadline=$(( $(date +%s) + poll_timeout ))
-  while (( $(date +%s) < deadline )); do
-    "$@" && return 0
-    kill -0 "$app_pid" 2>/dev/null || fail "SoftRaster.exe exited while waiting for: $what"
-    sleep 0.3
-  done
-  fail "timed out (${poll_timeout} s) waiting for: $what (last: ${last:-})"
-}
 press() { xdotool windowfocus --sync "$win" 2>/dev/null || xdotool windowfocus "$win" || true; xdotool key "$1"; }
 
 start_app "$exe" --model "$(winpath "$model")" --width 320 --height 240 --eye 0,1,4 --target 0,1,0 --threads 1

@@ -21,16 +21,6 @@ source "$(dirname "$0")/xsession.sh"
 start_xvfb 141 190
 log "Xvfb on $DISPLAY"
 
-poll() {
-  local what=$1; shift
-  local deadline=$(( $(date +%s) + poll_timeout ))
-  while (( $(date +%s) < deadline )); do
-    "$@" && return 0
-    kill -0 "$app_pid" 2>/dev/null || fail "SoftRaster.exe exited while waiting for: $what"
-    sleep 0.3
-  done
-  fail "timed out (${poll_timeout} s) waiting for: $what (last: ${last:-})"
-}
 title_has() { last=$(xdotool getwindowname "$win" 2>/dev/null || true); [[ "$last" == *"$1"* && "$last" == *"$2"* ]]; }
 quit() {
   xdotool windowfocus --sync "$win" 2>/dev/null || xdotool windowfocus "$win" || true

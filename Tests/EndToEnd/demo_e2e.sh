@@ -11,6 +11,7 @@ artifacts=${2:-build/artifacts}/demo_e2e
 root=$(cd "$(dirname "$0")/../.." && pwd)
 window_timeout=90  # Wine's first start in a fresh prefix can take 20-40 s on a loaded machine
 poll_timeout=40    # every other wait: poll until the condition holds, at most this long
+poll_interval=0.5
 exit_timeout=15
 
 [[ -f "$exe" ]] || { echo "demo_e2e: $exe not found" >&2; exit 1; }
@@ -69,16 +70,6 @@ colourfulness() { convert "$1" -resize 25% -fx 'abs(r-g)+abs(g-b)' -format '%[fx
 gt() { awk -v a="$1" -v b="$2" 'BEGIN{exit !(a > b)}'; }
 
 # poll DESCRIPTION COMMAND...: runs COMMAND every 0.5 s until it succeeds or poll_timeout passes.
-poll() {
-  local what=$1; shift
-  local deadline=$(( $(date +%s) + poll_timeout ))
-  while (( $(date +%s) < deadline )); do
-    "$@" && return 0
-    kill -0 "$app_pid" 2>/dev/null || fail "SoftRaster.exe exited while waiting for: $what"
-    sleep 0.5
-  done
-  fail "timed out (${poll_timeout} s) waiting for: $what (last: ${last:-})"
-}
 focus() {
   if [[ -n "$wm_pid" ]]; then xdotool windowactivate --sync "$win" 2>/dev/null || true; fi
   xdotool windowfocus --sync "$win" 2>/dev/null || xdotool windowfocus "$win" || true

@@ -4,7 +4,7 @@
 # Before sourcing, set e2e_name (the prefix of every log line). A script may define diagnose()
 # to print more context when it fails. Timeouts (seconds) may be set before the calls:
 # window_timeout (default 90: Wine's first start in a fresh prefix takes 20-40 s on a loaded
-# machine) and exit_timeout (default 15).
+# machine), exit_timeout (default 15), poll_timeout (default 40) and poll_interval (default 0.3).
 
 export WINEDEBUG=${WINEDEBUG:--all}
 export WINEDLLOVERRIDES="mscoree,mshtml=" # no Mono / Gecko install dialogs (WINEPREFIX: as set)
@@ -16,6 +16,19 @@ fail() {
   echo "$e2e_name [$(elapsed) s]: FAIL: $*" >&2
   if declare -F diagnose >/dev/null; then diagnose >&2 || true; fi
   exit 1
+}
+
+# poll DESCRIPTION COMMAND...: runs COMMAND every poll_interval seconds until it succeeds; fails
+# when the app exits first or poll_timeout seconds pass (naming ${last}, what COMMAND last saw).
+poll() {
+  local what=$1; shift
+  local deadline=$(( $(date +%s) + ${poll_timeout:-40} ))
+  while (( $(date +%s) < deadline )); do
+    "$@" && return 0
+    kill -0 "$app_pid" 2>/dev/null || fail "SoftRaster.exe exited while waiting for: $what"
+    sleep "${poll_interval:-0.3}"
+  done
+  fail "timed out (${poll_timeout:-40} s) waiting for: $what (last: ${last:-})"
 }
 
 xvfb_pid="" wm_pid="" app_pid="" win="" private_prefix=""

@@ -76,10 +76,9 @@ struct EdgeError {
     int pixels = 0;
 };
 
-// Resolved intensity against the exact covered area, over the pixels an edge crosses
-// (0 < area < 1).
-inline EdgeError coverageError(int ssaa, const std::vector<std::pair<double, double>>& tri, int width, int height,
-                               int threads = 1, int msaa = 1) {
+// whiteTriangle rendered unlit with `aa` on `threads` threads by the span kernels of `isa`.
+inline FrameBuffer renderWhiteTriangle(const std::vector<std::pair<double, double>>& tri, int width, int height,
+                                       AntiAliasing aa, int threads = 1, Isa isa = bestIsa()) {
     FrameBuffer fb(width, height);
     RenderContext ctx(fb);
     ctx.setThreads(threads);
@@ -87,8 +86,18 @@ inline EdgeError coverageError(int ssaa, const std::vector<std::pair<double, dou
     view.viewProj = Mat4::identity();
     RenderSettings settings;
     settings.shading = ShadingMode::Unlit;
-    settings.antiAliasing = msaa > 1 ? *AntiAliasing::multisample(msaa) : *AntiAliasing::supersample(ssaa);
+    settings.antiAliasing = aa;
+    settings.isa = isa;
     REQUIRE(renderSceneFrame(ctx, whiteTriangle(tri, width, height), view, settings));
+    return fb;
+}
+
+// Resolved intensity against the exact covered area, over the pixels an edge crosses
+// (0 < area < 1).
+inline EdgeError coverageError(int ssaa, const std::vector<std::pair<double, double>>& tri, int width, int height,
+                               int threads = 1, int msaa = 1) {
+    const FrameBuffer fb = renderWhiteTriangle(
+        tri, width, height, msaa > 1 ? *AntiAliasing::multisample(msaa) : *AntiAliasing::supersample(ssaa), threads);
     EdgeError e;
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x) {

@@ -32,20 +32,10 @@ FrameBuffer blockImage(int w, int h, std::uint32_t seed, double noise) {
     return fb;
 }
 
-// A white triangle with long, shallow edges (the staircases FXAA is for), one sample.
+// A white triangle with long, shallow edges (the staircases FXAA is for).
 FrameBuffer renderTriangle(const std::vector<std::pair<double, double>>& tri, int w, int h, AntiAliasing aa, int threads,
                            Isa isa = bestIsa()) {
-    FrameBuffer fb(w, h);
-    RenderContext ctx(fb);
-    ctx.setThreads(threads);
-    FrameView view;
-    view.viewProj = Mat4::identity();
-    RenderSettings settings;
-    settings.shading = ShadingMode::Unlit;
-    settings.antiAliasing = aa;
-    settings.isa = isa;
-    REQUIRE(renderSceneFrame(ctx, test::whiteTriangle(tri, w, h), view, settings));
-    return fb;
+    return test::renderWhiteTriangle(tri, w, h, aa, threads, isa);
 }
 
 int differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
