@@ -9,11 +9,11 @@
 
 namespace sr {
 
-void FxaaScratch::resize(int w, int h) {
+void FxaaScratch::resize(int w, int h, int bands) {
     width = w;
     height = h;
     luma.resize(std::size_t(w + 2) * std::size_t(h + 2) + kSlack);
-    source.resize(std::size_t(w) * std::size_t(h) + kSlack);
+    if (writes.size() < std::size_t(bands)) writes.resize(std::size_t(bands));
 }
 
 namespace {
@@ -26,7 +26,6 @@ void prepareRowsScalar(const FrameBuffer& image, FxaaScratch& s, int y0, int y1)
     const int w = s.width, stride = s.lumaStride();
     for (int y = y0; y < y1; ++y) {
         const Pixel* row = image.colorRow(y);
-        std::memcpy(s.source.data() + std::size_t(y) * std::size_t(w), row, std::size_t(w) * sizeof(Pixel));
         float* l = s.luma.data() + std::size_t(y + 1) * std::size_t(stride);
         for (int x = 0; x < w; ++x) l[x + 1] = lumaOf(row[x]);
         l[0] = l[1];
@@ -44,7 +43,7 @@ void prepareBorderRows(FxaaScratch& s, int y0, int y1) {
 
 // One pixel of the filter; false where it is not on an edge (the pixel stays). The vector kernels
 // (FxaaLanes.inl) repeat every operation, in this order.
-bool filterPixel(const FxaaScratch& s, int x, int y, Pixel& out) {
+bool filterPixel(const FxaaScratch& s, const FrameBuffer& image, int x, int y, Pixel& out) {
     auto L = [&](int px, int py) { return s.lumaAt(px, py); };
     const float m = L(x, y), n = L(x, y - 1), so = L(x, y + 1), w = L(x - 1, y), e = L(x + 1, y);
     const float maxL = std::max(std::max(std::max(n, w), std::max(e, so)), m);
@@ -106,10 +105,10 @@ bool filterPixel(const FxaaScratch& s, int x, int y, Pixel& out) {
     const float subH = (subF * subF) * kFxaaSubpix;
     const float offset = std::max(edgeOffset, subH);
 
-    const Pixel c0 = s.source[std::size_t(y) * std::size_t(s.width) + std::size_t(x)];
+    const Pixel c0 = image.pixel(x, y);
     const int xa = horz ? x : std::clamp(x + side, 0, s.width - 1);
     const int ya = horz ? std::clamp(y + side, 0, s.height - 1) : y;
-    const Pixel c1 = s.source[std::size_t(ya) * std::size_t(s.width) + std::size_t(xa)];
+    const Pixel c1 = image.pixel(xa, ya);
     auto mix = [&](int shift) {
         const float v0 = float((c0 >> shift) & 0xFFu), v1 = float((c1 >> shift) & 0xFFu);
         return Pixel(int(v0 + (v1 - v0) * offset + 0.5f)) << shift;
@@ -118,14 +117,12 @@ bool filterPixel(const FxaaScratch& s, int x, int y, Pixel& out) {
     return true;
 }
 
-void filterRowsScalar(const FxaaScratch& s, FrameBuffer& image, int y0, int y1) {
-    for (int y = y0; y < y1; ++y) {
-        Pixel* row = image.colorRow(y);
+void filterRowsScalar(const FxaaScratch& s, const FrameBuffer& image, int y0, int y1, std::vector<FxaaWrite>& writes) {
+    for (int y = y0; y < y1; ++y)
         for (int x = 0; x < s.width; ++x) {
             Pixel p;
-            if (filterPixel(s, x, y, p)) row[x] = p;
+            if (filterPixel(s, image, x, y, p)) writes.push_back({std::uint32_t(y) * std::uint32_t(s.width) + std::uint32_t(x), p});
         }
-    }
 }
 
 } // namespace
@@ -145,25 +142,33 @@ void fxaaPrepareRows(const FrameBuffer& image, FxaaScratch& scratch, int y0, int
     prepareBorderRows(scratch, y0, y1);
 }
 
-void fxaaFilterRows(const FxaaScratch& scratch, FrameBuffer& image, int y0, int y1, Isa isa) {
+void fxaaFilterRows(FxaaScratch& scratch, const FrameBuffer& image, int band, int y0, int y1, Isa isa) {
+    std::vector<FxaaWrite>& writes = scratch.writes[std::size_t(band)];
+    writes.clear();
 #if SR_KERNELS_X86
     switch (isa) {
-    case Isa::Sse2: kernels_sse2::fxaaFilterRows(scratch, image, y0, y1); return;
-    case Isa::Avx2: kernels_avx2::fxaaFilterRows(scratch, image, y0, y1); return;
-    case Isa::Avx512: kernels_avx512::fxaaFilterRows(scratch, image, y0, y1); return;
+    case Isa::Sse2: kernels_sse2::fxaaFilterRows(scratch, image, y0, y1, writes); return;
+    case Isa::Avx2: kernels_avx2::fxaaFilterRows(scratch, image, y0, y1, writes); return;
+    case Isa::Avx512: kernels_avx512::fxaaFilterRows(scratch, image, y0, y1, writes); return;
     case Isa::Scalar: break;
     }
 #else
     (void)isa;
 #endif
-    filterRowsScalar(scratch, image, y0, y1);
+    filterRowsScalar(scratch, image, y0, y1, writes);
+}
+
+void fxaaWriteBand(const FxaaScratch& scratch, FrameBuffer& image, int band) {
+    Pixel* pixels = image.colorData();
+    for (const FxaaWrite& w : scratch.writes[std::size_t(band)]) pixels[w.index] = w.colour;
 }
 
 void applyFxaa(FrameBuffer& image, FxaaScratch& scratch, Isa isa) {
     if (image.empty()) return;
-    scratch.resize(image.width(), image.height());
+    scratch.resize(image.width(), image.height(), 1);
     fxaaPrepareRows(image, scratch, 0, image.height(), isa);
-    fxaaFilterRows(scratch, image, 0, image.height(), isa);
+    fxaaFilterRows(scratch, image, 0, 0, image.height(), isa);
+    fxaaWriteBand(scratch, image, 0);
 }
 
 } // namespace sr

@@ -39,36 +39,45 @@ inline constexpr float kFxaaLumaR = 0.299f / 255.0f;
 inline constexpr float kFxaaLumaG = 0.587f / 255.0f;
 inline constexpr float kFxaaLumaB = 0.114f / 255.0f;
 
-// The filter's scratch: the bordered luma image and the frame's colours as they were before
-// the filter (the pass reads neighbours another thread may already have filtered). Both keep
-// their capacity between frames; both have kSlack words of padding at the end, so that a
-// vector group reading the last pixels stays inside.
+// A filtered pixel, waiting to be written: the filter reads the image while other threads
+// filter it, so nothing is written until every band has been filtered.
+struct FxaaWrite {
+    std::uint32_t index; // y * width + x
+    Pixel colour;
+};
+
+// The filter's scratch: the bordered luma image (kSlack floats of padding at its end, so that a
+// vector group reading the last pixels stays inside) and each band's filtered pixels. Both keep
+// their capacity between frames.
 struct FxaaScratch {
     static constexpr int kSlack = 32;
     int width = 0, height = 0;
-    std::vector<float> luma;    // (width + 2) x (height + 2): pixel (x, y) at (y + 1) * (width + 2) + x + 1
-    std::vector<Pixel> source;  // width x height
+    std::vector<float> luma; // (width + 2) x (height + 2): pixel (x, y) at (y + 1) * (width + 2) + x + 1
+    std::vector<std::vector<FxaaWrite>> writes; // per band (fxaaFilterRows' `band`)
     int lumaStride() const { return width + 2; }
     float lumaAt(int x, int y) const { return luma[std::size_t(y + 1) * std::size_t(width + 2) + std::size_t(x + 1)]; }
-    void resize(int w, int h);
+    void resize(int w, int h, int bands);
 };
 
 // Pass 1 over rows [y0, y1): their luma (with the border columns; row 0 also fills the top
-// border, the last row the bottom one) and their colours copied. `isa`: which kernels (Scalar:
-// the reference); every ISA gives the same bits.
+// border, the last row the bottom one). `isa`: which kernels (Scalar: the reference); every ISA
+// gives the same bits.
 void fxaaPrepareRows(const FrameBuffer& image, FxaaScratch& scratch, int y0, int y1, Isa isa);
-// Pass 2 over rows [y0, y1): the filter, written into `image`; only pixels on an edge change.
-// Needs pass 1 over every row first.
-void fxaaFilterRows(const FxaaScratch& scratch, FrameBuffer& image, int y0, int y1, Isa isa);
+// Pass 2 over rows [y0, y1): the filter, reading `image` and keeping the pixels on an edge in
+// scratch.writes[band] (cleared first). Needs pass 1 over every row first.
+void fxaaFilterRows(FxaaScratch& scratch, const FrameBuffer& image, int band, int y0, int y1, Isa isa);
+// Pass 3, once pass 2 is over everywhere: band `band`'s pixels written into `image`.
+void fxaaWriteBand(const FxaaScratch& scratch, FrameBuffer& image, int band);
 
-// Both passes over the whole image on the calling thread (tests, tools).
+// The three passes over the whole image on the calling thread (tests, tools).
 void applyFxaa(FrameBuffer& image, FxaaScratch& scratch, Isa isa);
 
 // The vector kernels (FxaaLanes.inl, one copy per ISA); the dispatchers above call them.
 #define SR_FXAA_KERNELS(ns)                                                                                   \
     namespace ns {                                                                                            \
     void fxaaPrepareRows(const FrameBuffer& image, FxaaScratch& scratch, int y0, int y1);                     \
-    void fxaaFilterRows(const FxaaScratch& scratch, FrameBuffer& image, int y0, int y1);                      \
+    void fxaaFilterRows(const FxaaScratch& scratch, const FrameBuffer& image, int y0, int y1,                 \
+                        std::vector<FxaaWrite>& writes);                                                      \
     }
 SR_FXAA_KERNELS(kernels_sse2)
 SR_FXAA_KERNELS(kernels_avx2)

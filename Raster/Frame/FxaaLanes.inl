@@ -61,7 +61,7 @@ SR_SIMD_INLINE void queueEdges(const FxaaScratch& s, int x0, int y, M valid, Edg
 }
 
 // The filter at the first kLanes queued pixels of row y (`work`: those queued); their colours.
-SR_SIMD_INLINE I filterLanes(const FxaaScratch& s, const EdgeQueue& q, int y, M work) {
+SR_SIMD_INLINE I filterLanes(const FxaaScratch& s, const Pixel* colours, const EdgeQueue& q, int y, M work) {
     const int stride = s.lumaStride();
     const I x = iload(q.x);
     const F m = fload(q.l[kM]), n = fload(q.l[kN]), so = fload(q.l[kS]), w = fload(q.l[kW]), e = fload(q.l[kE]);
@@ -134,8 +134,8 @@ SR_SIMD_INLINE I filterLanes(const FxaaScratch& s, const EdgeQueue& q, int y, M 
 
     const I xa = select(horz, x, imin(imax(x + side, iset(0)), iset(s.width - 1)));
     const I ya = select(horz, imin(imax(yv + side, iset(0)), iset(s.height - 1)), yv);
-    const I original = gather(s.source.data(), select(work, iset(y * s.width) + x, iset(0)));
-    const I c1 = gather(s.source.data(), select(work, mulLow(ya, iset(s.width)) + xa, iset(0)));
+    const I original = gather(colours, select(work, iset(y * s.width) + x, iset(0)));
+    const I c1 = gather(colours, select(work, mulLow(ya, iset(s.width)) + xa, iset(0)));
     auto mix = [&](I v0i, I v1i) SR_SIMD_LAMBDA {
         const F v0 = toFloat(v0i & iset(0xFF)), v1 = toFloat(v1i & iset(0xFF));
         return truncToInt(v0 + (v1 - v0) * offset + halfF);
@@ -153,7 +153,6 @@ void fxaaPrepareRows(const FrameBuffer& image, FxaaScratch& s, int y0, int y1) {
     const int w = s.width, stride = s.lumaStride();
     for (int y = y0; y < y1; ++y) {
         const Pixel* row = image.colorRow(y);
-        std::memcpy(s.source.data() + std::size_t(y) * std::size_t(w), row, std::size_t(w) * sizeof(Pixel));
         float* l = s.luma.data() + std::size_t(y + 1) * std::size_t(stride) + 1;
         int x = 0;
         for (; x + kLanes <= w; x += kLanes) fstore(l + x, fxaa_detail::lumaLanes(iload(row + x)));
@@ -171,17 +170,19 @@ void fxaaPrepareRows(const FrameBuffer& image, FxaaScratch& s, int y0, int y1) {
 
 // Per row: the edge test a group at a time, the pixels on an edge queued, and the filter run on
 // full vectors of queued pixels (a frame's edges are a small share of its pixels, scattered:
-// filtering whole groups would run the search on mostly idle lanes).
-void fxaaFilterRows(const FxaaScratch& s, FrameBuffer& image, int y0, int y1) {
+// filtering whole groups would run the search on mostly idle lanes). The filtered pixels go to
+// `writes`; the image is only read.
+void fxaaFilterRows(const FxaaScratch& s, const FrameBuffer& image, int y0, int y1, std::vector<FxaaWrite>& writes) {
     const int w = s.width;
+    const Pixel* colours = image.colorData();
     fxaa_detail::EdgeQueue q;
     alignas(64) std::uint32_t result[kLanes];
     for (int y = y0; y < y1; ++y) {
-        Pixel* row = image.colorRow(y);
         q.count = 0;
         auto flush = [&](int count) {
-            istore(result, fxaa_detail::filterLanes(s, q, y, firstN(count)));
-            for (int k = 0; k < count; ++k) row[q.x[k]] = result[k];
+            istore(result, fxaa_detail::filterLanes(s, colours, q, y, firstN(count)));
+            const std::uint32_t rowStart = std::uint32_t(y) * std::uint32_t(w);
+            for (int k = 0; k < count; ++k) writes.push_back({rowStart + std::uint32_t(q.x[k]), result[k]});
             q.count -= count;
             std::memcpy(q.x, q.x + count, std::size_t(q.count) * sizeof(std::int32_t));
             for (auto& l : q.l) std::memcpy(l, l + count, std::size_t(q.count) * sizeof(float));

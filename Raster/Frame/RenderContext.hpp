@@ -171,7 +171,7 @@ public:
     // target's colour rows serve as the per-pixel shading scratch) until the frame resolves it.
     MsaaBuffer msaa;
     bool multisampling = false;
-    // FXAA's luma and source copy (renderSceneFrame with AntiAliasing::fxaa()); kept between
+    // FXAA's luma and filtered pixels (renderSceneFrame with AntiAliasing::fxaa()); kept between
     // frames, released when the mode changes.
     FxaaScratch fxaa;
     MsaaBuffer* multisampleTarget() {
@@ -183,10 +183,15 @@ public:
     // Runs job(rowBegin, rowEnd) over rows [0, height) split evenly over the render threads.
     template <class Job>
     void forRows(int height, Job&& job) {
+        forBands(height, [&](int, int y0, int y1) { job(y0, y1); });
+    }
+    // The same with the band's number (0 .. threads() - 1, in row order): job(band, y0, y1).
+    template <class Job>
+    void forBands(int height, Job&& job) {
         const int lanes = threads();
         auto run = [&](int lane) {
             const int y0 = height * lane / lanes, y1 = height * (lane + 1) / lanes;
-            if (y0 < y1) job(y0, y1);
+            if (y0 < y1) job(lane, y0, y1);
         };
         if (pool_) pool_->run(run);
         else run(0);

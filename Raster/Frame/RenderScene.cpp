@@ -234,9 +234,10 @@ bool renderSceneFrame(RenderContext& ctx, const Scene& scene, const FrameView& c
         renderScene(ctx, scene, view, plain, textureOverride);
         if (aa.postFiltered() && !out.empty() && settings.stopAfter == PipelineStop::Fill) {
             const auto filterStart = std::chrono::steady_clock::now();
-            ctx.fxaa.resize(out.width(), out.height());
+            ctx.fxaa.resize(out.width(), out.height(), ctx.threads());
             ctx.forRows(out.height(), [&](int y0, int y1) { fxaaPrepareRows(out, ctx.fxaa, y0, y1, settings.isa); });
-            ctx.forRows(out.height(), [&](int y0, int y1) { fxaaFilterRows(ctx.fxaa, out, y0, y1, settings.isa); });
+            ctx.forBands(out.height(), [&](int band, int y0, int y1) { fxaaFilterRows(ctx.fxaa, out, band, y0, y1, settings.isa); });
+            ctx.forBands(out.height(), [&](int band, int, int) { fxaaWriteBand(ctx.fxaa, out, band); });
             ctx.stats.resolveMs += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - filterStart).count();
         }
         if (!aa.postFiltered() && !ctx.fxaa.luma.empty()) ctx.fxaa = FxaaScratch{}; // its memory only while on
