@@ -114,6 +114,10 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
                          triangles * std::size_t(c + 1) / std::size_t(lanes), chunkStats[c]);
         };
         pool.run(binJob);
+        if (state.stopAfter == PipelineStop::Bin) {
+            for (int l = 0; l < lanes; ++l) ctx.stats += chunkStats[l];
+            return;
+        }
         auto binnedJob = [&](int l) {
             timed(l, [&] {
                 Program copy = program;

@@ -110,12 +110,19 @@ int runBench(const std::vector<std::string>& args, Streams io) {
         covered += p.framebuffer.depthData()[i] != FrameBuffer::kFarDepth;
 
     // Per-stage breakdown by difference of partial pipelines (no timers inside the hot loops):
-    // clear only; + vertex/clip/cull; + setup; the full frame above.
+    // clear only; + vertex/clip/cull; + binning (several threads); + setup; the full frame above.
     const int stageFrames = std::max(5, a.frames / 4);
     const TimingSummary clearOnly =
         summarise(timeFrames(1, stageFrames, [&] { p.framebuffer.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth); }));
     settings.stopAfter = PipelineStop::Geometry;
     const TimingSummary geometry = summarise(timeFrames(1, stageFrames, frame));
+    // Binning: only draws spread over several threads are binned (Raster/Setup/Binning.hpp).
+    const bool bins = p.threadsUsed > 1;
+    TimingSummary binned = geometry;
+    if (bins) {
+        settings.stopAfter = PipelineStop::Bin;
+        binned = summarise(timeFrames(1, stageFrames, frame));
+    }
     settings.stopAfter = PipelineStop::Setup;
     const TimingSummary setup = summarise(timeFrames(1, stageFrames, frame));
     settings.stopAfter = PipelineStop::Fill;
@@ -154,7 +161,8 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"mpix_per_s\":" + jsonNumber(full.median > 0 ? pixels / (full.median * 1000.0) : 0.0);
     j += ",\"stages_ms\":{\"clear\":" + jsonNumber(clearOnly.median);
     j += ",\"transform_clip_cull\":" + jsonNumber(positive(geometry.median - clearOnly.median - animate.median));
-    j += ",\"setup\":" + jsonNumber(positive(setup.median - geometry.median));
+    if (bins) j += ",\"binning\":" + jsonNumber(positive(binned.median - geometry.median));
+    j += ",\"setup\":" + jsonNumber(positive(setup.median - binned.median));
     const bool resolves = settings.antiAliasing.samples() > 1 || settings.antiAliasing.postFiltered(); // FXAA: its pass
     j += ",\"fill_shade\":" + jsonNumber(positive(noSky.median - setup.median - shadowPass.median - (resolves ? resolveMs : 0.0)));
     if (resolves) j += ",\"resolve\":" + jsonNumber(resolveMs);

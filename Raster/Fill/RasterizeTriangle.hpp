@@ -198,11 +198,11 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         }
         const bool owner = bands.ownerOfRow(rowBegin) == bands.lane;
         if (!owner) {
-            if (state.stopAfter == PipelineStop::Geometry || !bands.meets(rowBegin, rowEnd)) return false;
+            if (state.stopAfter <= PipelineStop::Bin || !bands.meets(rowBegin, rowEnd)) return false;
             stats = &sink; // fills its bands, counts nothing
         }
     }
-    if (state.stopAfter == PipelineStop::Geometry) {
+    if (state.stopAfter <= PipelineStop::Bin) { // no bins here (an unbinned walk): as Geometry
         if (isCulled(state.cull, v0, v1, v2)) {
             ++stats->culled;
             return false;

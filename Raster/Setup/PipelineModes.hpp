@@ -28,7 +28,8 @@ bool isRetiredPerspectiveMode(std::string_view text);
 enum class DepthMode { Off, Test, TestWrite };
 
 // Where a draw stops: the bench command times partial pipelines to split a frame's time into
-// stages (geometry = vertex shader + clip + divide + cull; setup; fill = span loop + shading).
-enum class PipelineStop { Geometry, Setup, Fill };
+// stages (geometry = vertex shader + clip + divide + cull; binning, in a draw spread over several
+// threads by bins (Binning.hpp), else the same as Geometry; setup; fill = span loop + shading).
+enum class PipelineStop { Geometry, Bin, Setup, Fill };
 
 } // namespace sr

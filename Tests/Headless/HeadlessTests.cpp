@@ -673,7 +673,7 @@ TEST_CASE("bench --flight with --quality auto reports the setting each frame was
     for (const std::string& l : loose) CHECK(l == "\"ssaa16 trilinear aniso16 phong exact\"");
 }
 
-TEST_CASE("bench's stages: the SSAA and MSAA resolve timed on its own, only where there is one", "[headless]") {
+TEST_CASE("bench's stages: the SSAA, MSAA and FXAA resolve timed on its own, only where there is one; binning with threads", "[headless]") {
     const auto bench = [](std::vector<std::string> extra) {
         std::vector<std::string> args{"bench", "--width", "64", "--height", "48", "--frames", "3", "--warmup", "1", "--quiet"};
         args.insert(args.end(), extra.begin(), extra.end());
@@ -683,10 +683,17 @@ TEST_CASE("bench's stages: the SSAA and MSAA resolve timed on its own, only wher
     };
     const std::string plain = bench({});
     CHECK_FALSE(hasKey(plain, "resolve"));
-    for (const char* aa : {"--ssaa", "--msaa"}) {
-        const std::string out = bench({aa, "4"});
+    CHECK_FALSE(hasKey(plain, "binning")); // one thread: nothing is binned
+    for (const std::vector<std::string>& aa : {std::vector<std::string>{"--ssaa", "4"}, {"--msaa", "4"}, {"--fxaa"}}) {
+        const std::string out = bench(aa);
         CHECK(hasKey(out, "resolve"));
         CHECK(numberOf(out, "resolve") > 0.0);
         CHECK(numberOf(out, "resolve") < numberOf(out, "ms_per_frame_median") * 2.0); // a part of the frame (a mean, so some slack)
+    }
+    // Two threads (where the process may use two CPUs): the binning stage of its own.
+    const std::string two = bench({"--threads", "2"});
+    if (numberOf(two, "threads") > 1) {
+        CHECK(hasKey(two, "binning"));
+        CHECK(numberOf(two, "binning") >= 0.0);
     }
 }

@@ -312,6 +312,52 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
     }
 }
 
+TEST_CASE("a draw stopped after binning fills the bins and nothing else; unbinned, it stops as after geometry",
+          "[threads]") {
+    // The bench's binning stage (PipelineStop::Bin): 600 small on-screen triangles, 2 threads.
+    std::mt19937 rng(77);
+    std::uniform_real_distribution<float> xy(-0.9f, 0.9f), d(-0.05f, 0.05f);
+    std::vector<Vec4> positions;
+    std::vector<std::uint32_t> indices;
+    for (int t = 0; t < 600; ++t) {
+        const float cx = xy(rng), cy = xy(rng);
+        for (int k = 0; k < 3; ++k) {
+            positions.push_back({cx + d(rng), cy + d(rng), 0.5f, 1.0f});
+            indices.push_back(std::uint32_t(positions.size() - 1));
+        }
+    }
+    auto draw = [&](int threads, std::size_t binMin, PipelineStop stop, FrameBuffer& fb) {
+        RenderContext ctx(fb);
+        ctx.setThreads(threads);
+        ctx.binningMinTriangles = binMin;
+        ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+        DrawState state;
+        state.stopAfter = stop;
+        TieProgram program{&positions};
+        drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), program);
+        std::size_t binned = 0;
+        for (const auto& bin : ctx.bins) binned += bin.size();
+        return std::pair{ctx.stats, binned};
+    };
+    FrameBuffer cleared(96, 80), fb(96, 80);
+    cleared.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+    const auto [stats, binned] = draw(2, 0, PipelineStop::Bin, fb);
+    CHECK(differingPixels(cleared, fb) == 0);
+    CHECK(std::memcmp(cleared.depthData(), fb.depthData(), sizeof(float) * 96 * 80) == 0);
+    CHECK(binned >= 600);                // every triangle in its owner's bin (and some in another's)
+    CHECK(stats.trianglesIn == 600);
+    CHECK(stats.setupsBuilt == 0);       // set up by nobody
+    CHECK(stats.fragmentsShaded == 0);
+    // Not binned (one thread, or below the threshold): the same as stopping after geometry.
+    for (auto [threads, binMin] : {std::pair{1, std::size_t(0)}, std::pair{2, kBinningMinTriangles}}) {
+        FrameBuffer a(96, 80), b(96, 80);
+        const auto bin = draw(threads, binMin, PipelineStop::Bin, a);
+        const auto geometry = draw(threads, binMin, PipelineStop::Geometry, b);
+        CHECK(sameStats(bin.first, geometry.first));
+        CHECK(differingPixels(a, cleared) == 0);
+    }
+}
+
 TEST_CASE("wireframe falls back to one lane and still matches", "[threads]") {
     app::SceneOptions options;
     options.width = 120;
