@@ -6,27 +6,34 @@
 
 namespace sr {
 
-float mipLevel(float dudx, float dvdx, float dudy, float dvdy, int width, int height) {
+namespace {
+
+// The squared footprints along screen x and y in texels of the width x height base level. An
+// overflow to +Inf or an underflow to 0 lands beyond the clamps anyway (rho^2 >= 2^128 or
+// < 2^-126 is far outside [2^-64, 2^64]); log2(rho) = log2(rho^2) / 2 saves the square roots.
+void squaredFootprints(float dudx, float dvdx, float dudy, float dvdy, int width, int height, float& rx, float& ry) {
     assert(width >= 1 && height >= 1);
     const float w = width >= 1 ? float(width) : 1.0f;
     const float h = height >= 1 ? float(height) : 1.0f;
-    // Squared footprints; an overflow to +Inf or an underflow to 0 lands beyond the clamp anyway
-    // (rho^2 >= 2^128 or < 2^-126 is far outside [2^-64, 2^64]). log2(rho) = log2(rho^2) / 2
-    // saves the square roots.
     const float ax = dudx * w, bx = dvdx * h;
     const float ay = dudy * w, by = dvdy * h;
-    const float rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    rx = ax * ax + bx * bx;
+    ry = ay * ay + by * by;
+}
+
+} // namespace
+
+float mipLevel(float dudx, float dvdx, float dudy, float dvdy, int width, int height) {
+    float rx, ry;
+    squaredFootprints(dudx, dvdx, dudy, dvdy, width, height, rx, ry);
     if (!(rx >= 0.0f) || !(ry >= 0.0f)) return 0.0f; // a NaN derivative (sums of squares are >= 0 else)
     const float rho2 = std::min(std::max(std::max(rx, ry), kMinRho2), kMaxRho2);
     return 0.5f * log2Positive(rho2);
 }
 
 AnisoFootprint anisoFootprint(const UvDerivatives& d, int width, int height, int maxAniso) {
-    const float w = width >= 1 ? float(width) : 1.0f;
-    const float h = height >= 1 ? float(height) : 1.0f;
-    const float ax = d.dudx * w, bx = d.dvdx * h;
-    const float ay = d.dudy * w, by = d.dvdy * h;
-    const float rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    float rx, ry;
+    squaredFootprints(d.dudx, d.dvdx, d.dudy, d.dvdy, width, height, rx, ry);
     if (!(rx >= 0.0f) || !(ry >= 0.0f)) return {}; // a NaN derivative: one tap at the base level
     const bool xMajor = rx >= ry;
     const float pMax2 = xMajor ? rx : ry, pMin2 = xMajor ? ry : rx;

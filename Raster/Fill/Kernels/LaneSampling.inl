@@ -220,14 +220,20 @@ SR_SIMD_INLINE UvLanes uvDerivativeLanes(const Prog& p, F u, F v, F invW) {
             (fset(float(t.ddy[kU])) - u * dqdy) * w, (fset(float(t.ddy[kVp])) - v * dqdy) * w};
 }
 
+// The squared footprints along screen x and y in texels (TextureLod.cpp's squaredFootprints).
+SR_SIMD_INLINE void squaredFootprintLanes(const Texture& texture, const UvLanes& d, F& rx, F& ry) {
+    const F tw = fset(float(texture.width())), th = fset(float(texture.height()));
+    const F ax = d.dudx * tw, bx = d.dvdx * th, ay = d.dudy * tw, by = d.dvdy * th;
+    rx = ax * ax + bx * bx;
+    ry = ay * ay + by * by;
+}
+
 // The lanes' mip level under exact perspective, as programs::sampleKd computes it per fragment:
 // uvDerivatives at each lane, then mipLevel (TextureLod.cpp) lane by lane.
 template <class Prog>
 SR_SIMD_INLINE F mipLevels(const Prog& p, const Texture& texture, F u, F v, F invW) {
-    const UvLanes d = uvDerivativeLanes(p, u, v, invW);
-    const F tw = fset(float(texture.width())), th = fset(float(texture.height()));
-    const F ax = d.dudx * tw, bx = d.dvdx * th, ay = d.dudy * tw, by = d.dvdy * th;
-    const F rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    F rx, ry;
+    squaredFootprintLanes(texture, uvDerivativeLanes(p, u, v, invW), rx, ry);
     const M ok = (rx >= fzero()) & (ry >= fzero()); // not NaN
     const F rho2 = fmin(fmax(fmax(rx, ry), fset(kMinRho2)), fset(kMaxRho2));
     return select(ok, fset(0.5f) * log2Lanes(rho2), fzero());
@@ -405,9 +411,8 @@ SR_SIMD_INLINE Rgb sampleLanes(const Texture& texture, bool linear, F u, F v, F 
 // centre or any tap is off the vector path are redone by the scalar function.
 template <WrapMode kWrap>
 SR_SIMD_NOINLINE Rgb anisotropicLanes(const Texture& texture, bool linear, F u, F v, const UvLanes& d, int maxAniso) {
-    const F tw = fset(float(texture.width())), th = fset(float(texture.height()));
-    const F ax = d.dudx * tw, bx = d.dvdx * th, ay = d.dudy * tw, by = d.dvdy * th;
-    const F rx = ax * ax + bx * bx, ry = ay * ay + by * by;
+    F rx, ry;
+    squaredFootprintLanes(texture, d, rx, ry);
     const M ok = (rx >= fzero()) & (ry >= fzero());
     const M xMajor = rx >= ry;
     const F pMax2 = select(xMajor, rx, ry), pMin2 = select(xMajor, ry, rx);
