@@ -3,6 +3,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -53,12 +54,25 @@ struct alignas(64) LaneState {
     MsaaScratch msaa; // the multisampled fill's memory (used only while multisampling)
 };
 
+// The lowest lane of a non-empty lane mask (LaneBands::lanesMeeting).
+inline int lowestLane(std::uint64_t mask) {
+    assert(mask != 0);
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctzll(mask);
+#else
+    int l = 0;
+    for (; !(mask & 1u); mask >>= 1) ++l;
+    return l;
+#endif
+}
+
 // Which rows a lane fills. One lane: the whole target. Several: the target is cut into bands
 // of kBandRows rows, band b belonging to lane pattern->ownerOfBand(b) (RenderContext::laneBalance:
 // a repeated pattern weighted by the lanes' speed), or to lane b % lanes without a pattern; both
 // interleave, so a model in the middle of the screen still spreads over every lane.
 struct LaneBands {
-    static constexpr int kBandRows = 16;
+    static constexpr int kBandRows = BandPattern::kBandRows;
+    static_assert(FrameBuffer::kMaxDimension <= kBandRows * BandPattern::kMaxBands, "a band owner for every row");
     int lane = 0, lanes = 1, height = 0;
     const BandPattern* pattern = nullptr; // null, or pattern->lanes == lanes
 
@@ -75,6 +89,20 @@ struct LaneBands {
         for (int b = first; b <= last; ++b)
             if (ownerOfBand(b) == lane) return true;
         return false;
+    }
+    // Bit l set for every lane l that meets(rowBegin, rowEnd) would say true for: one walk over
+    // the bands instead of one per lane (binning).
+    std::uint64_t lanesMeeting(int rowBegin, int rowEnd) const {
+        static_assert(kMaxRenderThreads <= 64, "a bit per lane");
+        rowBegin = std::max(rowBegin, 0);
+        rowEnd = std::min(rowEnd, height);
+        if (rowBegin >= rowEnd) return 0;
+        const int first = rowBegin / kBandRows, last = (rowEnd - 1) / kBandRows;
+        if (last - first + 1 >= (pattern ? pattern->period : lanes))
+            return lanes >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << lanes) - 1u;
+        std::uint64_t mask = 0;
+        for (int b = first; b <= last; ++b) mask |= std::uint64_t(1) << ownerOfBand(b);
+        return mask;
     }
 };
 

@@ -55,12 +55,11 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
             // whose bands meet its rows fills them.
             int rowBegin = 0, rowEnd = 0;
             rowsOfSnappedExtent(screened.minY, screened.maxY, multisampled, rowBegin, rowEnd);
-            const int owner = LaneBands{0, lanes, height, pattern}.ownerOfRow(rowBegin);
-            for (int l = 0; l < lanes; ++l) {
-                if (l == owner) bins[l].push_back(std::uint32_t(tri) | kBinOwner);
-                else if (LaneBands{l, lanes, height, pattern}.meets(rowBegin, rowEnd))
-                    bins[l].push_back(std::uint32_t(tri));
-            }
+            const LaneBands bands{0, lanes, height, pattern};
+            const int owner = bands.ownerOfRow(rowBegin);
+            bins[owner].push_back(std::uint32_t(tri) | kBinOwner);
+            std::uint64_t helpers = bands.lanesMeeting(rowBegin, rowEnd) & ~(std::uint64_t(1) << owner);
+            for (; helpers != 0; helpers &= helpers - 1) bins[lowestLane(helpers)].push_back(std::uint32_t(tri));
             break;
         }
         }

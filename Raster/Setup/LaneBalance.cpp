@@ -27,6 +27,7 @@ BandPattern spreadBands(const int* weights, int lanes) {
         p.owners[std::size_t(i)] = std::uint8_t(best);
         ++given[std::size_t(best)];
     }
+    for (int b = 0; b < BandPattern::kMaxBands; ++b) p.bandOwners[std::size_t(b)] = p.owners[std::size_t(b % p.period)];
     return p;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cassert>
 #include <cstdint>
 
 namespace sr {
@@ -9,15 +10,27 @@ namespace sr {
 // Most lanes a pattern can share (RenderContext's kMaxRenderThreads).
 inline constexpr int kMaxBalancedLanes = 64;
 
-// A split draw cuts the target into bands of rows (LaneBands in Pipeline.hpp). Band b belongs to
-// lane owners[b % period]: a pattern of `period` bands repeated down the target, lane l owning
-// weights[l] of each period, spread out so that a model in one part of the screen still reaches
-// every lane. Equal weights give the plain interleave, band b to lane b % lanes.
+// A split draw cuts the target into bands of kBandRows rows (LaneBands in
+// Raster/Fill/RasterizeTriangle.hpp). Band b belongs to lane owners[b % period]: a pattern of
+// `period` bands repeated down the target, lane l owning weights[l] of each period, spread out
+// so that a model in one part of the screen still reaches every lane. Equal weights give the
+// plain interleave, band b to lane b % lanes.
 struct BandPattern {
-    static constexpr int kBandsPerLane = 8; // period = 8 bands per lane (16 for two lanes)
+    // 32 rows: half as many triangles of a dense mesh cross a band edge (and are set up by two
+    // lanes) as with 16, and a 2-lane period (16 bands, 512 rows) still spreads over a 600-row
+    // target (docs/PERFORMANCE.md, Threads).
+    static constexpr int kBandRows = 32;
+    static constexpr int kMaxBands = 8192 / kBandRows; // FrameBuffer::kMaxDimension rows (asserted there)
+    static constexpr int kBandsPerLane = 8;            // period = 8 bands per lane (16 for two lanes)
     int lanes = 1, period = 1;
     std::array<std::uint8_t, kBandsPerLane * kMaxBalancedLanes> owners{};
-    int ownerOfBand(int band) const { return owners[std::size_t(band % period)]; }
+    // owners repeated down every band of the largest target: the owner of a band without the
+    // division by `period` (binning asks for it several times per triangle).
+    std::array<std::uint8_t, kMaxBands> bandOwners{};
+    int ownerOfBand(int band) const {
+        assert(band >= 0 && band < kMaxBands);
+        return bandOwners[std::size_t(band)];
+    }
 };
 
 // The pattern of `weights` (lanes entries, each >= 1, summing to kBandsPerLane * lanes): slot i
