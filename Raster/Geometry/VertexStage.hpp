@@ -30,7 +30,7 @@ void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, 
         // Finite with w > 0 (the MinW bit is w - 1e-12 < 0 in double; test w itself).
         const bool usable = !(code & kCodeNonFinite) && cv.position.w > 0.0f;
         ctx.usable[i] = usable;
-        if (usable) ctx.screenVertices[i] = toScreen(cv, width, height, kVaryings);
+        if (usable) writeScreenVertex(cv, width, height, kVaryings, ctx.screenVertices[i]);
     }
 }
 

@@ -1,6 +1,9 @@
 // Perspective divide and viewport transform: clip-space vertex -> screen-space vertex.
 #pragma once
 
+#include <cassert>
+#include <cstddef>
+
 #include "Raster/Geometry/Vertex.hpp"
 
 namespace sr {
@@ -12,6 +15,27 @@ namespace sr {
 // Precondition (asserted): finite position with w > 0 -- what Clipper guarantees for its output.
 // x/w, y/w and z/w are true divisions, not products with invW, so a vertex on the near plane
 // (z == w) gets depth exactly 1.
-ScreenVertex toScreen(const ClipVertex& v, int width, int height, int varyingCount);
+// The same written in place into `s` (every field, the varyings past varyingCount zeroed): the
+// vertex stage's loop. Returned by value, the record was built on the stack with narrow stores
+// and copied into the stage's array with wide loads that cannot be forwarded from them, a stall
+// per vertex that `perf` put at most of the vertex stage's time.
+inline void writeScreenVertex(const ClipVertex& v, int width, int height, int varyingCount, ScreenVertex& s) {
+    assert(isFinite(v.position) && v.position.w > 0.0f && "clip before the divide");
+    assert(varyingCount >= 0 && varyingCount <= kMaxVaryings);
+    const Vec4& p = v.position;
+    const float halfW = 0.5f * float(width);
+    const float halfH = 0.5f * float(height);
+    s.x = (p.x / p.w + 1.0f) * halfW;
+    s.y = (1.0f - p.y / p.w) * halfH;
+    s.z = p.z / p.w;
+    s.invW = 1.0f / p.w;
+    for (int i = 0; i < kMaxVaryings; ++i)
+        s.varyings[std::size_t(i)] = i < varyingCount ? v.varyings[std::size_t(i)] : 0.0f;
+}
+inline ScreenVertex toScreen(const ClipVertex& v, int width, int height, int varyingCount) {
+    ScreenVertex s;
+    writeScreenVertex(v, width, height, varyingCount, s);
+    return s;
+}
 
 } // namespace sr

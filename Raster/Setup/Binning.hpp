@@ -47,14 +47,15 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
             for (int l = 0; l < lanes; ++l) bins[l].push_back(std::uint32_t(tri) | kBinClip);
             break;
         case ClipClass::Accept: {
-            const TriangleScreening screened = screenTriangle(ctx.screenVertices[i0], ctx.screenVertices[i1],
-                                                              ctx.screenVertices[i2], state.cull, multisampled);
-            if (screened.outcome == SetupOutcome::Culled) ++stats.culled; // isCulled's decision too
-            if (screened.outcome != SetupOutcome::Ready || state.stopAfter == PipelineStop::Geometry) break;
+            Fixed minY = 0, maxY = 0;
+            const SetupOutcome outcome = screenTriangle(ctx.screenVertices[i0], ctx.screenVertices[i1],
+                                                        ctx.screenVertices[i2], state.cull, multisampled, minY, maxY);
+            if (outcome == SetupOutcome::Culled) ++stats.culled; // isCulled's decision too
+            if (outcome != SetupOutcome::Ready || state.stopAfter == PipelineStop::Geometry) break;
             // rasterizeTriangle's decision: the owner of the first row counts it, every other lane
             // whose bands meet its rows fills them.
             int rowBegin = 0, rowEnd = 0;
-            rowsOfSnappedExtent(screened.minY, screened.maxY, multisampled, rowBegin, rowEnd);
+            rowsOfSnappedExtent(minY, maxY, multisampled, rowBegin, rowEnd);
             const LaneBands bands{0, lanes, height, pattern};
             const int owner = bands.ownerOfRow(rowBegin);
             bins[owner].push_back(std::uint32_t(tri) | kBinOwner);

@@ -61,17 +61,16 @@ SR_SETUP_INLINE SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVer
 
 } // namespace
 
-TriangleScreening screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
-                                 bool keepRowless) {
+SetupOutcome screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
+                            bool keepRowless, Fixed& minY, Fixed& maxY) {
     FixedPoint2 p[3];
     std::int64_t doubleArea = 0;
-    TriangleScreening r;
-    r.outcome = snapAndCull(v0, v1, v2, cull, p, doubleArea);
-    if (r.outcome != SetupOutcome::Ready) return r;
-    r.minY = std::min({p[0].y, p[1].y, p[2].y});
-    r.maxY = std::max({p[0].y, p[1].y, p[2].y});
-    if (!keepRowless && firstRowAtOrBelow(r.minY) >= firstRowAtOrBelow(r.maxY)) r.outcome = SetupOutcome::Empty;
-    return r;
+    const SetupOutcome outcome = snapAndCull(v0, v1, v2, cull, p, doubleArea);
+    if (outcome != SetupOutcome::Ready) return outcome;
+    minY = std::min({p[0].y, p[1].y, p[2].y});
+    maxY = std::max({p[0].y, p[1].y, p[2].y});
+    if (!keepRowless && firstRowAtOrBelow(minY) >= firstRowAtOrBelow(maxY)) return SetupOutcome::Empty;
+    return SetupOutcome::Ready;
 }
 
 SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const ScreenVertex& v1,

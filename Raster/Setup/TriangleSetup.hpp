@@ -123,11 +123,10 @@ SetupOutcome setupTriangleCulled(TriangleSetup& out, const ScreenVertex& v0, con
 // and cull), with the snapped y extent [minY, maxY] (fixed point) of a Ready triangle: pixel-centre
 // rows [firstCentreAtOrAfter(minY, 1), firstCentreAtOrAfter(maxY, 1)). Empty, as there, when
 // no centre row is covered and !keepRowless. The pipeline bins triangles to its lanes with it.
-struct TriangleScreening {
-    SetupOutcome outcome = SetupOutcome::Empty;
-    Fixed minY = 0, maxY = 0;
-};
-TriangleScreening screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
-                                 bool keepRowless);
+// (The extent comes back through references: returned in a struct with the outcome, GCC built
+// it on the stack with narrow stores and read it back with one wide load, which cannot be
+// forwarded from them: a stall on every triangle binned.)
+SetupOutcome screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
+                            bool keepRowless, Fixed& minY, Fixed& maxY);
 
 } // namespace sr
