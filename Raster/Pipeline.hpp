@@ -57,17 +57,22 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
 
     // The vertex stage is skipped when the cache already holds these vertices through this
     // vertex program for this viewport (RenderContext::vertexCache, inside a VertexReuseScope).
+    // A binned draw (several lanes, enough triangles: binTriangles) screens its triangles from
+    // the vertices' snapped positions, made once per vertex by the vertex stage.
+    const std::size_t triangles = indexCount / 3;
+    const bool binned = lanes > 1 && triangles >= ctx.binningMinTriangles && triangles <= std::size_t(kBinIndex);
+    if (binned) ctx.snappedVertices.resize(vertexCount);
     RenderContext::VertexCacheKey key;
     if (vertexSource && ctx.vertexReuse)
-        key = {vertexSource,          &kVertexProgramTag<Program>, vertexVariantOf(program), vertexCount, fb.width(),
-               fb.height(), state.clipFar};
+        key = {vertexSource, &kVertexProgramTag<Program>, vertexVariantOf(program), vertexCount, fb.width(), fb.height(),
+               state.clipFar, binned};
     const bool transformed = key.source && ctx.vertexCache == key;
     ctx.vertexCache = key;
     if (!transformed) ctx.stats.verticesTransformed += vertexCount;
 
     if (lanes <= 1) {
         LaneState lane;
-        if (!transformed) vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program);
+        if (!transformed) vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program, false);
         rasterLane<kVaryings>(ctx, state, clipper, LaneBands{0, 1, fb.height()}, lane, indices, indexCount, program);
         flushFill(program, fb);
         ctx.stats += lane.stats;
@@ -80,13 +85,13 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     if (transformed) {
         // Reused from an earlier draw of the same vertices.
     } else if (vertexCount < kMinVerticesPerLane * std::size_t(lanes)) {
-        vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program);
+        vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program, binned);
     } else {
         auto vertexJob = [&](int l) {
             Program copy = program;
             const std::size_t begin = vertexCount * std::size_t(l) / std::size_t(lanes);
             const std::size_t end = vertexCount * std::size_t(l + 1) / std::size_t(lanes);
-            vertexRange<kVaryings>(ctx, clipper, begin, end, copy);
+            vertexRange<kVaryings>(ctx, clipper, begin, end, copy, binned);
         };
         pool.run(vertexJob);
     }
@@ -100,8 +105,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         work();
         busy[l] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
-    const std::size_t triangles = indexCount / 3;
-    if (triangles >= ctx.binningMinTriangles && triangles <= std::size_t(kBinIndex)) {
+    if (binned) {
         // 2. Binned primitive stage: each lane screens a chunk of the triangles into the lanes'
         //    bins, then each lane draws its bins (binTriangles, rasterBinned).
         const std::size_t binCount = std::size_t(lanes) * std::size_t(lanes);

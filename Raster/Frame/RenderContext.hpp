@@ -13,6 +13,7 @@
 #include "Raster/Geometry/Clipper.hpp"
 #include "Raster/Geometry/Vertex.hpp"
 #include "Raster/Setup/LaneBalance.hpp"
+#include "Raster/Setup/TriangleSetup.hpp" // SnappedVertex
 
 namespace sr {
 
@@ -76,6 +77,9 @@ public:
     std::vector<ScreenVertex> screenVertices;
     std::vector<std::uint8_t> usable;
     std::vector<unsigned> clipCodes; // Clipper::vertexCode of each vertex
+    // snapVertex of each usable screen vertex, for a draw that bins (read by binTriangles only;
+    // filled when the vertex stage is asked to: VertexCacheKey::snapped).
+    std::vector<SnappedVertex> snappedVertices;
 
     // What the cache above holds, so that the next draw of the same vertices with the same vertex
     // program reuses it instead of transforming them again: one vertex stage per mesh, shared by
@@ -89,10 +93,10 @@ public:
         std::size_t count = 0;
         int width = 0, height = 0;     // the viewport the screen vertices were made for
         bool clipFar = false;
+        bool snapped = false;          // snappedVertices filled too
         bool operator==(const VertexCacheKey& o) const {
             return source == o.source && program == o.program && variant == o.variant && count == o.count &&
-                   width == o.width &&
-                   height == o.height && clipFar == o.clipFar;
+                   width == o.width && height == o.height && clipFar == o.clipFar && snapped == o.snapped;
         }
     };
     VertexCacheKey vertexCache;

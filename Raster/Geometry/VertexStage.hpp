@@ -18,9 +18,11 @@ namespace detail {
 inline constexpr std::size_t kMinVerticesPerLane = 4096;
 
 // The vertex stage for vertices [begin, end): program.vertex, the clip code, and the divide
-// wherever it is defined (w > 0).
+// wherever it is defined (w > 0); with `snap`, also the snapped position (snapVertex) of each
+// usable vertex, for binning.
 template <int kVaryings, class Program>
-void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, std::size_t end, Program& program) {
+void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, std::size_t end, Program& program,
+                 bool snap) {
     const int width = ctx.target().width(), height = ctx.target().height();
     for (std::size_t i = begin; i < end; ++i) {
         ClipVertex& cv = ctx.clipVertices[i];
@@ -30,7 +32,10 @@ void vertexRange(RenderContext& ctx, const Clipper& clipper, std::size_t begin, 
         // Finite with w > 0 (the MinW bit is w - 1e-12 < 0 in double; test w itself).
         const bool usable = !(code & kCodeNonFinite) && cv.position.w > 0.0f;
         ctx.usable[i] = usable;
-        if (usable) writeScreenVertex(cv, width, height, kVaryings, ctx.screenVertices[i]);
+        if (!usable) continue;
+        ScreenVertex& screen = ctx.screenVertices[i];
+        writeScreenVertex(cv, width, height, kVaryings, screen);
+        if (snap) ctx.snappedVertices[i] = snapVertex(screen);
     }
 }
 

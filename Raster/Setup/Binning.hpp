@@ -14,9 +14,10 @@ namespace detail {
 // Every lane of the plain walk classifies every triangle, and sets up every one its bands meet,
 // the culled ones included; with several lanes that front end is repeated per lane. A binned draw
 // screens each triangle once instead: lane c classifies and culls chunk c of the triangles
-// (screenTriangle: the decisions setupTriangleCulled would make) and appends each survivor to the
-// bins of the lanes whose bands it meets, marked for the lane that counts it; then every lane
-// draws its bins chunk by chunk, so still in submission order. Same image, same counters.
+// (screenSnapped, from the positions the vertex stage snapped once per vertex: the decisions
+// setupTriangleCulled would make) and appends each survivor to the bins of the lanes whose bands
+// it meets, marked for the lane that counts it; then every lane draws its bins chunk by chunk, so
+// still in submission order. Same image, same counters.
 inline constexpr std::uint32_t kBinOwner = 1u << 31; // this lane counts the triangle
 inline constexpr std::uint32_t kBinClip = 1u << 30;  // crosses a clip plane: clipped by the lane
 inline constexpr std::uint32_t kBinIndex = kBinClip - 1u;
@@ -25,6 +26,7 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
                          const BandPattern* pattern, const std::uint32_t* indices, std::size_t triangleBegin,
                          std::size_t triangleEnd, RenderStats& stats) {
     const unsigned* codes = ctx.clipCodes.data();
+    const SnappedVertex* snapped = ctx.snappedVertices.data();
     const int height = ctx.target().height();
     const bool multisampled = ctx.multisampleTarget() != nullptr;
     std::vector<std::uint32_t>* bins = ctx.bins.data() + std::size_t(chunk) * std::size_t(lanes);
@@ -34,7 +36,7 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
         ++stats.trianglesIn;
         if (tri + kPrefetchTriangles < triangleEnd) {
             for (std::size_t k = 3 * (tri + kPrefetchTriangles); k < 3 * (tri + kPrefetchTriangles) + 3; ++k) {
-                prefetchForRead(ctx.screenVertices.data() + indices[k]);
+                prefetchForRead(snapped + indices[k]);
                 prefetchForRead(codes + indices[k]);
             }
         }
@@ -48,8 +50,12 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
             break;
         case ClipClass::Accept: {
             Fixed minY = 0, maxY = 0;
-            const SetupOutcome outcome = screenTriangle(ctx.screenVertices[i0], ctx.screenVertices[i1],
-                                                        ctx.screenVertices[i2], state.cull, multisampled, minY, maxY);
+            const SnappedVertex p0 = snapped[i0], p1 = snapped[i1], p2 = snapped[i2];
+            const SetupOutcome outcome =
+                p0.x != kUnsnapped && p1.x != kUnsnapped && p2.x != kUnsnapped
+                    ? screenSnapped(p0, p1, p2, state.cull, multisampled, minY, maxY)
+                    : screenTriangle(ctx.screenVertices[i0], ctx.screenVertices[i1], ctx.screenVertices[i2], state.cull,
+                                     multisampled, minY, maxY);
             if (outcome == SetupOutcome::Culled) ++stats.culled; // isCulled's decision too
             if (outcome != SetupOutcome::Ready || state.stopAfter == PipelineStop::Geometry) break;
             // rasterizeTriangle's decision: the owner of the first row counts it, every other lane

@@ -9,14 +9,8 @@ namespace sr {
 
 namespace {
 
-struct FixedPoint2 {
-    Fixed x, y;
-};
+using FixedPoint2 = SnappedVertex;
 
-bool inGuardBand(const ScreenVertex& v) {
-    // Also false for NaN (every comparison with NaN is false).
-    return std::fabs(v.x) <= kGuardBand && std::fabs(v.y) <= kGuardBand;
-}
 
 FixedEdge makeEdge(FixedPoint2 from, FixedPoint2 to) {
     assert(to.y >= from.y);
@@ -36,19 +30,10 @@ int firstRowAtOrBelow(Fixed y) { return int(firstCentreAtOrAfter(y, 1)); }
 #define SR_SETUP_INLINE inline
 #endif
 
-// setupTriangleCulled's first steps: the vertices snapped (p) and the cull decided from twice
-// the exact signed area. Ready when the triangle is to be set up.
-SR_SETUP_INLINE SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
-                                         CullMode cull, FixedPoint2 (&p)[3], std::int64_t& doubleArea) {
-    // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
-    const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
-    if (!valid) return isCulled(cull, v0, v1, v2) ? SetupOutcome::Culled : SetupOutcome::Empty;
-
-    // --- Snap to 1/256 pixel and compute twice the signed area exactly --------------------
+// The decision from the snapped vertices (snapAndCull, screenSnapped): twice the exact signed
+// area and the cull.
+SR_SETUP_INLINE SetupOutcome cullSnapped(const FixedPoint2 (&p)[3], CullMode cull, std::int64_t& doubleArea) {
     // |coordinate| <= 2^22, so each difference is < 2^23 and each product < 2^46: exact in int64.
-    p[0] = {snapToFixed(v0.x), snapToFixed(v0.y)};
-    p[1] = {snapToFixed(v1.x), snapToFixed(v1.y)};
-    p[2] = {snapToFixed(v2.x), snapToFixed(v2.y)};
     const std::int64_t e1x = p[1].x - p[0].x, e1y = p[1].y - p[0].y;
     const std::int64_t e2x = p[2].x - p[0].x, e2y = p[2].y - p[0].y;
     doubleArea = e1x * e2y - e2x * e1y;
@@ -59,6 +44,30 @@ SR_SETUP_INLINE SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVer
     return SetupOutcome::Ready;
 }
 
+// setupTriangleCulled's first steps: the vertices snapped (p) and the cull decided from twice
+// the exact signed area. Ready when the triangle is to be set up.
+SR_SETUP_INLINE SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2,
+                                         CullMode cull, FixedPoint2 (&p)[3], std::int64_t& doubleArea) {
+    // --- Preconditions: the clipper guarantees these; reject rather than overflow if not ---
+    const bool valid = inGuardBand(v0) && inGuardBand(v1) && inGuardBand(v2);
+    if (!valid) return isCulled(cull, v0, v1, v2) ? SetupOutcome::Culled : SetupOutcome::Empty;
+
+    // --- Snap to 1/256 pixel -----------------------------------------------------------------
+    p[0] = {snapToFixed(v0.x), snapToFixed(v0.y)};
+    p[1] = {snapToFixed(v1.x), snapToFixed(v1.y)};
+    p[2] = {snapToFixed(v2.x), snapToFixed(v2.y)};
+    return cullSnapped(p, cull, doubleArea);
+}
+
+// A Ready triangle's snapped y extent, and Empty when it covers no pixel-centre row (and
+// !keepRowless): the end of screenTriangle and screenSnapped.
+SetupOutcome screenExtent(const FixedPoint2 (&p)[3], bool keepRowless, Fixed& minY, Fixed& maxY) {
+    minY = std::min({p[0].y, p[1].y, p[2].y});
+    maxY = std::max({p[0].y, p[1].y, p[2].y});
+    if (!keepRowless && firstRowAtOrBelow(minY) >= firstRowAtOrBelow(maxY)) return SetupOutcome::Empty;
+    return SetupOutcome::Ready;
+}
+
 } // namespace
 
 SetupOutcome screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
@@ -66,11 +75,16 @@ SetupOutcome screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, cons
     FixedPoint2 p[3];
     std::int64_t doubleArea = 0;
     const SetupOutcome outcome = snapAndCull(v0, v1, v2, cull, p, doubleArea);
-    if (outcome != SetupOutcome::Ready) return outcome;
-    minY = std::min({p[0].y, p[1].y, p[2].y});
-    maxY = std::max({p[0].y, p[1].y, p[2].y});
-    if (!keepRowless && firstRowAtOrBelow(minY) >= firstRowAtOrBelow(maxY)) return SetupOutcome::Empty;
-    return SetupOutcome::Ready;
+    return outcome == SetupOutcome::Ready ? screenExtent(p, keepRowless, minY, maxY) : outcome;
+}
+
+SetupOutcome screenSnapped(SnappedVertex p0, SnappedVertex p1, SnappedVertex p2, CullMode cull, bool keepRowless,
+                           Fixed& minY, Fixed& maxY) {
+    assert(p0.x != kUnsnapped && p1.x != kUnsnapped && p2.x != kUnsnapped);
+    const FixedPoint2 p[3] = {p0, p1, p2};
+    std::int64_t doubleArea = 0;
+    const SetupOutcome outcome = cullSnapped(p, cull, doubleArea);
+    return outcome == SetupOutcome::Ready ? screenExtent(p, keepRowless, minY, maxY) : outcome;
 }
 
 SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const ScreenVertex& v1,

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -119,6 +120,22 @@ SetupOutcome setupTriangleCulled(TriangleSetup& out, const ScreenVertex& v0, con
                                  bool perspectiveCorrect = true, const VaryingRebase& rebase = {},
                                  bool keepRowless = false);
 
+// A screen vertex's position snapped to the sub-pixel grid (snapToFixed), once per vertex for
+// the triangles that share it (the vertex stage of a binned draw); x == kUnsnapped when the
+// vertex lies outside the guard band (or is NaN), where a triangle's setup decides from the
+// floats (isCulled).
+struct SnappedVertex {
+    Fixed x = 0, y = 0;
+};
+inline constexpr Fixed kUnsnapped = INT32_MIN;
+// Whether setup can snap v: finite and within the guard band (false for NaN: every comparison
+// with NaN is false).
+inline bool inGuardBand(const ScreenVertex& v) { return std::fabs(v.x) <= kGuardBand && std::fabs(v.y) <= kGuardBand; }
+inline SnappedVertex snapVertex(const ScreenVertex& v) {
+    if (!inGuardBand(v)) return {kUnsnapped, 0};
+    return {snapToFixed(v.x), snapToFixed(v.y)};
+}
+
 // The decision setupTriangleCulled makes before it builds anything (the same snapping, validity
 // and cull), with the snapped y extent [minY, maxY] (fixed point) of a Ready triangle: pixel-centre
 // rows [firstCentreAtOrAfter(minY, 1), firstCentreAtOrAfter(maxY, 1)). Empty, as there, when
@@ -128,5 +145,9 @@ SetupOutcome setupTriangleCulled(TriangleSetup& out, const ScreenVertex& v0, con
 // forwarded from them: a stall on every triangle binned.)
 SetupOutcome screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
                             bool keepRowless, Fixed& minY, Fixed& maxY);
+// The same from the vertices' snapped positions (snapVertex of v0, v1, v2), none kUnsnapped: the
+// same decision without reading the screen vertices.
+SetupOutcome screenSnapped(SnappedVertex p0, SnappedVertex p1, SnappedVertex p2, CullMode cull, bool keepRowless,
+                           Fixed& minY, Fixed& maxY);
 
 } // namespace sr

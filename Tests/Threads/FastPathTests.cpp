@@ -1,4 +1,5 @@
-// The fast paths against their references: per-vertex clip codes vs classify, cull-in-setup vs isCulled, the inline normalize vs the robust one (the SIMD kernels: KernelIdentityTests.cpp).
+// The fast paths against their references: per-vertex clip codes vs classify, cull-in-setup vs isCulled, binning's screen
+// from snapped vertices vs the setup's, the inline normalize vs the robust one (the SIMD kernels: KernelIdentityTests.cpp).
 #include "TestFramework.hpp"
 
 #include <cmath>
@@ -128,6 +129,61 @@ TEST_CASE("cull in setup decides exactly like isCulled and builds the same recor
     CHECK(outcomes[int(SetupOutcome::Ready)] > 1000);
     CHECK(outcomes[int(SetupOutcome::Culled)] > 1000);
     CHECK(outcomes[int(SetupOutcome::Empty)] > 100);
+}
+
+TEST_CASE("binning's screen from once-snapped vertices decides exactly like the triangle's setup", "[threads][cull]") {
+    std::mt19937 rng(11); // sampled: 40,000 triangles x 3 cull modes x 2 row rules, fixed seed
+    std::uniform_real_distribution<float> coord(-40.0f, 840.0f), small(-2.0f, 2.0f);
+    std::uniform_int_distribution<int> kind(0, 11);
+    const float nan = std::numeric_limits<float>::quiet_NaN();
+    int outcomes[3] = {}, unsnapped = 0;
+    for (int i = 0; i < 40000; ++i) {
+        ScreenVertex v[3];
+        const int k = kind(rng);
+        const float bx = coord(rng), by = coord(rng);
+        for (auto& p : v) {
+            if (k < 4) p.x = bx + small(rng), p.y = by + small(rng); // tiny: often empty or rowless
+            else p.x = coord(rng), p.y = coord(rng);
+        }
+        if (k == 4) v[1] = v[0];                         // coincident
+        if (k == 5) v[2].x = kGuardBand * 1.5f;          // outside the guard band
+        if (k == 6) v[0].y = nan;
+        if (k == 7) v[1].x = -kGuardBand, v[1].y = kGuardBand; // exactly on its corner: snapped
+        SnappedVertex p[3];
+        for (int j = 0; j < 3; ++j) {
+            p[j] = snapVertex(v[j]);
+            REQUIRE((p[j].x == kUnsnapped) == !inGuardBand(v[j]));
+            if (p[j].x != kUnsnapped) {
+                CHECK(p[j].x == snapToFixed(v[j].x));
+                CHECK(p[j].y == snapToFixed(v[j].y));
+            }
+        }
+        if (p[0].x == kUnsnapped || p[1].x == kUnsnapped || p[2].x == kUnsnapped) {
+            ++unsnapped; // binning screens these from the floats (screenTriangle)
+            continue;
+        }
+        for (CullMode mode : {CullMode::None, CullMode::CW, CullMode::CCW}) {
+            for (bool keepRowless : {false, true}) {
+                Fixed minY = -1, maxY = -1, refMinY = -2, refMaxY = -2;
+                const SetupOutcome outcome = screenSnapped(p[0], p[1], p[2], mode, keepRowless, minY, maxY);
+                const SetupOutcome reference = screenTriangle(v[0], v[1], v[2], mode, keepRowless, refMinY, refMaxY);
+                TriangleSetup record;
+                const SetupOutcome setup = setupTriangleCulled(record, v[0], v[1], v[2], mode, 0, true, {}, keepRowless);
+                ++outcomes[int(outcome)];
+                REQUIRE(outcome == reference);
+                REQUIRE(outcome == setup);
+                if (outcome != SetupOutcome::Ready) continue;
+                CHECK(minY == refMinY);
+                CHECK(maxY == refMaxY);
+                CHECK(minY == record.longEdge.y0); // the long edge runs from the top vertex to the bottom one
+                CHECK(maxY == record.longEdge.y0 + record.longEdge.dy);
+            }
+        }
+    }
+    CHECK(outcomes[int(SetupOutcome::Ready)] > 10000);
+    CHECK(outcomes[int(SetupOutcome::Culled)] > 10000);
+    CHECK(outcomes[int(SetupOutcome::Empty)] > 100);
+    CHECK(unsnapped > 5000);
 }
 
 TEST_CASE("normalize's inline fast path is bit-identical to the robust path", "[threads][math]") {
