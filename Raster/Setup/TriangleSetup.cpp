@@ -61,7 +61,7 @@ SR_SETUP_INLINE SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVer
 
 // A Ready triangle's snapped y extent, and Empty when it covers no pixel-centre row (and
 // !keepRowless): the end of screenTriangle and screenSnapped.
-SetupOutcome screenExtent(const FixedPoint2 (&p)[3], bool keepRowless, Fixed& minY, Fixed& maxY) {
+SR_SETUP_INLINE SetupOutcome screenExtent(const FixedPoint2 (&p)[3], bool keepRowless, Fixed& minY, Fixed& maxY) {
     minY = std::min({p[0].y, p[1].y, p[2].y});
     maxY = std::max({p[0].y, p[1].y, p[2].y});
     if (!keepRowless && firstRowAtOrBelow(minY) >= firstRowAtOrBelow(maxY)) return SetupOutcome::Empty;

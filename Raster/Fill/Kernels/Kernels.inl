@@ -166,6 +166,15 @@ struct SpanKernel {
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);
         const int rowWidth = fb.width();
+        if (kDepth != DepthMode::Off && y + 1 < t.endRow && y + 1 < fb.height()) {
+            // The triangle's next span starts and ends near this one's: ask for its depth and
+            // colour lines now, so that their misses overlap with this span's work.
+            const std::size_t next = std::size_t(rowWidth);
+            prefetchForWrite(depth + next + x0);
+            prefetchForWrite(depth + next + (x1 - 1));
+            prefetchForWrite(colour + next + x0);
+            prefetchForWrite(colour + next + (x1 - 1));
+        }
         // Pixel index along the span (whole numbers, exact in float), clamped to the last pixel so
         // that lanes past the end never see values extrapolated off the triangle.
         const F lastStep = fset(float(x1 - 1 - x0));

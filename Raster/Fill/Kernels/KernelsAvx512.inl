@@ -22,6 +22,7 @@
 #include <limits>
 
 #include "Raster/Fill/Kernels/KernelTable.hpp"
+#include "Raster/Fill/Prefetch.hpp"
 #include "Raster/Fill/Kernels/SimdAvx512.hpp"
 #include "Raster/Shade/MeshPrograms.hpp"
 #include "Raster/Shade/PbrProgram.hpp"

@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "Raster/Fill/Kernels/KernelTable.hpp"
+#include "Raster/Fill/Prefetch.hpp"
 #include "Raster/Fill/Kernels/SimdSse2.hpp"
 #include "Raster/Shade/MeshPrograms.hpp"
 #include "Raster/Shade/PbrProgram.hpp"
