@@ -58,14 +58,18 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     // The vertex stage is skipped when the cache already holds these vertices through this
     // vertex program for this viewport (RenderContext::vertexCache, inside a VertexReuseScope).
     // A binned draw (several lanes, enough triangles: binTriangles) screens its triangles from
-    // the vertices' snapped positions, made once per vertex by the vertex stage.
+    // the vertices' snapped positions, made once per vertex by the vertex stage; so does any draw
+    // on several lanes whose vertices a later draw may reuse (that one may bin), so that the
+    // cached vertices of a mesh always have them.
     const std::size_t triangles = indexCount / 3;
     const bool binned = lanes > 1 && triangles >= ctx.binningMinTriangles && triangles <= std::size_t(kBinIndex);
-    if (binned) ctx.snappedVertices.resize(vertexCount);
+    const bool reusable = vertexSource && ctx.vertexReuse;
+    const bool snap = binned || (lanes > 1 && reusable);
+    if (snap) ctx.snappedVertices.resize(vertexCount);
     RenderContext::VertexCacheKey key;
-    if (vertexSource && ctx.vertexReuse)
+    if (reusable)
         key = {vertexSource, &kVertexProgramTag<Program>, vertexVariantOf(program), vertexCount, fb.width(), fb.height(),
-               state.clipFar, binned};
+               state.clipFar, snap};
     const bool transformed = key.source && ctx.vertexCache == key;
     ctx.vertexCache = key;
     if (!transformed) ctx.stats.verticesTransformed += vertexCount;
@@ -85,13 +89,13 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     if (transformed) {
         // Reused from an earlier draw of the same vertices.
     } else if (vertexCount < kMinVerticesPerLane * std::size_t(lanes)) {
-        vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program, binned);
+        vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program, snap);
     } else {
         auto vertexJob = [&](int l) {
             Program copy = program;
             const std::size_t begin = vertexCount * std::size_t(l) / std::size_t(lanes);
             const std::size_t end = vertexCount * std::size_t(l + 1) / std::size_t(lanes);
-            vertexRange<kVaryings>(ctx, clipper, begin, end, copy, binned);
+            vertexRange<kVaryings>(ctx, clipper, begin, end, copy, snap);
         };
         pool.run(vertexJob);
     }

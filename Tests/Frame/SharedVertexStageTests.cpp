@@ -122,6 +122,54 @@ TEST_CASE("draws of one mesh share its vertex stage: the same image, the vertice
         }
 }
 
+TEST_CASE("shared vertices serve binned and unbinned draws alike: the same image, no second transform",
+          "[render][vertexshare][threads]") {
+    // A binned draw screens from the vertices' snapped positions: the vertex stage of a draw on
+    // several lanes makes them whether or not that draw bins, so a later draw of the mesh that
+    // does bin reuses the vertices as they are.
+    const app::SceneOptions options = smallBuiltIn();
+    auto loaded = app::loadScene(options);
+    REQUIRE(loaded.ok());
+    // Each draw cut into pieces of 10%, 30% and 60% of its triangles: with the threshold at the
+    // median piece, most meshes have draws on both sides of it.
+    const Scene whole = test::opaqueOnly(loaded.value().scene);
+    Scene split = whole;
+    split.draws.clear();
+    for (const SceneDraw& d : whole.draws) {
+        const std::uint32_t triangles = d.indexCount / 3, cuts[] = {0, triangles / 10, triangles * 4 / 10, triangles};
+        for (int p = 0; p < 3; ++p) {
+            if (cuts[p] == cuts[p + 1]) continue;
+            SceneDraw piece = d;
+            piece.firstIndex = d.firstIndex + 3 * cuts[p];
+            piece.indexCount = 3 * (cuts[p + 1] - cuts[p]);
+            split.draws.push_back(piece);
+        }
+    }
+    std::vector<std::uint32_t> sizes;
+    for (const SceneDraw& d : split.draws) sizes.push_back(d.indexCount / 3);
+    std::sort(sizes.begin(), sizes.end());
+    const FrameView view =
+        app::makeFrameView(app::resolveCamera(options, loaded.value()), options.width, options.height, options.light,
+                            loaded.value().lights);
+    const RenderSettings settings = app::makeRenderSettings(options);
+    FrameBuffer reference(options.width, options.height);
+    RenderContext cr(reference);
+    renderSceneFrame(cr, split, view, settings); // one thread: nothing binned
+    // Every draw binned; about half of them (the larger pieces); none.
+    for (std::size_t binMin : {std::size_t(1), std::size_t(sizes[sizes.size() / 2]), kBinningMinTriangles * 1000}) {
+        INFO("binning from " << binMin << " triangles");
+        FrameBuffer fb(options.width, options.height);
+        RenderContext ctx(fb);
+        ctx.setThreads(2);
+        ctx.binningMinTriangles = binMin;
+        renderSceneFrame(ctx, split, view, settings);
+        CHECK(differingPixels(fb, reference) == 0);
+        CHECK(ctx.stats.rasterized == cr.stats.rasterized);
+        CHECK(ctx.stats.fragmentsShaded == cr.stats.fragmentsShaded);
+        CHECK(ctx.stats.verticesTransformed == cr.stats.verticesTransformed);
+    }
+}
+
 TEST_CASE("Gouraud draws with different specular constants do not share vertices; other programs still do",
           "[render][vertexshare][materials]") {
     // Gouraud lights per vertex, so its vertex stage reads the material's shininess (and whether
