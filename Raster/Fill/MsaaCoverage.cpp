@@ -277,28 +277,6 @@ void coverByWalks(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
 // --- Small triangles: edge functions over the bounding box, a pixel's samples at once ----------
 // (msaaSmallTriangle: every edge value, step and sample offset over the box is exact in int32.)
 
-// Index of the lowest / highest set bit of a non-zero word.
-inline int lowestBit(std::uint32_t v) {
-    assert(v != 0);
-#if defined(__GNUC__) || defined(__clang__)
-    return __builtin_ctz(v);
-#else
-    int i = 0;
-    for (; !(v & 1u); v >>= 1) ++i;
-    return i;
-#endif
-}
-inline int highestBit(std::uint32_t v) {
-    assert(v != 0);
-#if defined(__GNUC__) || defined(__clang__)
-    return 31 - __builtin_clz(v);
-#else
-    int i = 31;
-    for (; !(v & 0x80000000u); v <<= 1) --i;
-    return i;
-#endif
-}
-
 struct FixedPoint64 {
     std::int64_t x, y;
 };
@@ -409,8 +387,8 @@ void coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, int x0, in
             centre |= std::uint32_t((e0 | e1 | e2) >= 0) << i;
         }
         if (any == 0) continue;
-        const int lo = x0 + lowestBit(any), hi = x0 + highestBit(any) + 1;
-        const int c0 = centre ? x0 + lowestBit(centre) : x1, c1 = centre ? x0 + highestBit(centre) + 1 : x0;
+        const int lo = x0 + lowestSetBit(any), hi = x0 + highestSetBit(any) + 1;
+        const int c0 = centre ? x0 + lowestSetBit(centre) : x1, c1 = centre ? x0 + highestSetBit(centre) + 1 : x0;
         const std::size_t offset = used + std::size_t(lo - x0);
         std::uint8_t* covered = scratch.covered.data() + offset;
         std::uint8_t* passed = scratch.passed.data() + offset;

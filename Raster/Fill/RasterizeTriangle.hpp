@@ -54,18 +54,6 @@ struct alignas(64) LaneState {
     MsaaScratch msaa; // the multisampled fill's memory (used only while multisampling)
 };
 
-// The lowest lane of a non-empty lane mask (LaneBands::lanesMeeting).
-inline int lowestLane(std::uint64_t mask) {
-    assert(mask != 0);
-#if defined(__GNUC__) || defined(__clang__)
-    return __builtin_ctzll(mask);
-#else
-    int l = 0;
-    for (; !(mask & 1u); mask >>= 1) ++l;
-    return l;
-#endif
-}
-
 // Which rows a lane fills. One lane: the whole target. Several: the target is cut into bands
 // of kBandRows rows, band b belonging to lane pattern->ownerOfBand(b) (RenderContext::laneBalance:
 // a repeated pattern weighted by the lanes' speed), or to lane b % lanes without a pattern; both

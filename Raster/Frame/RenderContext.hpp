@@ -77,8 +77,9 @@ public:
     std::vector<ScreenVertex> screenVertices;
     std::vector<std::uint8_t> usable;
     std::vector<unsigned> clipCodes; // Clipper::vertexCode of each vertex
-    // snapVertex of each usable screen vertex, for a draw that bins (read by binTriangles only;
-    // filled when the vertex stage is asked to: VertexCacheKey::snapped).
+    // snapVertex of each usable screen vertex, read by binTriangles only: made by the vertex
+    // stage of a draw on several lanes that bins or whose vertices may be reused
+    // (VertexCacheKey::snapped).
     std::vector<SnappedVertex> snappedVertices;
 
     // What the cache above holds, so that the next draw of the same vertices with the same vertex

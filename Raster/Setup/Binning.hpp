@@ -66,7 +66,7 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
             const int owner = bands.ownerOfRow(rowBegin);
             bins[owner].push_back(std::uint32_t(tri) | kBinOwner);
             std::uint64_t helpers = bands.lanesMeeting(rowBegin, rowEnd) & ~(std::uint64_t(1) << owner);
-            for (; helpers != 0; helpers &= helpers - 1) bins[lowestLane(helpers)].push_back(std::uint32_t(tri));
+            for (; helpers != 0; helpers &= helpers - 1) bins[lowestSetBit(helpers)].push_back(std::uint32_t(tri));
             break;
         }
         }

@@ -1,4 +1,5 @@
-// Sub-pixel snapping and exact integer floor/ceil division shared by triangle setup, fill and lines.
+// Sub-pixel snapping, exact integer floor/ceil division and bit scans shared by triangle setup,
+// fill and lines.
 #pragma once
 
 #include <cassert>
@@ -52,6 +53,28 @@ constexpr std::int64_t ceilDiv(std::int64_t a, std::int64_t b) {
 // ceil((n/d - 128) / 256) = ceil((n - 128 d) / (256 d)). Exact: no rounding anywhere.
 constexpr std::int64_t firstCentreAtOrAfter(std::int64_t n, std::int64_t d) {
     return ceilDiv(n - std::int64_t(kSubPixelScale / 2) * d, std::int64_t(kSubPixelScale) * d);
+}
+
+// Index of the lowest / highest set bit of a non-zero word (masks of pixels, samples and lanes).
+inline int lowestSetBit(std::uint64_t v) {
+    assert(v != 0);
+#if defined(__GNUC__) || defined(__clang__)
+    return __builtin_ctzll(v);
+#else
+    int i = 0;
+    for (; !(v & 1u); v >>= 1) ++i;
+    return i;
+#endif
+}
+inline int highestSetBit(std::uint64_t v) {
+    assert(v != 0);
+#if defined(__GNUC__) || defined(__clang__)
+    return 63 - __builtin_clzll(v);
+#else
+    int i = 63;
+    for (; !(v >> 63); v <<= 1) --i;
+    return i;
+#endif
 }
 
 } // namespace sr

@@ -121,7 +121,7 @@ SetupOutcome setupTriangleCulled(TriangleSetup& out, const ScreenVertex& v0, con
                                  bool keepRowless = false);
 
 // A screen vertex's position snapped to the sub-pixel grid (snapToFixed), once per vertex for
-// the triangles that share it (the vertex stage of a binned draw); x == kUnsnapped when the
+// the triangles that share it (the vertex stage, for binning); x == kUnsnapped when the
 // vertex lies outside the guard band (or is NaN), where a triangle's setup decides from the
 // floats (isCulled).
 struct SnappedVertex {

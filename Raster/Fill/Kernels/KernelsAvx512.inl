@@ -22,8 +22,8 @@
 #include <limits>
 
 #include "Raster/Fill/Kernels/KernelTable.hpp"
-#include "Raster/Fill/Prefetch.hpp"
 #include "Raster/Fill/Kernels/SimdAvx512.hpp"
+#include "Raster/Fill/Prefetch.hpp"
 #include "Raster/Shade/MeshPrograms.hpp"
 #include "Raster/Shade/PbrProgram.hpp"
 

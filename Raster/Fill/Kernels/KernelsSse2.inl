@@ -10,8 +10,8 @@
 #include <limits>
 
 #include "Raster/Fill/Kernels/KernelTable.hpp"
-#include "Raster/Fill/Prefetch.hpp"
 #include "Raster/Fill/Kernels/SimdSse2.hpp"
+#include "Raster/Fill/Prefetch.hpp"
 #include "Raster/Shade/MeshPrograms.hpp"
 #include "Raster/Shade/PbrProgram.hpp"
 
