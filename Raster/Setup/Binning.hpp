@@ -49,13 +49,11 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
             for (int l = 0; l < lanes; ++l) bins[l].push_back(std::uint32_t(tri) | kBinClip);
             break;
         case ClipClass::Accept: {
+            // Accepted: every vertex inside the clipper's guard band, which lies inside setup's
+            // (kClipGuardBand < kGuardBand), so every one was snapped.
             Fixed minY = 0, maxY = 0;
-            const SnappedVertex p0 = snapped[i0], p1 = snapped[i1], p2 = snapped[i2];
             const SetupOutcome outcome =
-                p0.x != kUnsnapped && p1.x != kUnsnapped && p2.x != kUnsnapped
-                    ? screenSnapped(p0, p1, p2, state.cull, multisampled, minY, maxY)
-                    : screenTriangle(ctx.screenVertices[i0], ctx.screenVertices[i1], ctx.screenVertices[i2], state.cull,
-                                     multisampled, minY, maxY);
+                screenSnapped(snapped[i0], snapped[i1], snapped[i2], state.cull, multisampled, minY, maxY);
             if (outcome == SetupOutcome::Culled) ++stats.culled; // isCulled's decision too
             if (outcome != SetupOutcome::Ready || state.stopAfter == PipelineStop::Geometry) break;
             // rasterizeTriangle's decision: the owner of the first row counts it, every other lane

@@ -59,24 +59,7 @@ SR_SETUP_INLINE SetupOutcome snapAndCull(const ScreenVertex& v0, const ScreenVer
     return cullSnapped(p, cull, doubleArea);
 }
 
-// A Ready triangle's snapped y extent, and Empty when it covers no pixel-centre row (and
-// !keepRowless): the end of screenTriangle and screenSnapped.
-SR_SETUP_INLINE SetupOutcome screenExtent(const FixedPoint2 (&p)[3], bool keepRowless, Fixed& minY, Fixed& maxY) {
-    minY = std::min({p[0].y, p[1].y, p[2].y});
-    maxY = std::max({p[0].y, p[1].y, p[2].y});
-    if (!keepRowless && firstRowAtOrBelow(minY) >= firstRowAtOrBelow(maxY)) return SetupOutcome::Empty;
-    return SetupOutcome::Ready;
-}
-
 } // namespace
-
-SetupOutcome screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
-                            bool keepRowless, Fixed& minY, Fixed& maxY) {
-    FixedPoint2 p[3];
-    std::int64_t doubleArea = 0;
-    const SetupOutcome outcome = snapAndCull(v0, v1, v2, cull, p, doubleArea);
-    return outcome == SetupOutcome::Ready ? screenExtent(p, keepRowless, minY, maxY) : outcome;
-}
 
 SetupOutcome screenSnapped(SnappedVertex p0, SnappedVertex p1, SnappedVertex p2, CullMode cull, bool keepRowless,
                            Fixed& minY, Fixed& maxY) {
@@ -84,7 +67,11 @@ SetupOutcome screenSnapped(SnappedVertex p0, SnappedVertex p1, SnappedVertex p2,
     const FixedPoint2 p[3] = {p0, p1, p2};
     std::int64_t doubleArea = 0;
     const SetupOutcome outcome = cullSnapped(p, cull, doubleArea);
-    return outcome == SetupOutcome::Ready ? screenExtent(p, keepRowless, minY, maxY) : outcome;
+    if (outcome != SetupOutcome::Ready) return outcome;
+    minY = std::min({p0.y, p1.y, p2.y});
+    maxY = std::max({p0.y, p1.y, p2.y});
+    if (!keepRowless && firstRowAtOrBelow(minY) >= firstRowAtOrBelow(maxY)) return SetupOutcome::Empty;
+    return SetupOutcome::Ready;
 }
 
 SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const ScreenVertex& v1,

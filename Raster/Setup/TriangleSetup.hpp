@@ -136,17 +136,14 @@ inline SnappedVertex snapVertex(const ScreenVertex& v) {
     return {snapToFixed(v.x), snapToFixed(v.y)};
 }
 
-// The decision setupTriangleCulled makes before it builds anything (the same snapping, validity
-// and cull), with the snapped y extent [minY, maxY] (fixed point) of a Ready triangle: pixel-centre
-// rows [firstCentreAtOrAfter(minY, 1), firstCentreAtOrAfter(maxY, 1)). Empty, as there, when
-// no centre row is covered and !keepRowless. The pipeline bins triangles to its lanes with it.
-// (The extent comes back through references: returned in a struct with the outcome, GCC built
-// it on the stack with narrow stores and read it back with one wide load, which cannot be
-// forwarded from them: a stall on every triangle binned.)
-SetupOutcome screenTriangle(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, CullMode cull,
-                            bool keepRowless, Fixed& minY, Fixed& maxY);
-// The same from the vertices' snapped positions (snapVertex of v0, v1, v2), none kUnsnapped: the
-// same decision without reading the screen vertices.
+// The decision setupTriangleCulled makes before it builds anything (the same validity and cull),
+// from the vertices' snapped positions (snapVertex, none kUnsnapped), with the snapped y extent
+// [minY, maxY] (fixed point) of a Ready triangle: pixel-centre rows [firstCentreAtOrAfter(minY, 1),
+// firstCentreAtOrAfter(maxY, 1)). Empty, as there, when no centre row is covered and
+// !keepRowless. The pipeline bins triangles to its lanes with it, without reading the screen
+// vertices. (The extent comes back through references: returned in a struct with the outcome,
+// GCC built it on the stack with narrow stores and read it back with one wide load, which cannot
+// be forwarded from them: a stall on every triangle binned.)
 SetupOutcome screenSnapped(SnappedVertex p0, SnappedVertex p1, SnappedVertex p2, CullMode cull, bool keepRowless,
                            Fixed& minY, Fixed& maxY);
 
