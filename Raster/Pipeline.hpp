@@ -74,8 +74,11 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     ctx.vertexCache = key;
     if (!transformed) ctx.stats.verticesTransformed += vertexCount;
 
+    // The multisampled fill's stages, chosen once for the draw.
+    const MsaaStages msaa = ctx.multisampleTarget() ? msaaStages(ctx.multisampleTarget()->samples(), state.depth) : MsaaStages{};
     if (lanes <= 1) {
         LaneState lane;
+        lane.msaaStages = msaa;
         if (!transformed) vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program, false);
         rasterLane<kVaryings>(ctx, state, clipper, LaneBands{0, 1, fb.height()}, lane, indices, indexCount, program);
         flushFill(program, fb);
@@ -100,6 +103,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         pool.run(vertexJob);
     }
     LaneState laneStates[kMaxRenderThreads];
+    for (int l = 0; l < lanes; ++l) laneStates[l].msaaStages = msaa;
     // The bands' owners (weighted by the lanes' speed), and each lane's time in the raster job,
     // reported back so that the next draws' weights follow the lanes' speed (LaneBalance).
     const BandPattern* pattern = ctx.laneBalance.pattern().lanes == lanes ? &ctx.laneBalance.pattern() : nullptr;

@@ -447,14 +447,16 @@ void coverSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
     else coverByWalks<kN, kDepth, true>(t, target, s, rowBegin, rowEnd, scratch);
 }
 
-template <int kN>
-void coverSamplesFor(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
-                     MsaaScratch& scratch, MsaaCoverageMethod method) {
-    switch (depth) {
-    case DepthMode::Off: coverSamples<kN, DepthMode::Off>(t, target, s, scratch, method); return;
-    case DepthMode::Test: coverSamples<kN, DepthMode::Test>(t, target, s, scratch, method); return;
-    case DepthMode::TestWrite: coverSamples<kN, DepthMode::TestWrite>(t, target, s, scratch, method); return;
-    }
+template <int kN, DepthMode kDepth, MsaaCoverageMethod kMethod>
+void coverStage(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch) {
+    assert(target.samples() == kN);
+    coverSamples<kN, kDepth>(t, target, s, scratch, kMethod);
+}
+
+template <int kN, DepthMode kDepth>
+auto coverStageFor(MsaaCoverageMethod method) {
+    return method == MsaaCoverageMethod::Reference ? coverStage<kN, kDepth, MsaaCoverageMethod::Reference>
+                                                   : coverStage<kN, kDepth, MsaaCoverageMethod::Auto>;
 }
 
 template <int kN>
@@ -485,25 +487,33 @@ std::uint64_t writeRow(Pixel* colourRow, const Pixel* shaded, const std::uint8_t
 
 } // namespace
 
-std::uint64_t writeSampleRow(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi,
-                             int samples) {
+template <int kN>
+MsaaStages stagesFor(DepthMode depth, MsaaCoverageMethod method) {
+    MsaaStages stages;
+    stages.samples = kN;
+    stages.write = writeRow<kN>;
+    switch (depth) {
+    case DepthMode::Off: stages.cover = coverStageFor<kN, DepthMode::Off>(method); break;
+    case DepthMode::Test: stages.cover = coverStageFor<kN, DepthMode::Test>(method); break;
+    case DepthMode::TestWrite: stages.cover = coverStageFor<kN, DepthMode::TestWrite>(method); break;
+    }
+    return stages;
+}
+
+MsaaStages msaaStages(int samples, DepthMode depth, MsaaCoverageMethod method) {
+    assert(validMsaa(samples));
     switch (samples) {
-    case 2: return writeRow<2>(colourRow, shaded, passed, lo, hi);
-    case 4: return writeRow<4>(colourRow, shaded, passed, lo, hi);
-    case 8: return writeRow<8>(colourRow, shaded, passed, lo, hi);
-    default: return writeRow<1>(colourRow, shaded, passed, lo, hi);
+    case 2: return stagesFor<2>(depth, method);
+    case 4: return stagesFor<4>(depth, method);
+    case 8: return stagesFor<8>(depth, method);
+    default: return stagesFor<1>(depth, method);
     }
 }
 
 void coverTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
                           MsaaScratch& scratch, MsaaCoverageMethod method) {
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
-    switch (target.samples()) {
-    case 2: coverSamplesFor<2>(t, target, s, depth, scratch, method); return;
-    case 4: coverSamplesFor<4>(t, target, s, depth, scratch, method); return;
-    case 8: coverSamplesFor<8>(t, target, s, depth, scratch, method); return;
-    default: coverSamplesFor<1>(t, target, s, depth, scratch, method); return;
-    }
+    msaaStages(target.samples(), depth, method).cover(t, target, s, scratch);
 }
 
 } // namespace sr

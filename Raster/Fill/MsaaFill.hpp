@@ -90,6 +90,19 @@ inline bool msaaSmallTriangle(const TriangleSetup& t) {
     return x1 - x0 <= kMsaaSmallSide && rowEnd - rowBegin <= kMsaaSmallSide;
 }
 
+// The multisampled fill's out-of-line stages for one sample count, depth mode and coverage
+// method (MsaaCoverage.cpp), chosen once per draw (msaaStages; LaneState::msaaStages): no switch
+// on the sample count or the depth mode per triangle.
+struct MsaaStages {
+    int samples = 0; // 0: not chosen
+    // coverTriangleSamples' work for this choice (the target holds `samples` samples per pixel).
+    void (*cover)(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch) = nullptr;
+    // writeSampleRow's for this sample count.
+    std::uint64_t (*write)(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi) = nullptr;
+};
+// The stages for `samples` (validMsaa) samples per pixel and depth mode `depth`.
+MsaaStages msaaStages(int samples, DepthMode depth, MsaaCoverageMethod method = MsaaCoverageMethod::Auto);
+
 // The multisampled fill's first stage (MsaaCoverage.cpp): for triangle `t` inside the scissor,
 // fills scratch.rows / covered / passed (the covered samples of each row's pixels, and those
 // that passed the depth test, which TestWrite also writes) and scratch.runs (the pixels to
@@ -99,10 +112,8 @@ inline bool msaaSmallTriangle(const TriangleSetup& t) {
 void coverTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
                           MsaaScratch& scratch, MsaaCoverageMethod method = MsaaCoverageMethod::Auto);
 
-// Writes shaded[x] to the samples of pixels [lo, hi) of a sample row whose bits are set in
-// passed[x - lo] (the others keep theirs); returns how many pixels had one (MsaaCoverage.cpp).
-std::uint64_t writeSampleRow(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi,
-                             int samples);
+// MsaaStages::write: writes shaded[x] to the samples of pixels [lo, hi) of a sample row whose
+// bits are set in passed[x - lo] (the others keep theirs); returns how many pixels had one.
 
 // A multisampled draw with texel alpha (Blend.hpp) shades once per pixel like any other, and its
 // alpha travels with the colour in the shading row's X byte (the top byte, 0xFF otherwise) to
@@ -118,15 +129,15 @@ inline Pixel withMsaaAlpha(Pixel colour, const TexelAlpha& texelAlpha, float a) 
 
 namespace detail {
 
-template <int kN, DepthMode kDepth, class ShadeRow, class ShadeRuns>
-void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
-                         ShadeRow& shadeRow, ShadeRuns& shadeRuns, std::uint64_t& shaded, float alpha,
-                         AlphaMode texelAlpha, bool linear) {
-    constexpr int n = kN;
+template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
+void fillTriangleSamples(const MsaaStages& stages, const TriangleSetup& t, MsaaBuffer& target, const Scissor& s,
+                         MsaaScratch& scratch, ShadeRow& shadeRow, ShadeRuns& shadeRuns, std::uint64_t& shaded,
+                         float alpha, AlphaMode texelAlpha, bool linear) {
+    const int n = stages.samples;
     const SampleOffset* pattern = msaaPattern(n);
     const double ddx = t.ddx[kPlaneZ];
     // 1. Coverage and the depth test per sample, and the pixels to shade (coverTriangleSamples).
-    coverTriangleSamples(t, target, s, kDepth, scratch);
+    stages.cover(t, target, s, scratch);
     if (scratch.runs.empty()) return;
 
     // 2. Shade once per listed pixel, all rows in one call; the colours land in the pixel-sized
@@ -140,12 +151,12 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
         const std::uint8_t* passed = scratch.passed.data() + row.offset;
         Pixel* colour = target.colourRow(row.y);
         if (opaque) { // the common case: each passing sample takes the colour
-            shaded += writeSampleRow(colour, shadedRow, passed, row.lo, row.hi, n);
+            shaded += stages.write(colour, shadedRow, passed, row.lo, row.hi);
             continue;
         }
-        double zStart[kN] = {};
+        double zStart[8] = {};
         if (texelAlpha == AlphaMode::Mask)
-            for (int k = 0; k < kN; ++k)
+            for (int k = 0; k < n; ++k)
                 zStart[k] = t.planeAt(kPlaneZ, row.lo + 0.5 + double(pattern[k].x) / kSubPixelScale,
                                       row.y + 0.5 + double(pattern[k].y) / kSubPixelScale);
         for (int x = row.lo; x < row.hi; ++x) {
@@ -199,18 +210,24 @@ void fillTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Sciss
 //  - texelAlpha (Mask or Blend; kDepth is then Test): the shaded colour carries its alpha in the
 //    X byte (withMsaaAlpha): Blend blends it over each passing sample, Mask writes a kept pixel's
 //    colour and depth to its passing samples and leaves a discarded pixel's samples alone.
-// `shaded` counts the pixels shaded (and kept).
+// `shaded` counts the pixels shaded (and kept). `stages`: msaaStages(target.samples(), kDepth),
+// chosen once per draw.
+template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
+void fillTriangleMsaa(const MsaaStages& stages, const TriangleSetup& t, MsaaBuffer& target, const Scissor& s,
+                      MsaaScratch& scratch, ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded,
+                      float alpha = 1.0f, AlphaMode texelAlpha = AlphaMode::Off, bool linear = false) {
+    assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
+    assert(stages.samples == target.samples());
+    detail::fillTriangleSamples<kDepth>(stages, t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear);
+}
+
+// The same, choosing the stages for this one triangle.
 template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleMsaa(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
                       ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded, float alpha = 1.0f,
                       AlphaMode texelAlpha = AlphaMode::Off, bool linear = false) {
-    assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
-    switch (target.samples()) {
-    case 2: detail::fillTriangleSamples<2, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear); break;
-    case 4: detail::fillTriangleSamples<4, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear); break;
-    case 8: detail::fillTriangleSamples<8, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear); break;
-    default: detail::fillTriangleSamples<1, kDepth>(t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear); break;
-    }
+    fillTriangleMsaa<kDepth>(msaaStages(target.samples(), kDepth), t, target, s, scratch, shadeRow, shadeRuns, shaded,
+                             alpha, texelAlpha, linear);
 }
 
 } // namespace sr

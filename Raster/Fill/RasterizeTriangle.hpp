@@ -52,6 +52,7 @@ struct alignas(64) LaneState {
     RenderStats stats;
     TriangleSetup setup;
     MsaaScratch msaa; // the multisampled fill's memory (used only while multisampling)
+    MsaaStages msaaStages; // the multisampled fill's stages for this draw (chosen by the draw)
 };
 
 // Which rows a lane fills. One lane: the whole target. Several: the target is cut into bands
@@ -281,7 +282,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
                 fillSpan<DepthMode::Off, kVaryings, kPersp>(moved, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
             }
         };
-        fillTriangleMsaa<kDepth>(setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha, texelAlpha.mode,
+        fillTriangleMsaa<kDepth>(lane.msaaStages, setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha, texelAlpha.mode,
                                  state.linearBlend);
     };
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {

@@ -318,3 +318,59 @@ TEST_CASE("MSAA coverage and depth (edge functions, vector depth test) equal the
     CHECK(small > 1000);
     CHECK(large > 200);
 }
+
+TEST_CASE("msaaStages: one choice per sample count and depth mode, made once per draw", "[msaa]") {
+    // The stages a draw chooses carry its sample count and depth mode: every combination is its
+    // own cover function; each one's depth mode shows in what it does to the stored depths (Off:
+    // untouched and every covered sample passes; Test: untouched; TestWrite: the passing samples
+    // hold the triangle's depth), and its write stores exactly the passing samples.
+    constexpr int kW = 24, kH = 20;
+    std::vector<void (*)(const TriangleSetup&, MsaaBuffer&, const Scissor&, MsaaScratch&)> covers;
+    TriangleSetup t;
+    REQUIRE(setupTriangleCulled(t, vtx(2.3f, 1.7f, 0.6f), vtx(21.4f, 6.2f, 0.6f), vtx(7.9f, 18.6f, 0.6f), CullMode::None, 0,
+                                true, {}, true) == SetupOutcome::Ready);
+    for (int n : {1, 2, 4, 8}) {
+        for (DepthMode depth : {DepthMode::Off, DepthMode::Test, DepthMode::TestWrite}) {
+            CAPTURE(n, int(depth));
+            const MsaaStages stages = msaaStages(n, depth);
+            REQUIRE(stages.samples == n);
+            REQUIRE(std::find(covers.begin(), covers.end(), stages.cover) == covers.end());
+            covers.push_back(stages.cover);
+            MsaaBuffer target;
+            REQUIRE(target.resize(kW, kH, n));
+            target.clearRows(0, kH, 0u, 0.0f);
+            for (int y = 10; y < kH; ++y) std::fill(target.depthRow(y), target.depthRow(y) + kW * n, 0.9f); // nearer: hides
+            MsaaScratch scratch;
+            stages.cover(t, target, Scissor{0, 0, kW, kH}, scratch);
+            int covered = 0, passed = 0, written = 0;
+            for (const MsaaScratch::Row& row : scratch.rows) {
+                std::vector<Pixel> shaded(std::size_t(kW), 0u);
+                for (int x = row.lo; x < row.hi; ++x) shaded[std::size_t(x)] = Pixel(1000 * row.y + x);
+                std::vector<Pixel> before(target.colourRow(row.y), target.colourRow(row.y) + kW * n);
+                stages.write(target.colourRow(row.y), shaded.data(), scratch.passed.data() + row.offset, row.lo, row.hi);
+                for (int x = row.lo; x < row.hi; ++x) {
+                    const unsigned cover = scratch.covered[row.offset + std::size_t(x - row.lo)];
+                    const unsigned pass = scratch.passed[row.offset + std::size_t(x - row.lo)];
+                    REQUIRE((pass & ~cover) == 0u);
+                    if (depth == DepthMode::Off) REQUIRE(pass == cover);
+                    for (int k = 0; k < n; ++k) {
+                        const std::size_t i = std::size_t(x) * std::size_t(n) + std::size_t(k);
+                        covered += cover >> k & 1u;
+                        passed += pass >> k & 1u;
+                        const float z = target.depthRow(row.y)[i];
+                        const float stored = row.y >= 10 ? 0.9f : 0.0f;
+                        if (depth == DepthMode::TestWrite && (pass >> k & 1u)) REQUIRE(z == 0.6f);
+                        else REQUIRE(z == stored);
+                        const Pixel c = target.colourRow(row.y)[i];
+                        REQUIRE(c == ((pass >> k & 1u) ? Pixel(1000 * row.y + x) : before[i]));
+                        written += (pass >> k & 1u) ? 1 : 0;
+                    }
+                }
+            }
+            CHECK(covered > 100 * n);
+            if (depth == DepthMode::Off) CHECK(passed == covered);
+            else CHECK((passed > 20 * n && passed < covered)); // the rows below 10 hide it
+            CHECK(written == passed);
+        }
+    }
+}
