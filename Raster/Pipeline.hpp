@@ -85,6 +85,10 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         ctx.stats += lane.stats;
         return;
     }
+    // The bands' owners (weighted by the lanes' speed, LaneBalance); the vertex and binning
+    // stages split their items by the same weights, so that a slower lane gets less of each.
+    const BandPattern* pattern = ctx.laneBalance.pattern().lanes == lanes ? &ctx.laneBalance.pattern() : nullptr;
+    const int* weights = pattern ? ctx.laneBalance.weights() : nullptr;
     // 1. Vertex stage split by vertex ranges (each lane with its own copy of the program), unless
     //    there are too few vertices to pay for waking the workers (tens of microseconds, against
     //    about 20 ns per vertex): then the calling thread transforms them all.
@@ -96,17 +100,15 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     } else {
         auto vertexJob = [&](int l) {
             Program copy = program;
-            const std::size_t begin = vertexCount * std::size_t(l) / std::size_t(lanes);
-            const std::size_t end = vertexCount * std::size_t(l + 1) / std::size_t(lanes);
-            vertexRange<kVaryings>(ctx, clipper, begin, end, copy, snap);
+            const ItemRange part = weightedPart(vertexCount, l, lanes, weights);
+            vertexRange<kVaryings>(ctx, clipper, part.begin, part.end, copy, snap);
         };
         pool.run(vertexJob);
     }
     LaneState laneStates[kMaxRenderThreads];
     for (int l = 0; l < lanes; ++l) laneStates[l].msaaStages = msaa;
-    // The bands' owners (weighted by the lanes' speed), and each lane's time in the raster job,
-    // reported back so that the next draws' weights follow the lanes' speed (LaneBalance).
-    const BandPattern* pattern = ctx.laneBalance.pattern().lanes == lanes ? &ctx.laneBalance.pattern() : nullptr;
+    // Each lane's time in the raster job, reported back so that the next draws' weights follow
+    // the lanes' speed (LaneBalance).
     double busy[kMaxRenderThreads] = {};
     auto timed = [&busy](int l, auto&& work) {
         const auto start = std::chrono::steady_clock::now();
@@ -121,9 +123,8 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         RenderStats chunkStats[kMaxRenderThreads];
         auto binJob = [&](int c) {
             for (int l = 0; l < lanes; ++l) ctx.bins[std::size_t(c) * std::size_t(lanes) + std::size_t(l)].clear();
-            binTriangles(ctx, state, clipper, c, lanes, pattern, indices,
-                         triangles * std::size_t(c) / std::size_t(lanes),
-                         triangles * std::size_t(c + 1) / std::size_t(lanes), chunkStats[c]);
+            const ItemRange chunk = weightedPart(triangles, c, lanes, weights);
+            binTriangles(ctx, state, clipper, c, lanes, pattern, indices, chunk.begin, chunk.end, chunkStats[c]);
         };
         pool.run(binJob);
         if (state.stopAfter == PipelineStop::Bin) {

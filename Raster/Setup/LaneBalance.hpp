@@ -3,6 +3,7 @@
 
 #include <array>
 #include <cassert>
+#include <cstddef>
 #include <cstdint>
 
 namespace sr {
@@ -38,6 +39,25 @@ struct BandPattern {
 // the slots it has), ties to the lower lane.
 BandPattern spreadBands(const int* weights, int lanes);
 
+// Lane `lane`'s part [begin, end) of `count` items (vertices, triangles) split over `lanes`
+// lanes in proportion to `weights` (lanes entries, each >= 1; null: equal parts): the parts
+// follow each other in lane order and together cover [0, count) exactly once.
+struct ItemRange {
+    std::size_t begin = 0, end = 0;
+};
+inline ItemRange weightedPart(std::size_t count, int lane, int lanes, const int* weights) {
+    assert(lane >= 0 && lane < lanes);
+    if (!weights) return {count * std::size_t(lane) / std::size_t(lanes), count * std::size_t(lane + 1) / std::size_t(lanes)};
+    std::size_t before = 0, total = 0;
+    for (int l = 0; l < lanes; ++l) {
+        assert(weights[l] >= 1);
+        if (l < lane) before += std::size_t(weights[l]);
+        total += std::size_t(weights[l]);
+    }
+    const std::size_t through = before + std::size_t(weights[lane]);
+    return {count * before / total, count * through / total};
+}
+
 // The weights of the lanes' bands, adapted to their speed. The lanes of these 2-vCPU VMs do not
 // run at the same speed (one vCPU 1.5x slower than the other in a plain FMA loop, which one
 // changing by the minute), and a split draw waits for its slowest lane: each draw reports each lane's own
@@ -53,6 +73,8 @@ public:
 
     const BandPattern& pattern() const { return pattern_; }
     int weight(int lane) const { return weights_[std::size_t(lane)]; }
+    const int* weights() const { return weights_.data(); } // lanes() entries
+    int lanes() const { return lanes_; }
 
     // One split draw: busySeconds[l] is lane l's time in the draw's raster job (its own work,
     // not its wait for the others).

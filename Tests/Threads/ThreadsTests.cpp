@@ -131,6 +131,34 @@ TEST_CASE("lanesMeeting: one walk over the bands gives every lane's meets", "[th
     }
 }
 
+TEST_CASE("weightedPart: the lanes' parts of the vertices and triangles follow their weights", "[threads]") {
+    // Exhaustive over these counts and weights: the parts follow each other in lane order, cover
+    // [0, count) once, and each is its weight's share of the count, to within one item.
+    const std::vector<std::vector<int>> weightSets = {{8, 8}, {3, 13}, {13, 3}, {1, 15}, {5, 5, 14}, {1, 1, 1, 1, 1, 1, 1, 57}};
+    for (std::size_t count : {std::size_t(0), std::size_t(1), std::size_t(7), std::size_t(1000), std::size_t(34835),
+                              std::size_t(69666)}) {
+        for (const std::vector<int>& weights : weightSets) {
+            const int lanes = int(weights.size());
+            int total = 0;
+            for (int w : weights) total += w;
+            std::size_t next = 0;
+            for (int l = 0; l < lanes; ++l) {
+                CAPTURE(count, lanes, l);
+                const ItemRange part = weightedPart(count, l, lanes, weights.data());
+                REQUIRE(part.begin == next);
+                REQUIRE(part.end >= part.begin);
+                const double share = double(count) * weights[std::size_t(l)] / total;
+                REQUIRE(std::fabs(double(part.end - part.begin) - share) <= 1.0);
+                next = part.end;
+                const ItemRange equal = weightedPart(count, l, lanes, nullptr);
+                REQUIRE(equal.begin == count * std::size_t(l) / std::size_t(lanes));
+                REQUIRE(equal.end == count * std::size_t(l + 1) / std::size_t(lanes));
+            }
+            REQUIRE(next == count);
+        }
+    }
+}
+
 TEST_CASE("lane balance: the weights follow the lanes' speed and stay put when fixed", "[threads]") {
     // Lane l takes cost[l] seconds per band of each period: busy time = weight * cost. The
     // weights that equalise the busy times of 1 : 2 are 2/3 and 1/3 of 16 bands, 10.7 : 5.3.
