@@ -75,10 +75,11 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     if (!transformed) ctx.stats.verticesTransformed += vertexCount;
 
     // The multisampled fill's stages, chosen once for the draw.
-    const MsaaStages msaa = ctx.multisampleTarget() ? msaaStages(ctx.multisampleTarget()->samples(), state.depth) : MsaaStages{};
+    MsaaStages stages;
+    if (const MsaaBuffer* msaaTarget = ctx.multisampleTarget()) stages = msaaStages(msaaTarget->samples(), state.depth);
     if (lanes <= 1) {
         LaneState lane;
-        lane.msaaStages = msaa;
+        lane.msaaStages = stages;
         if (!transformed) vertexRange<kVaryings>(ctx, clipper, 0, vertexCount, program, false);
         rasterLane<kVaryings>(ctx, state, clipper, LaneBands{0, 1, fb.height()}, lane, indices, indexCount, program);
         flushFill(program, fb);
@@ -106,7 +107,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         pool.run(vertexJob);
     }
     LaneState laneStates[kMaxRenderThreads];
-    for (int l = 0; l < lanes; ++l) laneStates[l].msaaStages = msaa;
+    for (int l = 0; l < lanes; ++l) laneStates[l].msaaStages = stages;
     // Each lane's time in the raster job, reported back so that the next draws' weights follow
     // the lanes' speed (LaneBalance).
     double busy[kMaxRenderThreads] = {};

@@ -97,7 +97,8 @@ struct MsaaStages {
     int samples = 0; // 0: not chosen
     // coverTriangleSamples' work for this choice (the target holds `samples` samples per pixel).
     void (*cover)(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch) = nullptr;
-    // writeSampleRow's for this sample count.
+    // Writes shaded[x] to the samples of pixels [lo, hi) of a sample row whose bits are set in
+    // passed[x - lo] (the others keep theirs); returns how many pixels had one.
     std::uint64_t (*write)(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi) = nullptr;
 };
 // The stages for `samples` (validMsaa) samples per pixel and depth mode `depth`.
@@ -111,9 +112,6 @@ MsaaStages msaaStages(int samples, DepthMode depth, MsaaCoverageMethod method = 
 // box (all samples of a pixel at once, int32), a large one with exact edge walks.
 void coverTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
                           MsaaScratch& scratch, MsaaCoverageMethod method = MsaaCoverageMethod::Auto);
-
-// MsaaStages::write: writes shaded[x] to the samples of pixels [lo, hi) of a sample row whose
-// bits are set in passed[x - lo] (the others keep theirs); returns how many pixels had one.
 
 // A multisampled draw with texel alpha (Blend.hpp) shades once per pixel like any other, and its
 // alpha travels with the colour in the shading row's X byte (the top byte, 0xFF otherwise) to
@@ -218,7 +216,8 @@ void fillTriangleMsaa(const MsaaStages& stages, const TriangleSetup& t, MsaaBuff
                       float alpha = 1.0f, AlphaMode texelAlpha = AlphaMode::Off, bool linear = false) {
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
     assert(stages.samples == target.samples());
-    detail::fillTriangleSamples<kDepth>(stages, t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear);
+    detail::fillTriangleSamples<kDepth>(stages, t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha,
+                                        linear);
 }
 
 // The same, choosing the stages for this one triangle.

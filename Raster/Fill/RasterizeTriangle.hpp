@@ -282,8 +282,8 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
                 fillSpan<DepthMode::Off, kVaryings, kPersp>(moved, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
             }
         };
-        fillTriangleMsaa<kDepth>(lane.msaaStages, setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha, texelAlpha.mode,
-                                 state.linearBlend);
+        fillTriangleMsaa<kDepth>(lane.msaaStages, setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha,
+                                 texelAlpha.mode, state.linearBlend);
     };
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;

@@ -47,7 +47,8 @@ struct ItemRange {
 };
 inline ItemRange weightedPart(std::size_t count, int lane, int lanes, const int* weights) {
     assert(lane >= 0 && lane < lanes);
-    if (!weights) return {count * std::size_t(lane) / std::size_t(lanes), count * std::size_t(lane + 1) / std::size_t(lanes)};
+    if (!weights)
+        return {count * std::size_t(lane) / std::size_t(lanes), count * std::size_t(lane + 1) / std::size_t(lanes)};
     std::size_t before = 0, total = 0;
     for (int l = 0; l < lanes; ++l) {
         assert(weights[l] >= 1);

@@ -134,7 +134,8 @@ TEST_CASE("lanesMeeting: one walk over the bands gives every lane's meets", "[th
 TEST_CASE("weightedPart: the lanes' parts of the vertices and triangles follow their weights", "[threads]") {
     // Exhaustive over these counts and weights: the parts follow each other in lane order, cover
     // [0, count) once, and each is its weight's share of the count, to within one item.
-    const std::vector<std::vector<int>> weightSets = {{8, 8}, {3, 13}, {13, 3}, {1, 15}, {5, 5, 14}, {1, 1, 1, 1, 1, 1, 1, 57}};
+    const std::vector<std::vector<int>> weightSets = {{8, 8},     {3, 13},     {13, 3},
+                                                      {1, 15},    {5, 5, 14},  {1, 1, 1, 1, 1, 1, 1, 57}};
     for (std::size_t count : {std::size_t(0), std::size_t(1), std::size_t(7), std::size_t(1000), std::size_t(34835),
                               std::size_t(69666)}) {
         for (const std::vector<int>& weights : weightSets) {
