@@ -127,7 +127,7 @@ inline Pixel withMsaaAlpha(Pixel colour, const TexelAlpha& texelAlpha, float a) 
 
 namespace detail {
 
-template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
+template <class ShadeRow, class ShadeRuns>
 void fillTriangleSamples(const MsaaStages& stages, const TriangleSetup& t, MsaaBuffer& target, const Scissor& s,
                          MsaaScratch& scratch, ShadeRow& shadeRow, ShadeRuns& shadeRuns, std::uint64_t& shaded,
                          float alpha, AlphaMode texelAlpha, bool linear) {
@@ -152,7 +152,7 @@ void fillTriangleSamples(const MsaaStages& stages, const TriangleSetup& t, MsaaB
             shaded += stages.write(colour, shadedRow, passed, row.lo, row.hi);
             continue;
         }
-        double zStart[8] = {};
+        double zStart[8] = {}; // the most samples validMsaa allows
         if (texelAlpha == AlphaMode::Mask)
             for (int k = 0; k < n; ++k)
                 zStart[k] = t.planeAt(kPlaneZ, row.lo + 0.5 + double(pattern[k].x) / kSubPixelScale,
@@ -175,7 +175,7 @@ void fillTriangleSamples(const MsaaStages& stages, const TriangleSetup& t, MsaaB
                     continue;
                 }
                 c |= 0xFF000000u;
-                // The depth write the test left to this step (kDepth is Test): step 1's floats.
+                // The depth write the test left to this step (the draw's depth mode is Test): step 1's floats.
                 float* depth = target.depthRow(row.y) + std::size_t(x) * std::size_t(n);
                 for (int k = 0; k < n; ++k)
                     if (pass & (1u << k)) depth[k] = float(zStart[k] + ddx * double(x - row.lo));
@@ -205,27 +205,27 @@ void fillTriangleSamples(const MsaaStages& stages, const TriangleSetup& t, MsaaB
 //    triangle (SpanRun), which writes the colours to shadeRow(y)[x] (pixel-sized scratch rows);
 //  - the colour goes to every covered sample that passed (alpha < 1: blended over each, Blend.hpp,
 //    in linear light when `linear`);
-//  - texelAlpha (Mask or Blend; kDepth is then Test): the shaded colour carries its alpha in the
+//  - texelAlpha (Mask or Blend; the depth mode is then Test): the shaded colour carries its alpha in the
 //    X byte (withMsaaAlpha): Blend blends it over each passing sample, Mask writes a kept pixel's
 //    colour and depth to its passing samples and leaves a discarded pixel's samples alone.
-// `shaded` counts the pixels shaded (and kept). `stages`: msaaStages(target.samples(), kDepth),
-// chosen once per draw.
-template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
+// `shaded` counts the pixels shaded (and kept). `stages`: msaaStages(target.samples(), the draw's
+// depth mode), chosen once per draw.
+template <class ShadeRow, class ShadeRuns>
 void fillTriangleMsaa(const MsaaStages& stages, const TriangleSetup& t, MsaaBuffer& target, const Scissor& s,
                       MsaaScratch& scratch, ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded,
                       float alpha = 1.0f, AlphaMode texelAlpha = AlphaMode::Off, bool linear = false) {
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
     assert(stages.samples == target.samples());
-    detail::fillTriangleSamples<kDepth>(stages, t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha,
+    detail::fillTriangleSamples(stages, t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha,
                                         linear);
 }
 
-// The same, choosing the stages for this one triangle.
+// The same, choosing the stages for this one triangle and depth mode kDepth.
 template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleMsaa(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
                       ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded, float alpha = 1.0f,
                       AlphaMode texelAlpha = AlphaMode::Off, bool linear = false) {
-    fillTriangleMsaa<kDepth>(msaaStages(target.samples(), kDepth), t, target, s, scratch, shadeRow, shadeRuns, shaded,
+    fillTriangleMsaa(msaaStages(target.samples(), kDepth), t, target, s, scratch, shadeRow, shadeRuns, shaded,
                              alpha, texelAlpha, linear);
 }
 

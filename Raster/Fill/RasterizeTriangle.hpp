@@ -256,8 +256,8 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     // to interpolate, which keeps the number of instantiated loops down).
     // Multisampled: coverage and depth per sample, the program's fragments once per pixel (at the
     // centre or the centroid) through its run shader, or else the scalar loop.
-    auto fillSamples = [&](auto depthTag, const Scissor& scissor, auto perspTag) {
-        constexpr DepthMode kDepth = decltype(depthTag)::value;
+    // (The depth mode is in the draw's stages, lane.msaaStages.)
+    auto fillSamples = [&](const Scissor& scissor, auto perspTag) {
         constexpr PerspectiveMode kPersp = decltype(perspTag)::value;
         auto shadeRow = [&fb](int y) -> const Pixel* { return fb.colorRow(y); };
         auto shadeRuns = [&](const SpanRun* runs, int count) {
@@ -282,15 +282,15 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
                 fillSpan<DepthMode::Off, kVaryings, kPersp>(moved, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
             }
         };
-        fillTriangleMsaa<kDepth>(lane.msaaStages, setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha,
-                                 texelAlpha.mode, state.linearBlend);
+        fillTriangleMsaa(lane.msaaStages, setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha,
+                         texelAlpha.mode, state.linearBlend);
     };
     auto fillIn = [&](auto depthTag, const Scissor& scissor) {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
         if (msaa) {
             if (kVaryings > 0 && state.perspective == PerspectiveMode::Affine)
-                fillSamples(depthTag, scissor, std::integral_constant<PerspectiveMode, PerspectiveMode::Affine>{});
-            else fillSamples(depthTag, scissor, std::integral_constant<PerspectiveMode, PerspectiveMode::Exact>{});
+                fillSamples(scissor, std::integral_constant<PerspectiveMode, PerspectiveMode::Affine>{});
+            else fillSamples(scissor, std::integral_constant<PerspectiveMode, PerspectiveMode::Exact>{});
             return;
         }
         if (SR_UNLIKELY(state.stencil.on() && fb.hasStencil())) {

@@ -74,8 +74,7 @@ public:
 
     const BandPattern& pattern() const { return pattern_; }
     int weight(int lane) const { return weights_[std::size_t(lane)]; }
-    const int* weights() const { return weights_.data(); } // lanes() entries
-    int lanes() const { return lanes_; }
+    const int* weights() const { return weights_.data(); } // one per lane of pattern()
 
     // One split draw: busySeconds[l] is lane l's time in the draw's raster job (its own work,
     // not its wait for the others).

@@ -14,26 +14,33 @@ using namespace sr;
 
 namespace {
 
-// The scene with each draw cut into `pieces` consecutive draws of the same mesh whose flat
-// colours alternate between two materials (a model whose faces switch material often). The
-// triangles and their order are unchanged.
-Scene splitDraws(const Scene& in, int pieces) {
+// The scene with each draw of n triangles cut into consecutive draws of the same mesh, piece p
+// taking triangles [n * ends[p - 1] / of, n * ends[p] / of) (ends ascending, the last == of; empty
+// pieces dropped); with `recolour` the odd pieces' flat colour differs (a model whose faces switch
+// material often). The triangles and their order are unchanged.
+Scene cutDraws(const Scene& in, const std::vector<std::uint32_t>& ends, std::uint32_t of, bool recolour) {
     Scene out = in;
     out.draws.clear();
     for (const SceneDraw& d : in.draws) {
         const std::uint32_t triangles = d.indexCount / 3;
-        for (int p = 0; p < pieces; ++p) {
-            const std::uint32_t t0 = triangles * std::uint32_t(p) / std::uint32_t(pieces);
-            const std::uint32_t t1 = triangles * std::uint32_t(p + 1) / std::uint32_t(pieces);
+        for (std::size_t p = 0; p < ends.size(); ++p) {
+            const std::uint32_t t0 = p == 0 ? 0 : triangles * ends[p - 1] / of, t1 = triangles * ends[p] / of;
             if (t0 == t1) continue;
             SceneDraw piece = d;
             piece.firstIndex = d.firstIndex + 3 * t0;
             piece.indexCount = 3 * (t1 - t0);
-            if (p % 2 == 1) piece.kd = Color{0.2f, 0.7f, 0.3f, 1.0f};
+            if (recolour && p % 2 == 1) piece.kd = Color{0.2f, 0.7f, 0.3f, 1.0f};
             out.draws.push_back(piece);
         }
     }
     return out;
+}
+
+// `pieces` equal pieces per draw, recoloured.
+Scene splitDraws(const Scene& in, int pieces) {
+    std::vector<std::uint32_t> ends;
+    for (int p = 1; p <= pieces; ++p) ends.push_back(std::uint32_t(p));
+    return cutDraws(in, ends, std::uint32_t(pieces), true);
 }
 
 // The same draws with nothing to share: each draw gets a copy of its mesh of its own, so
@@ -132,19 +139,7 @@ TEST_CASE("shared vertices serve binned and unbinned draws alike: the same image
     REQUIRE(loaded.ok());
     // Each draw cut into pieces of 10%, 30% and 60% of its triangles: with the threshold at the
     // median piece, most meshes have draws on both sides of it.
-    const Scene whole = test::opaqueOnly(loaded.value().scene);
-    Scene split = whole;
-    split.draws.clear();
-    for (const SceneDraw& d : whole.draws) {
-        const std::uint32_t triangles = d.indexCount / 3, cuts[] = {0, triangles / 10, triangles * 4 / 10, triangles};
-        for (int p = 0; p < 3; ++p) {
-            if (cuts[p] == cuts[p + 1]) continue;
-            SceneDraw piece = d;
-            piece.firstIndex = d.firstIndex + 3 * cuts[p];
-            piece.indexCount = 3 * (cuts[p + 1] - cuts[p]);
-            split.draws.push_back(piece);
-        }
-    }
+    const Scene split = cutDraws(test::opaqueOnly(loaded.value().scene), {1, 4, 10}, 10, false);
     std::vector<std::uint32_t> sizes;
     for (const SceneDraw& d : split.draws) sizes.push_back(d.indexCount / 3);
     std::sort(sizes.begin(), sizes.end());
