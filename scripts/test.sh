@@ -6,12 +6,16 @@
 # Usage: scripts/test.sh [preset...]     (default: native native-asan mingw, then fuzz; named
 #        presets run alone, and the fuzz stage only when 'fuzz' is one of them)
 # Exit code 0 only if every build and every test passed.
+# Disk: about 2.4 GB under build/ for a full run (four trees and the Wine prefix); with
+# SR_PRUNE_BUILDS=1 (the default when CI=true) each preset's tree is removed once its tests have
+# run (the Wine prefix after mingw's; the small fuzz tree stays), its logs kept in build/logs/, so
+# the run needs about 1.3 GB at a time (mingw's tree and the Wine prefix).
 set -uo pipefail
 cd "$(dirname "$0")/.."
 root=$(pwd)
 
 if [[ "${1:-}" == "-h" || "${1:-}" == "--help" ]]; then
-  sed -n '2,8p' "$0" | sed 's/^# \{0,1\}//'; exit 0
+  sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0
 fi
 presets=() run_fuzz=0
 for p in "$@"; do
@@ -27,29 +31,55 @@ export WINEDEBUG=-all
 export WINEDLLOVERRIDES="mscoree,mshtml="
 jobs=$(nproc 2>/dev/null || echo 2)
 
+# Free space where the trees are built, in MiB; a build that fails with the disk nearly full
+# says so, since the compiler's and linker's own words for it are easy to miss in a long log.
+mkdir -p build/logs
+free_mib() { df -Pm build | awk 'NR == 2 {print $4}'; }
+prune=${SR_PRUNE_BUILDS:-$([[ "${CI:-}" == true ]] && echo 1 || echo 0)}
+echo "=== disk: $(free_mib) MiB free under build/ (a full run: about 2400 MiB, 1300 at a time with SR_PRUNE_BUILDS=1; now ${prune})"
+# A failed build: its error lines, the log's last lines, and a word on the disk when it is full.
+report_build_failure() {
+  local log=$1
+  grep -E 'error|Error|FAILED|No space left' "$log" | head -40
+  echo "--- last lines of $log:"; tail -5 "$log"
+  local left; left=$(free_mib)
+  if (( left < 200 )); then echo "=== the disk is full: ${left} MiB free under build/"; fi
+}
+# SR_PRUNE_BUILDS=1: a preset's tree goes once its tests have run; its logs stay in build/logs/.
+prune_tree() {
+  local preset=$1
+  [[ "$prune" == 1 && -d "build/$preset" ]] || return 0
+  mkdir -p "build/logs/$preset"
+  cp -f build/"$preset"/{configure,build,ctest}.log "build/logs/$preset/" 2>/dev/null
+  cp -f "build/$preset/Testing/Temporary/LastTest.log" "build/logs/$preset/" 2>/dev/null
+  rm -rf "build/$preset"
+  echo "=== [$preset] tree removed (SR_PRUNE_BUILDS=1; logs in build/logs/$preset); $(free_mib) MiB free"
+}
+
 declare -A result
-start_all=$SECONDS
-for preset in "${presets[@]}"; do
+# One preset: configure, build (warning-free), test; its outcome in result[preset].
+build_and_test() {
+  local preset=$1 t0=$SECONDS cfglog rc passed failed
   echo "=== [$preset] configure + build"
-  t0=$SECONDS
   if [[ "$preset" == mingw && ! -d "$WINEPREFIX" ]]; then
     echo "=== [$preset] creating the Wine prefix $WINEPREFIX"
     wineboot -i >/dev/null 2>&1 || true
     wineserver -w 2>/dev/null || true
   fi
-  cfglog=$(mktemp)
+  cfglog="build/logs/$preset-configure.log"
   if ! cmake --preset "$preset" >"$cfglog" 2>&1; then
-    cat "$cfglog"; rm -f "$cfglog"; result[$preset]="configure FAILED"; continue
+    cat "$cfglog"; echo "=== $(free_mib) MiB free under build/"
+    result[$preset]="configure FAILED"; return
   fi
   mv -f "$cfglog" "build/$preset/configure.log"
   if ! cmake --build --preset "$preset" -j "$jobs" >"build/$preset/build.log" 2>&1; then
-    grep -E 'error|Error|FAILED' "build/$preset/build.log" | head -40
-    result[$preset]="build FAILED"; continue
+    report_build_failure "build/$preset/build.log"
+    result[$preset]="build FAILED"; return
   fi
   if grep -q 'warning:' "build/$preset/build.log"; then
     echo "=== [$preset] compiler warnings (the build must be warning-free):"
     grep 'warning:' "build/$preset/build.log" | sort -u | head -20
-    result[$preset]="warnings"; continue
+    result[$preset]="warnings"; return
   fi
   echo "=== [$preset] test"
   # In parallel: every Wine end-to-end test runs in a Wine prefix of its own (xsession.sh), and
@@ -65,6 +95,15 @@ for preset in "${presets[@]}"; do
   failed=$(grep -oE '[0-9]+ tests failed out of [0-9]+' "build/$preset/ctest.log" | tail -1 | awk '{print $1}')
   result[$preset]="${passed:-0} passed, ${failed:-?} failed ($((SECONDS - t0)) s)"
   [[ $rc -eq 0 ]] || result[$preset]+=" FAILED"
+}
+
+start_all=$SECONDS
+for preset in "${presets[@]}"; do
+  build_and_test "$preset"
+  [[ ! -d "build/$preset" ]] || echo "=== [$preset] tree: $(du -sm "build/$preset" | cut -f1) MiB; $(free_mib) MiB free"
+  # Pruned whatever the outcome: a failed tree's logs are kept, and the next preset needs the room.
+  prune_tree "$preset"
+  [[ "$preset" != mingw || "$prune" != 1 ]] || rm -rf "$WINEPREFIX"
 done
 
 # Fuzzing (after the presets): the fuzz preset's libFuzzer targets (clang, ASan + UBSan), run
@@ -83,10 +122,11 @@ if [[ $run_fuzz -eq 1 ]]; then
 echo "=== [fuzz] configure + build"
 t0=$SECONDS
 fuzz_pass=0; fuzz_fail=0
-if ! cmake --preset fuzz >build/fuzz-configure.log 2>&1; then
-  cat build/fuzz-configure.log; result[fuzz]="configure FAILED"
+if ! cmake --preset fuzz >build/logs/fuzz-configure.log 2>&1; then
+  cat build/logs/fuzz-configure.log; echo "=== $(free_mib) MiB free under build/"
+  result[fuzz]="configure FAILED"
 elif ! cmake --build --preset fuzz -j "$jobs" >build/fuzz/build.log 2>&1; then
-  grep -E 'error|Error|FAILED' build/fuzz/build.log | head -40; result[fuzz]="build FAILED"
+  report_build_failure build/fuzz/build.log; result[fuzz]="build FAILED"
 else
   rm -rf build/fuzz/corpus build/fuzz/run && mkdir -p build/fuzz/run build/fuzz/crashes
   build/fuzz/bin/sr_fuzz_seeds build/fuzz/corpus || fuzz_fail=$((fuzz_fail + 1))
