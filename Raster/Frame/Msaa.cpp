@@ -101,7 +101,7 @@ void resolveFour(const Pixel* src, const float* depthSrc, Pixel* dst, float* dep
         sum01 = _mm_add_epi16(_mm_unpacklo_epi64(halves[0], halves[1]), _mm_unpackhi_epi64(halves[0], halves[1]));
         sum23 = _mm_add_epi16(_mm_unpacklo_epi64(halves[2], halves[3]), _mm_unpackhi_epi64(halves[2], halves[3]));
     }
-    constexpr int kShift = N == 2 ? 1 : N == 4 ? 2 : 3;
+    constexpr int kShift = N == 2 ? 1 : 3; // log2(N)
     const __m128i half = _mm_set1_epi16(N / 2);
     sum01 = _mm_srli_epi16(_mm_add_epi16(sum01, half), kShift);
     sum23 = _mm_srli_epi16(_mm_add_epi16(sum23, half), kShift);
