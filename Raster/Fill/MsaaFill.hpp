@@ -216,8 +216,7 @@ void fillTriangleMsaa(const MsaaStages& stages, const TriangleSetup& t, MsaaBuff
                       float alpha = 1.0f, AlphaMode texelAlpha = AlphaMode::Off, bool linear = false) {
     assert(s.x0 >= 0 && s.y0 >= 0 && s.x1 <= target.width() && s.y1 <= target.height());
     assert(stages.samples == target.samples());
-    detail::fillTriangleSamples(stages, t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha,
-                                        linear);
+    detail::fillTriangleSamples(stages, t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha, texelAlpha, linear);
 }
 
 // The same, choosing the stages for this one triangle and depth mode kDepth.
@@ -225,8 +224,8 @@ template <DepthMode kDepth, class ShadeRow, class ShadeRuns>
 void fillTriangleMsaa(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, MsaaScratch& scratch,
                       ShadeRow&& shadeRow, ShadeRuns&& shadeRuns, std::uint64_t& shaded, float alpha = 1.0f,
                       AlphaMode texelAlpha = AlphaMode::Off, bool linear = false) {
-    fillTriangleMsaa(msaaStages(target.samples(), kDepth), t, target, s, scratch, shadeRow, shadeRuns, shaded,
-                             alpha, texelAlpha, linear);
+    fillTriangleMsaa(msaaStages(target.samples(), kDepth), t, target, s, scratch, shadeRow, shadeRuns, shaded, alpha,
+                     texelAlpha, linear);
 }
 
 } // namespace sr

@@ -43,6 +43,24 @@ FrameView builtInView(const app::LoadedScene& scene, int width, int height) {
     return app::makeFrameView(app::resolveCamera(options, scene), width, height, options.light, scene.lights);
 }
 
+// The resolve's rule for one pixel's n samples, written out plainly: per channel the mean rounded
+// half up (alpha 0xFF), depth the samples folded in order with std::max.
+struct Resolved {
+    Pixel colour;
+    float depth;
+};
+Resolved resolveRule(const Pixel* c, const float* d, int n) {
+    int r = 0, g = 0, b = 0;
+    float nearest = d[0];
+    for (int s = 0; s < n; ++s) {
+        r += pixelR(c[s]);
+        g += pixelG(c[s]);
+        b += pixelB(c[s]);
+        if (s > 0) nearest = std::max(nearest, d[s]);
+    }
+    return {packBgra(std::uint8_t((r + n / 2) / n), std::uint8_t((g + n / 2) / n), std::uint8_t((b + n / 2) / n)), nearest};
+}
+
 } // namespace
 
 TEST_CASE("AntiAliasing: the factories accept each mode's counts only; 1 is no anti-aliasing", "[msaa]") {
@@ -92,20 +110,10 @@ TEST_CASE("resolveMsaaRows: each channel the rounded mean of the samples, depth 
         resolveMsaaRows(samples, out, 0, h);
         for (int y = 0; y < h; ++y)
             for (int x = 0; x < w; ++x) {
-                double r = 0, g = 0, b = 0;
-                float nearest = 0.0f;
-                for (int s = 0; s < n; ++s) {
-                    const Pixel p = samples.colourRow(y)[x * n + s];
-                    r += pixelR(p);
-                    g += pixelG(p);
-                    b += pixelB(p);
-                    nearest = std::max(nearest, samples.depthRow(y)[x * n + s]);
-                }
-                const Pixel expect = packBgra(std::uint8_t(std::floor(r / n + 0.5)), std::uint8_t(std::floor(g / n + 0.5)),
-                                              std::uint8_t(std::floor(b / n + 0.5)));
+                const Resolved expect = resolveRule(samples.colourRow(y) + x * n, samples.depthRow(y) + x * n, n);
                 CAPTURE(x, y);
-                REQUIRE(out.pixel(x, y) == expect);
-                REQUIRE(out.depth(x, y) == nearest);
+                REQUIRE(out.pixel(x, y) == expect.colour);
+                REQUIRE(out.depth(x, y) == expect.depth);
             }
     }
     // Ties round up: one of two samples at 1 resolves to 1 (0.5 -> 1); three of eight at 255 to 96 (95.6).
@@ -163,27 +171,17 @@ TEST_CASE("resolveMsaaRows: every width and block phase gives the per-pixel rule
             for (int y = 0; y < h; ++y)
                 for (int x = 0; x < w; ++x) {
                     CAPTURE(x, y);
-                    Pixel expect = clearColour | 0xFF000000u;
-                    float nearest = clearDepth;
+                    Resolved expect{clearColour | 0xFF000000u, clearDepth};
                     if (!samples.pendingBlock(y, x / kMsaaClearBlock)) {
                         const Pixel* c = samples.colourRow(y) + std::size_t(x) * std::size_t(n);
                         const float* d = samples.depthRow(y) + std::size_t(x) * std::size_t(n);
-                        int r = 0, g = 0, b = 0;
-                        nearest = d[0];
-                        for (int s = 0; s < n; ++s) {
-                            r += pixelR(c[s]);
-                            g += pixelG(c[s]);
-                            b += pixelB(c[s]);
-                            if (s > 0) nearest = std::max(nearest, d[s]);
-                        }
-                        expect = packBgra(std::uint8_t((r + n / 2) / n), std::uint8_t((g + n / 2) / n),
-                                          std::uint8_t((b + n / 2) / n));
+                        expect = resolveRule(c, d, n);
                         mixed += std::count(c, c + n, c[0]) != n;
                         nanFirst += std::isnan(d[0]);
                         zeroTies += std::count_if(d, d + n, [](float v) { return v == 0.0f; }) > 1;
                     }
-                    REQUIRE(out.pixel(x, y) == expect);
-                    REQUIRE(bits(out.depth(x, y)) == bits(nearest));
+                    REQUIRE(out.pixel(x, y) == expect.colour);
+                    REQUIRE(bits(out.depth(x, y)) == bits(expect.depth));
                 }
         }
     }
