@@ -121,22 +121,22 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         //    bins, then each lane draws its bins (binTriangles, rasterBinned).
         const std::size_t binCount = std::size_t(lanes) * std::size_t(lanes);
         if (ctx.bins.size() < binCount) ctx.bins.resize(binCount);
+        if (ctx.sharedSetups.size() < std::size_t(lanes)) ctx.sharedSetups.resize(std::size_t(lanes));
         RenderStats chunkStats[kMaxRenderThreads];
         auto binJob = [&](int c) {
             for (int l = 0; l < lanes; ++l) ctx.bins[std::size_t(c) * std::size_t(lanes) + std::size_t(l)].clear();
             const ItemRange chunk = weightedPart(triangles, c, lanes, weights);
-            binTriangles(ctx, state, clipper, c, lanes, pattern, indices, chunk.begin, chunk.end, chunkStats[c]);
+            binTriangles<kVaryings>(ctx, state, clipper, c, lanes, pattern, indices, chunk.begin, chunk.end, chunkStats[c]);
         };
         pool.run(binJob);
-        if (state.stopAfter == PipelineStop::Bin) {
+        if (state.stopAfter <= PipelineStop::Bin) { // binning also clipped and culled
             for (int l = 0; l < lanes; ++l) ctx.stats += chunkStats[l];
             return;
         }
         auto binnedJob = [&](int l) {
             timed(l, [&] {
                 Program copy = program;
-                rasterBinned<kVaryings>(ctx, state, clipper, LaneBands{l, lanes, fb.height(), pattern}, laneStates[l],
-                                        indices, copy);
+                rasterBinned<kVaryings>(ctx, state, LaneBands{l, lanes, fb.height(), pattern}, laneStates[l], indices, copy);
                 flushFill(copy, fb);
             });
         };

@@ -192,9 +192,31 @@ inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, cons
     rowsOfSnappedExtent(std::min({y0, y1, y2}), std::max({y0, y1, y2}), multisampled, begin, end);
 }
 
+// The rows that decide which lanes meet a screen triangle and which one counts it (the owner of
+// the first): snappedRowRange's, or [0, 0) when a vertex lies outside the guard band.
+inline void rowsForLanes(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, bool multisampled,
+                         int& begin, int& end) {
+    begin = end = 0;
+    if (std::fabs(v0.y) <= kGuardBand && std::fabs(v1.y) <= kGuardBand && std::fabs(v2.y) <= kGuardBand)
+        snappedRowRange(v0, v1, v2, multisampled, begin, end);
+}
+
 // A lane's part in a triangle when the caller already knows it (binned draws: binTriangles):
 // the Owner counts it, a Helper only fills its own bands of it.
 enum class LaneRole { Unknown, Owner, Helper };
+
+// The draw's setup of a screen triangle into `out` (setupTriangleCulled with the draw's cull,
+// perspective and rebase; every row a sample can cover when multisampled).
+template <int kVaryings>
+SetupOutcome setupForDraw(TriangleSetup& out, const DrawState& state, bool multisampled, const ScreenVertex& v0,
+                          const ScreenVertex& v1, const ScreenVertex& v2) {
+    const bool affine = kVaryings > 0 && state.perspective == PerspectiveMode::Affine;
+    return setupTriangleCulled(out, v0, v1, v2, state.cull, kVaryings, !affine, state.rebase, multisampled);
+}
+
+template <int kVaryings, class Program>
+void fillSetUpTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state, const LaneBands& bands,
+                       LaneState& lane, RenderStats& stats, std::size_t t, const TriangleSetup& setup, Program& program);
 
 // Culls, sets up and fills one screen-space triangle (index t of the draw) on one lane.
 // Returns true when it was not culled. The program's triangle() runs once per set-up
@@ -210,9 +232,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     if (role == LaneRole::Helper) stats = &sink; // binned: this lane's bands meet it, another lane counts it
     if (bands.lanes > 1 && role == LaneRole::Unknown) {
         int rowBegin = 0, rowEnd = 0;
-        if (std::fabs(v0.y) <= kGuardBand && std::fabs(v1.y) <= kGuardBand && std::fabs(v2.y) <= kGuardBand) {
-            snappedRowRange(v0, v1, v2, msaa != nullptr, rowBegin, rowEnd);
-        }
+        rowsForLanes(v0, v1, v2, msaa != nullptr, rowBegin, rowEnd);
         const bool owner = bands.ownerOfRow(rowBegin) == bands.lane;
         if (!owner) {
             if (state.stopAfter <= PipelineStop::Bin || !bands.meets(rowBegin, rowEnd)) return false;
@@ -226,17 +246,24 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         }
         return true;
     }
-    const bool affine = kVaryings > 0 && state.perspective == PerspectiveMode::Affine;
-    TriangleSetup& setup = lane.setup;
-    switch (setupTriangleCulled(setup, v0, v1, v2, state.cull, kVaryings, !affine, state.rebase, msaa != nullptr)) {
+    switch (setupForDraw<kVaryings>(lane.setup, state, msaa != nullptr, v0, v1, v2)) {
     case SetupOutcome::Culled: ++stats->culled; return false;
     case SetupOutcome::Empty: return true; // covers no sample: nothing to do, but not culled
     case SetupOutcome::Ready: break;
     }
     ++lane.stats.setupsBuilt; // by this lane, whichever lane counts the triangle
-    ++stats->rasterized;
-    if (state.stopAfter == PipelineStop::Setup) return true;
-    program.triangle(t, static_cast<const TriangleSetup&>(setup));
+    fillSetUpTriangle<kVaryings>(fb, msaa, state, bands, lane, *stats, t, lane.setup, program);
+    return true;
+}
+
+// A set-up triangle (index t of the draw) filled on one lane, clipped to the lane's bands; `stats`
+// is the lane's own counters when it counts the triangle, a sink otherwise.
+template <int kVaryings, class Program>
+void fillSetUpTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state, const LaneBands& bands,
+                       LaneState& lane, RenderStats& stats, std::size_t t, const TriangleSetup& setup, Program& program) {
+    ++stats.rasterized;
+    if (state.stopAfter == PipelineStop::Setup) return;
+    program.triangle(t, setup);
     // Count the fragments that pass the depth test (one add per pixel: overdraw statistics).
     std::uint64_t& shaded = lane.stats.fragmentsShaded;
     const float alpha = state.blendAlpha;
@@ -262,7 +289,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         auto shadeRow = [&fb](int y) -> const Pixel* { return fb.colorRow(y); };
         auto shadeRuns = [&](const SpanRun* runs, int count) {
             if constexpr (HasShadeRuns<Program>::value) {
-                if (!texelAlpha.on() && program.shadeRuns(static_cast<const TriangleSetup&>(setup), fb, runs, count)) return;
+                if (!texelAlpha.on() && program.shadeRuns(setup, fb, runs, count)) return;
             }
             // With texel alpha, the alpha rides in the shading row's X byte (MsaaAlpha).
             auto fragment = [&program, texelAlpha](const Fragment<kVaryings>& f) {
@@ -304,7 +331,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         }
         if constexpr (HasFillKernel<Program>::value) {
             // (A transparent draw's kernel blends each colour over the target itself, as `counted`.)
-            if (!texelAlpha.on() && program.fillKernel(static_cast<const TriangleSetup&>(setup), fb, scissor, shaded)) return;
+            if (!texelAlpha.on() && program.fillKernel(setup, fb, scissor, shaded)) return;
         }
         if constexpr (kVaryings == 0) {
             fillTriangle<kDepth, kVaryings>(setup, fb, scissor, counted);
@@ -336,7 +363,6 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     case DepthMode::Test: fill(std::integral_constant<DepthMode, DepthMode::Test>{}); break;
     case DepthMode::TestWrite: fill(std::integral_constant<DepthMode, DepthMode::TestWrite>{}); break;
     }
-    return true;
 }
 
 } // namespace detail

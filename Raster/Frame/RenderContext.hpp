@@ -59,6 +59,10 @@ static_assert(kMaxRenderThreads <= kMaxBalancedLanes, "LaneBalance holds every l
 // Draws of at least this many triangles are binned when drawn on several lanes (see `bins`): below
 // it the saved walk does not pay for the extra fork-join (tens of microseconds).
 inline constexpr std::size_t kBinningMinTriangles = 4096;
+// A binned triangle that meets the bands of this many lanes or more is set up once for all of them
+// (RenderContext::sharedSetups); with 2 (every triangle crossing a band edge), the bunny at 1920x1080
+// on 2 threads took 1.05-1.15x as long: each shared record is read from the other core's cache.
+inline constexpr int kSharedSetupLanes = 3;
 
 // Passed explicitly to every draw (no global state). Owns scratch buffers whose capacity is
 // kept from draw to draw, so a steady frame loop allocates nothing.
@@ -120,6 +124,18 @@ public:
     // less); tests lower it to bin small draws too.
     std::vector<std::vector<std::uint32_t>> bins;
     std::size_t binningMinTriangles = kBinningMinTriangles;
+    // A binned draw's triangles set up once, by the lane that bins them, for the lanes that fill
+    // them: every piece of a clipped triangle, and a triangle that meets the bands of at least
+    // sharedSetupLanes lanes (one that meets fewer is set up by each: reading a record another
+    // core wrote costs more than setting up a small triangle again). Tests lower it to 1.
+    // sharedSetups[c] holds chunk c's, referred to by index from the bins (the records past the
+    // draw's last are left from earlier draws). Kept between draws and frames, as the bins are.
+    struct SharedSetup {
+        TriangleSetup setup;
+        std::size_t triangle = 0; // its index in the draw
+    };
+    std::vector<std::vector<SharedSetup>> sharedSetups;
+    int sharedSetupLanes = kSharedSetupLanes;
 
     // Which lane fills which band of rows in a split draw, weighted by the lanes' measured speed
     // (reset to equal weights by setThreads; tests fix it). The image and the counters do not

@@ -44,6 +44,21 @@ inline void drawWireEdge(FrameBuffer& fb, MsaaBuffer* msaa, const ScreenVertex& 
                  options, width);
 }
 
+// A triangle (vertices i0, i1, i2) that crosses a clip plane, clipped: its polygon's vertices on
+// screen, returning how many (0: nothing left; else its fan of polygon.triangleCount() pieces,
+// screen[0], screen[k + 1], screen[k + 2], which keeps the input winding, so every piece gets the
+// same cull decision).
+template <int kVaryings>
+int clipToScreen(RenderContext& ctx, const DrawState& state, Clipper& clipper, std::uint32_t i0,
+                 std::uint32_t i1, std::uint32_t i2, ClippedPolygon& polygon, ScreenVertex* screen) {
+    const FrameBuffer& fb = ctx.target();
+    ClipVertex a = ctx.clipVertices[i0], b = ctx.clipVertices[i1], c = ctx.clipVertices[i2];
+    detail::rebaseVaryings(state.rebase, a, b, c); // before the clipper interpolates them
+    const int n = clipper.clip(a, b, c, polygon);
+    for (int k = 0; k < n; ++k) screen[k] = toScreen(polygon.vertices[std::size_t(k)], fb.width(), fb.height(), kVaryings);
+    return n;
+}
+
 // A triangle (index t, vertices i0, i1, i2) that crosses a clip plane: clipped, its fan of
 // pieces rasterized on this lane (each piece's owner counts it).
 template <int kVaryings, class Program>
@@ -54,11 +69,7 @@ void clipAndRasterize(RenderContext& ctx, const DrawState& state, Clipper& clipp
     MsaaBuffer* msaa = ctx.multisampleTarget();
     ClippedPolygon polygon;
     ScreenVertex screen[kMaxClipVertices];
-    ClipVertex a = ctx.clipVertices[i0], b = ctx.clipVertices[i1], c = ctx.clipVertices[i2];
-    detail::rebaseVaryings(state.rebase, a, b, c); // before the clipper interpolates them
-    const int n = clipper.clip(a, b, c, polygon);
-    for (int k = 0; k < n; ++k) screen[k] = toScreen(polygon.vertices[std::size_t(k)], fb.width(), fb.height(), kVaryings);
-    // The fan keeps the input winding, so every piece gets the same cull decision.
+    const int n = clipToScreen<kVaryings>(ctx, state, clipper, i0, i1, i2, polygon, screen);
     bool drawn = false;
     for (int k = 0; k < polygon.triangleCount(); ++k)
         drawn |= rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t, screen[0], screen[k + 1], screen[k + 2],

@@ -2,6 +2,8 @@
 // lanes whose bands it meets, then each lane draws its bins in submission order.
 #pragma once
 
+#include <algorithm>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -17,19 +19,42 @@ namespace detail {
 // (screenSnapped, from the positions the vertex stage snapped once per vertex: the decisions
 // setupTriangleCulled would make) and appends each survivor to the bins of the lanes whose bands
 // it meets, marked for the lane that counts it; then every lane draws its bins chunk by chunk, so
-// still in submission order. Same image, same counters.
-inline constexpr std::uint32_t kBinOwner = 1u << 31; // this lane counts the triangle
-inline constexpr std::uint32_t kBinClip = 1u << 30;  // crosses a clip plane: clipped by the lane
-inline constexpr std::uint32_t kBinIndex = kBinClip - 1u;
+// still in submission order. Every piece of a triangle that crosses a clip plane (clipped here,
+// once), and a triangle whose rows meet the bands of RenderContext::sharedSetupLanes lanes or
+// more, is set up here, once, into the chunk's shared records (RenderContext::sharedSetups),
+// which its lanes read; any other triangle is set up by each lane that fills it, next to its
+// fill. Same image, same counters (with sharedSetupLanes 1: setupsBuilt == rasterized).
+inline constexpr std::uint32_t kBinOwner = 1u << 31;  // this lane counts the triangle
+inline constexpr std::uint32_t kBinShared = 1u << 30; // the index is of a shared record, not a triangle
+inline constexpr std::uint32_t kBinIndex = kBinShared - 1u;
 
-inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& clipper, int chunk, int lanes,
-                         const BandPattern* pattern, const std::uint32_t* indices, std::size_t triangleBegin,
-                         std::size_t triangleEnd, RenderStats& stats) {
+template <int kVaryings>
+void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, int chunk, int lanes,
+                  const BandPattern* pattern, const std::uint32_t* indices, std::size_t triangleBegin,
+                  std::size_t triangleEnd, RenderStats& stats) {
     const unsigned* codes = ctx.clipCodes.data();
     const SnappedVertex* snapped = ctx.snappedVertices.data();
+    const ScreenVertex* screen = ctx.screenVertices.data();
     const int height = ctx.target().height();
     const bool multisampled = ctx.multisampleTarget() != nullptr;
+    const bool setUp = state.stopAfter >= PipelineStop::Setup; // else only the partial pipeline's counters
+    const LaneBands bands{0, lanes, height, pattern};
+    Clipper clipper = clipperProto;
     std::vector<std::uint32_t>* bins = ctx.bins.data() + std::size_t(chunk) * std::size_t(lanes);
+    std::vector<RenderContext::SharedSetup>& shared = ctx.sharedSetups[std::size_t(chunk)];
+    std::size_t sharedUsed = 0;
+    auto nextShared = [&shared, &sharedUsed]() -> RenderContext::SharedSetup& {
+        if (sharedUsed == shared.size()) shared.resize(std::max<std::size_t>(64, 2 * shared.size()));
+        return shared[sharedUsed];
+    };
+    // An entry (triangle or shared record) into the bins of the lanes meeting rows [rowBegin,
+    // rowEnd): the owner of the first row counts it.
+    auto addToBins = [&](std::uint32_t entry, int rowBegin, int rowEnd) {
+        const int owner = bands.ownerOfRow(rowBegin);
+        bins[owner].push_back(entry | kBinOwner);
+        std::uint64_t helpers = bands.lanesMeeting(rowBegin, rowEnd) & ~(std::uint64_t(1) << owner);
+        for (; helpers != 0; helpers &= helpers - 1) bins[lowestSetBit(helpers)].push_back(entry);
+    };
     for (std::size_t tri = triangleBegin; tri < triangleEnd; ++tri) {
         const std::uint32_t i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
         const unsigned c0 = codes[i0], c1 = codes[i1], c2 = codes[i2];
@@ -45,9 +70,29 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
             ++stats.trivialRejected;
             if ((c0 | c1 | c2) & kCodeNonFinite) ++stats.nonFinite;
             break;
-        case ClipClass::Clip:
-            for (int l = 0; l < lanes; ++l) bins[l].push_back(std::uint32_t(tri) | kBinClip);
+        case ClipClass::Clip: {
+            ++stats.clipped;
+            ClippedPolygon polygon;
+            ScreenVertex pieces[kMaxClipVertices];
+            clipToScreen<kVaryings>(ctx, state, clipper, i0, i1, i2, polygon, pieces);
+            for (int k = 0; k < polygon.triangleCount(); ++k) {
+                const ScreenVertex &a = pieces[0], &b = pieces[k + 1], &c = pieces[k + 2];
+                if (!setUp) { // stopped after geometry or binning: the cull decision only
+                    if (isCulled(state.cull, a, b, c)) ++stats.culled;
+                    continue;
+                }
+                RenderContext::SharedSetup& record = nextShared();
+                const SetupOutcome outcome = setupForDraw<kVaryings>(record.setup, state, multisampled, a, b, c);
+                if (outcome == SetupOutcome::Culled) ++stats.culled;
+                if (outcome != SetupOutcome::Ready) continue;
+                ++stats.setupsBuilt;
+                record.triangle = tri;
+                int rowBegin = 0, rowEnd = 0;
+                rowsForLanes(a, b, c, multisampled, rowBegin, rowEnd);
+                addToBins(std::uint32_t(sharedUsed++) | kBinShared, rowBegin, rowEnd);
+            }
             break;
+        }
         case ClipClass::Accept: {
             // Accepted: every vertex inside the clipper's guard band, which lies inside setup's
             // (kClipGuardBand < kGuardBand), so every one was snapped.
@@ -60,11 +105,18 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
             // whose bands meet its rows fills them.
             int rowBegin = 0, rowEnd = 0;
             rowsOfSnappedExtent(minY, maxY, multisampled, rowBegin, rowEnd);
-            const LaneBands bands{0, lanes, height, pattern};
-            const int owner = bands.ownerOfRow(rowBegin);
-            bins[owner].push_back(std::uint32_t(tri) | kBinOwner);
-            std::uint64_t helpers = bands.lanesMeeting(rowBegin, rowEnd) & ~(std::uint64_t(1) << owner);
-            for (; helpers != 0; helpers &= helpers - 1) bins[lowestSetBit(helpers)].push_back(std::uint32_t(tri));
+            const std::uint64_t meeting = bands.lanesMeeting(rowBegin, rowEnd);
+            if (!setUp || bitCount(meeting) < ctx.sharedSetupLanes) { // each lane sets it up
+                addToBins(std::uint32_t(tri), rowBegin, rowEnd);
+                break;
+            }
+            RenderContext::SharedSetup& record = nextShared();
+            [[maybe_unused]] const SetupOutcome built =
+                setupForDraw<kVaryings>(record.setup, state, multisampled, screen[i0], screen[i1], screen[i2]);
+            assert(built == SetupOutcome::Ready); // screenSnapped's decision
+            ++stats.setupsBuilt;
+            record.triangle = tri;
+            addToBins(std::uint32_t(sharedUsed++) | kBinShared, rowBegin, rowEnd);
             break;
         }
         }
@@ -73,32 +125,47 @@ inline void binTriangles(RenderContext& ctx, const DrawState& state, const Clipp
 
 // Lane `bands.lane`'s share of a binned draw: its bins of every chunk, in chunk order.
 template <int kVaryings, class Program>
-void rasterBinned(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, const LaneBands& bands,
-                  LaneState& lane, const std::uint32_t* indices, Program& program) {
+void rasterBinned(RenderContext& ctx, const DrawState& state, const LaneBands& bands, LaneState& lane,
+                  const std::uint32_t* indices, Program& program) {
     FrameBuffer& fb = ctx.target();
     MsaaBuffer* msaa = ctx.multisampleTarget();
-    Clipper clipper = clipperProto;
     RenderStats sink;
     const ScreenVertex* vertices = ctx.screenVertices.data();
     for (int chunk = 0; chunk < bands.lanes; ++chunk) {
         const std::vector<std::uint32_t>& bin = ctx.bins[std::size_t(chunk) * std::size_t(bands.lanes) + std::size_t(bands.lane)];
+        const RenderContext::SharedSetup* shared = ctx.sharedSetups[std::size_t(chunk)].data();
         const std::size_t count = bin.size();
         for (std::size_t k = 0; k < count; ++k) {
             if (k + kPrefetchTriangles < count) {
-                const std::uint32_t* ahead = indices + 3 * std::size_t(bin[k + kPrefetchTriangles] & kBinIndex);
-                for (int j = 0; j < 3; ++j) {
-                    prefetchForRead(vertices + ahead[j]);
-                    prefetchForRead(reinterpret_cast<const char*>(vertices + ahead[j] + 1) - 1);
+                const std::uint32_t ahead = bin[k + kPrefetchTriangles];
+                if (ahead & kBinShared) {
+                    const TriangleSetup& s = shared[ahead & kBinIndex].setup;
+                    prefetchForRead(&s);
+                    prefetchForRead(&s.lowerEdge);
+                    prefetchForRead(&s.value[0]);
+                    prefetchForRead(&s.value[kVaryings + 1]);
+                    prefetchForRead(&s.ddx[0]);
+                    prefetchForRead(&s.ddx[kVaryings + 1]);
+                    prefetchForRead(&s.ddy[0]);
+                    prefetchForRead(&s.ddy[kVaryings + 1]);
+                    prefetchForRead(&s.ddxStep[0]);
+                } else {
+                    const std::uint32_t* corners = indices + 3 * std::size_t(ahead & kBinIndex);
+                    for (int j = 0; j < 3; ++j) {
+                        prefetchForRead(vertices + corners[j]);
+                        prefetchForRead(reinterpret_cast<const char*>(vertices + corners[j] + 1) - 1);
+                    }
                 }
             }
             const std::uint32_t entry = bin[k];
-            const std::size_t t = entry & kBinIndex;
-            const std::uint32_t i0 = indices[3 * t], i1 = indices[3 * t + 1], i2 = indices[3 * t + 2];
-            if (entry & kBinClip) {
-                if (bands.lane == 0) ++lane.stats.clipped;
-                clipAndRasterize<kVaryings>(ctx, state, clipper, bands, lane, sink, t, i0, i1, i2, program);
+            if (entry & kBinShared) {
+                const RenderContext::SharedSetup& record = shared[entry & kBinIndex];
+                fillSetUpTriangle<kVaryings>(fb, msaa, state, bands, lane, (entry & kBinOwner) ? lane.stats : sink,
+                                             record.triangle, record.setup, program);
                 continue;
             }
+            const std::size_t t = entry & kBinIndex;
+            const std::uint32_t i0 = indices[3 * t], i1 = indices[3 * t + 1], i2 = indices[3 * t + 2];
             // (No wireframe here: a wireframe draw runs on one lane.)
             rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t, vertices[i0], vertices[i1], vertices[i2],
                                          program, (entry & kBinOwner) ? LaneRole::Owner : LaneRole::Helper);

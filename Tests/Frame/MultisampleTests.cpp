@@ -334,6 +334,7 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
     c2.setThreads(2);
     c3.setThreads(3);
     c3.binningMinTriangles = 0; // every draw binned (the sample rows decide the lanes)
+    c3.sharedSetupLanes = 1;    // and every triangle set up once
     RenderSettings settings;
     app::renderFrame(c0, scene, view, settings); // the plain path
     for (int n : {1, 2, 4, 8, 1}) {
@@ -346,6 +347,9 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
         CHECK(std::equal(one.depthData(), one.depthData() + 96 * 64, two.depthData()));
         CHECK(std::equal(one.colorData(), one.colorData() + 96 * 64, three.colorData()));
         CHECK(std::equal(one.depthData(), one.depthData() + 96 * 64, three.depthData()));
+        // Each triangle set up once, by one lane, whichever lanes fill it.
+        CHECK(c3.stats.rasterized > 100);
+        CHECK(c3.stats.setupsBuilt == c3.stats.rasterized);
         CHECK(c1.msaa.width() == (n > 1 ? 96 : 0));
         CHECK(c1.msaa.samples() == (n > 1 ? n : 1));
         CHECK_FALSE(c1.multisampling); // only during the frame

@@ -41,9 +41,11 @@ std::size_t differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
 }
 
 // binMin: RenderContext::binningMinTriangles (0: every draw on several lanes binned); weights:
-// the lanes' bands fixed to these weights (LaneBalance::fix) instead of adapting.
+// the lanes' bands fixed to these weights (LaneBalance::fix) instead of adapting;
+// sharedSetupLanes: RenderContext's.
 Frame renderDefault(const app::SceneOptions& options, int threads, const RenderSettings& settings,
-                    std::size_t binMin = kBinningMinTriangles, const std::vector<int>& weights = {}) {
+                    std::size_t binMin = kBinningMinTriangles, const std::vector<int>& weights = {},
+                    int sharedSetupLanes = kSharedSetupLanes) {
     static auto scene = app::loadScene(app::SceneOptions{});
     REQUIRE(scene.ok());
     const FrameView view =
@@ -53,6 +55,7 @@ Frame renderDefault(const app::SceneOptions& options, int threads, const RenderS
     RenderContext ctx(f.fb);
     ctx.setThreads(threads);
     ctx.binningMinTriangles = binMin;
+    ctx.sharedSetupLanes = sharedSetupLanes;
     if (!weights.empty()) ctx.laneBalance.fix(weights.data(), threads);
     REQUIRE(ctx.threads() == std::max(threads, 1));
     app::renderFrame(ctx, scene.value(), view, settings);
@@ -284,6 +287,11 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
             const Frame binned = renderDefault(options, threads, settings, 0);
             CHECK(differingPixels(one.fb, binned.fb) == 0);
             CHECK(sameStats(one.stats, binned.stats));
+            // Binned, every triangle set up once (RenderContext::sharedSetupLanes 1).
+            const Frame shared = renderDefault(options, threads, settings, 0, {}, 1);
+            CHECK(differingPixels(one.fb, shared.fb) == 0);
+            CHECK(sameStats(one.stats, shared.stats));
+            CHECK(shared.stats.setupsBuilt == shared.stats.rasterized);
         }
         // Bands weighted unevenly (LaneBalance), plain and binned: a lane with one band in 16,
         // a lane with most of them, a lane whose only band may lie below a small target.
@@ -317,6 +325,7 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
             indices.push_back(std::uint32_t(positions.size() - 1));
         }
         if (t % 13 == 0) positions.back() = positions[positions.size() - 2];                 // degenerate
+        if (t % 11 == 5 && t % 7 != 0) positions[positions.size() - 3].z = 1.25f; // in front of the near plane
     }
     // The partial pipelines too (the bench's stage times): their counters must match as well.
     for (CullMode cull : {CullMode::None, CullMode::CW}) {
@@ -332,36 +341,46 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
             reference.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
             TieProgram program{&positions};
             drawProgram<1>(ref, state, positions.size(), indices.data(), indices.size(), program);
-            for (int threads : {2, 3, 5})
-            for (std::size_t binMin : {kBinningMinTriangles, std::size_t(0)}) {
-                INFO("cull " << cullModeName(cull) << ", depth mode " << int(depth) << ", stop " << int(stop) << ", "
-                             << threads << " threads" << (binMin == 0 ? ", binned" : ""));
+            REQUIRE(ref.stats.clipped > 100);
+            if (stop >= PipelineStop::Setup) REQUIRE(ref.stats.rasterized > 1000);
+            // Unbinned (every lane walks every triangle, setting up those its bands meet), binned
+            // (set up once: clipped pieces and triangles meeting 3 lanes or more), and binned with
+            // every triangle set up once (sharedSetupLanes 1).
+            enum class Walk { Plain, Binned, Shared };
+            auto draw = [&](int threads, Walk walk, const int* weights) {
                 FrameBuffer fb(203, 157);
                 RenderContext ctx(fb);
                 ctx.setThreads(threads);
-                ctx.binningMinTriangles = binMin;
+                ctx.binningMinTriangles = walk == Walk::Plain ? kBinningMinTriangles : 0;
+                if (walk == Walk::Shared) ctx.sharedSetupLanes = 1;
+                if (weights) ctx.laneBalance.fix(weights, threads);
                 ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
                 TieProgram copy{&positions};
                 drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), copy);
                 CHECK(differingPixels(reference, fb) == 0);
                 CHECK(sameStats(ref.stats, ctx.stats));
+                return ctx.stats.setupsBuilt;
+            };
+            const std::uint64_t once = stop >= PipelineStop::Setup ? ref.stats.rasterized : 0u;
+            for (int threads : {2, 3, 5}) {
+                INFO("cull " << cullModeName(cull) << ", depth mode " << int(depth) << ", stop " << int(stop) << ", "
+                             << threads << " threads");
+                const std::uint64_t plain = draw(threads, Walk::Plain, nullptr);
+                const std::uint64_t binned = draw(threads, Walk::Binned, nullptr);
+                CHECK(draw(threads, Walk::Shared, nullptr) == once);
+                if (stop >= PipelineStop::Setup) {
+                    CHECK(plain > once); // triangles set up by each lane whose bands they meet
+                    CHECK(binned >= once);
+                    CHECK(binned < plain); // clipped ones set up once, large ones on 3 lanes or more too
+                }
             }
-            for (const std::vector<int>& weights : kSkewedWeights)
-            for (std::size_t binMin : {kBinningMinTriangles, std::size_t(0)}) {
+            for (const std::vector<int>& weights : kSkewedWeights) {
                 const int threads = int(weights.size());
                 INFO("cull " << cullModeName(cull) << ", depth mode " << int(depth) << ", stop " << int(stop) << ", "
-                             << threads << " threads, weights " << weights[0] << "/" << weights[1]
-                             << (binMin == 0 ? ", binned" : ""));
-                FrameBuffer fb(203, 157);
-                RenderContext ctx(fb);
-                ctx.setThreads(threads);
-                ctx.binningMinTriangles = binMin;
-                ctx.laneBalance.fix(weights.data(), threads);
-                ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
-                TieProgram copy{&positions};
-                drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), copy);
-                CHECK(differingPixels(reference, fb) == 0);
-                CHECK(sameStats(ref.stats, ctx.stats));
+                             << threads << " threads, weights " << weights[0] << "/" << weights[1]);
+                draw(threads, Walk::Plain, weights.data());
+                draw(threads, Walk::Binned, weights.data());
+                CHECK(draw(threads, Walk::Shared, weights.data()) == once);
             }
         }
     }
