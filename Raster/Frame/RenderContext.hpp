@@ -60,8 +60,9 @@ static_assert(kMaxRenderThreads <= kMaxBalancedLanes, "LaneBalance holds every l
 // it the saved walk does not pay for the extra fork-join (tens of microseconds).
 inline constexpr std::size_t kBinningMinTriangles = 4096;
 // A binned triangle that meets the bands of this many lanes or more is set up once for all of them
-// (RenderContext::sharedSetups); with 2 (every triangle crossing a band edge), the bunny at 1920x1080
-// on 2 threads took 1.05-1.15x as long: each shared record is read from the other core's cache.
+// (RenderContext::sharedSetups). With 2 (every triangle crossing a band edge) the bunny on 2 threads
+// took 1.07x as long at 1920x1080, 1.05x at 800x600 (cull cw): a record written by one core and read
+// by the other costs more than setting up a small triangle again.
 inline constexpr int kSharedSetupLanes = 3;
 
 // Passed explicitly to every draw (no global state). Owns scratch buffers whose capacity is
