@@ -3,6 +3,7 @@
 // several.
 #pragma once
 
+#include <atomic>
 #include <cassert>
 #include <chrono>
 #include <cstddef>
@@ -117,31 +118,32 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         busy[l] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
     if (binned) {
-        // 2. Binned primitive stage: each lane screens a chunk of the triangles into the lanes'
-        //    bins, then each lane draws its bins (binTriangles, rasterBinned).
-        const std::size_t binCount = std::size_t(lanes) * std::size_t(lanes);
+        // 2. Binned primitive stage: each lane screens a chunk of the triangles into the bands'
+        //    bins, then the lanes take the bands one at a time (binTriangles, fillBinnedBand).
+        const int bandsHigh = bandCount(fb.height());
+        const std::size_t binCount = std::size_t(lanes) * std::size_t(bandsHigh);
         if (ctx.bins.size() < binCount) ctx.bins.resize(binCount);
         if (ctx.sharedSetups.size() < std::size_t(lanes)) ctx.sharedSetups.resize(std::size_t(lanes));
         RenderStats chunkStats[kMaxRenderThreads];
         auto binJob = [&](int c) {
-            for (int l = 0; l < lanes; ++l) ctx.bins[std::size_t(c) * std::size_t(lanes) + std::size_t(l)].clear();
+            for (int b = 0; b < bandsHigh; ++b) ctx.bins[std::size_t(c) * std::size_t(bandsHigh) + std::size_t(b)].clear();
             const ItemRange chunk = weightedPart(triangles, c, lanes, weights);
-            binTriangles<kVaryings>(ctx, state, clipper, c, lanes, pattern, indices, chunk.begin, chunk.end, chunkStats[c]);
+            binTriangles<kVaryings>(ctx, state, clipper, c, indices, chunk.begin, chunk.end, chunkStats[c]);
         };
         pool.run(binJob);
         if (state.stopAfter <= PipelineStop::Bin) { // binning also clipped and culled
             for (int l = 0; l < lanes; ++l) ctx.stats += chunkStats[l];
             return;
         }
-        auto binnedJob = [&](int l) {
-            timed(l, [&] {
-                Program copy = program;
-                rasterBinned<kVaryings>(ctx, state, LaneBands{l, lanes, fb.height(), pattern}, laneStates[l], indices, copy);
-                flushFill(copy, fb);
-            });
+        std::atomic<int> nextBand{0};
+        auto bandJob = [&](int l) {
+            Program copy = program;
+            for (int band = nextBand.fetch_add(1, std::memory_order_relaxed); band < bandsHigh;
+                 band = nextBand.fetch_add(1, std::memory_order_relaxed))
+                fillBinnedBand<kVaryings>(ctx, state, band, lanes, laneStates[l], indices, copy);
+            flushFill(copy, fb);
         };
-        pool.run(binnedJob);
-        ctx.laneBalance.record(busy);
+        pool.run(bandJob);
         for (int l = 0; l < lanes; ++l) {
             ctx.stats += chunkStats[l];
             ctx.stats += laneStates[l].stats;

@@ -64,6 +64,7 @@ struct LaneBands {
     static_assert(FrameBuffer::kMaxDimension <= kBandRows * BandPattern::kMaxBands, "a band owner for every row");
     int lane = 0, lanes = 1, height = 0;
     const BandPattern* pattern = nullptr; // null, or pattern->lanes == lanes
+    int onlyBand = -1; // >= 0: the lane fills this one band (a binned draw's band, whoever owns it)
 
     int ownerOfBand(int band) const { return pattern ? pattern->ownerOfBand(band) : band % lanes; }
     int ownerOfRow(int row) const { return ownerOfBand(std::clamp(row, 0, std::max(height - 1, 0)) / kBandRows); }
@@ -78,20 +79,6 @@ struct LaneBands {
         for (int b = first; b <= last; ++b)
             if (ownerOfBand(b) == lane) return true;
         return false;
-    }
-    // Bit l set for every lane l that meets(rowBegin, rowEnd) would say true for: one walk over
-    // the bands instead of one per lane (binning).
-    std::uint64_t lanesMeeting(int rowBegin, int rowEnd) const {
-        static_assert(kMaxRenderThreads <= 64, "a bit per lane");
-        rowBegin = std::max(rowBegin, 0);
-        rowEnd = std::min(rowEnd, height);
-        if (rowBegin >= rowEnd) return 0;
-        const int first = rowBegin / kBandRows, last = (rowEnd - 1) / kBandRows;
-        if (last - first + 1 >= (pattern ? pattern->period : lanes))
-            return lanes >= 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << lanes) - 1u;
-        std::uint64_t mask = 0;
-        for (int b = first; b <= last; ++b) mask |= std::uint64_t(1) << ownerOfBand(b);
-        return mask;
     }
 };
 
@@ -343,6 +330,11 @@ void fillSetUpTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         }
     };
     auto fill = [&](auto depthTag) {
+        if (bands.onlyBand >= 0) {
+            const int y0 = bands.onlyBand * LaneBands::kBandRows;
+            fillIn(depthTag, Scissor{0, y0, fb.width(), std::min(y0 + LaneBands::kBandRows, fb.height())});
+            return;
+        }
         if (bands.lanes == 1) {
             fillIn(depthTag, fullScissor(fb));
             return;

@@ -59,11 +59,11 @@ static_assert(kMaxRenderThreads <= kMaxBalancedLanes, "LaneBalance holds every l
 // Draws of at least this many triangles are binned when drawn on several lanes (see `bins`): below
 // it the saved walk does not pay for the extra fork-join (tens of microseconds).
 inline constexpr std::size_t kBinningMinTriangles = 4096;
-// A binned triangle that meets the bands of this many lanes or more is set up once for all of them
+// A binned triangle whose rows meet this many bands or more is set up once for all of them
 // (RenderContext::sharedSetups). With 2 (every triangle crossing a band edge) the bunny on 2 threads
 // took 1.07x as long at 1920x1080, 1.05x at 800x600 (cull cw): a record written by one core and read
 // by the other costs more than setting up a small triangle again.
-inline constexpr int kSharedSetupLanes = 3;
+inline constexpr int kSharedSetupBands = 3;
 
 // Passed explicitly to every draw (no global state). Owns scratch buffers whose capacity is
 // kept from draw to draw, so a steady frame loop allocates nothing.
@@ -118,16 +118,16 @@ public:
     std::vector<TransparentTriangle> transparentOrder;
     std::vector<std::uint32_t> transparentIndices;
 
-    // The primitive stage's bins (drawLanes with several lanes): bins[c * lanes + l] lists, in
-    // submission order, the triangles of chunk c that lane l fills (detail::binTriangles). Kept
-    // between draws and frames: no allocation once they have grown. A draw of fewer than
-    // binningMinTriangles triangles is not binned (every lane walks all of them: one fork-join
-    // less); tests lower it to bin small draws too.
+    // The primitive stage's bins (drawLanes with several lanes): bins[c * bandCount + b] lists, in
+    // submission order, the triangles of chunk c whose rows meet band b (32 rows: kBandRows;
+    // detail::binTriangles). Kept between draws and frames: no allocation once they have grown. A
+    // draw of fewer than binningMinTriangles triangles is not binned (every lane walks all of
+    // them: one fork-join less); tests lower it to bin small draws too.
     std::vector<std::vector<std::uint32_t>> bins;
     std::size_t binningMinTriangles = kBinningMinTriangles;
-    // A binned draw's triangles set up once, by the lane that bins them, for the lanes that fill
-    // them: every piece of a clipped triangle, and a triangle that meets the bands of at least
-    // sharedSetupLanes lanes (one that meets fewer is set up by each: reading a record another
+    // A binned draw's triangles set up once, by the lane that bins them, for the bands that fill
+    // them: every piece of a clipped triangle, and a triangle whose rows meet at least
+    // sharedSetupBands bands (one that meets fewer is set up for each: reading a record another
     // core wrote costs more than setting up a small triangle again). Tests lower it to 1.
     // sharedSetups[c] holds chunk c's, referred to by index from the bins (the records past the
     // draw's last are left from earlier draws). Kept between draws and frames, as the bins are.
@@ -136,7 +136,7 @@ public:
         std::size_t triangle = 0; // its index in the draw
     };
     std::vector<std::vector<SharedSetup>> sharedSetups;
-    int sharedSetupLanes = kSharedSetupLanes;
+    int sharedSetupBands = kSharedSetupBands;
 
     // Which lane fills which band of rows in a split draw, weighted by the lanes' measured speed
     // (reset to equal weights by setThreads; tests fix it). The image and the counters do not

@@ -1,5 +1,6 @@
 // Binned draws (several lanes, many triangles): each triangle screened once into the bins of the
-// lanes whose bands it meets, then each lane draws its bins in submission order.
+// bands of rows it meets, then the lanes take the bands one at a time and draw each band's bins
+// in submission order.
 #pragma once
 
 #include <algorithm>
@@ -17,43 +18,57 @@ namespace detail {
 // the culled ones included; with several lanes that front end is repeated per lane. A binned draw
 // screens each triangle once instead: lane c classifies and culls chunk c of the triangles
 // (screenSnapped, from the positions the vertex stage snapped once per vertex: the decisions
-// setupTriangleCulled would make) and appends each survivor to the bins of the lanes whose bands
-// it meets, marked for the lane that counts it; then every lane draws its bins chunk by chunk, so
-// still in submission order. Every piece of a triangle that crosses a clip plane (clipped here,
-// once), and a triangle whose rows meet the bands of RenderContext::sharedSetupLanes lanes or
-// more, is set up here, once, into the chunk's shared records (RenderContext::sharedSetups),
-// which its lanes read; any other triangle is set up by each lane that fills it, next to its
-// fill. Same image, same counters (with sharedSetupLanes 1: setupsBuilt == rasterized).
-inline constexpr std::uint32_t kBinOwner = 1u << 31;  // this lane counts the triangle
+// setupTriangleCulled would make) and appends each survivor to chunk c's bins of the 32-row bands
+// (LaneBands::kBandRows) its rows meet, marked in the band of its first row, which counts it. Then
+// each lane takes the next band not yet taken until none is left (fillBinnedBand), and draws its
+// bins chunk by chunk, so in submission order: a band is drawn by one lane, whole, while its rows
+// are in that lane's cache, and a lane that runs slower (or shares its CPU) simply takes fewer.
+// Every piece of a triangle that crosses a clip plane (clipped here, once), and a triangle whose
+// rows meet RenderContext::sharedSetupBands bands or more, is set up here, once, into the chunk's
+// shared records (RenderContext::sharedSetups), which its bands read; any other triangle is set up
+// for each band it meets, next to its fill. Same image, same counters (with sharedSetupBands 1:
+// setupsBuilt == rasterized).
+inline constexpr std::uint32_t kBinOwner = 1u << 31;  // this band counts the triangle
 inline constexpr std::uint32_t kBinShared = 1u << 30; // the index is of a shared record, not a triangle
 inline constexpr std::uint32_t kBinIndex = kBinShared - 1u;
 
+// The bands of a target `height` rows high.
+inline int bandCount(int height) { return (height + LaneBands::kBandRows - 1) / LaneBands::kBandRows; }
+
 template <int kVaryings>
-void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, int chunk, int lanes,
-                  const BandPattern* pattern, const std::uint32_t* indices, std::size_t triangleBegin,
-                  std::size_t triangleEnd, RenderStats& stats) {
+void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& clipperProto, int chunk,
+                  const std::uint32_t* indices, std::size_t triangleBegin, std::size_t triangleEnd, RenderStats& stats) {
     const unsigned* codes = ctx.clipCodes.data();
     const SnappedVertex* snapped = ctx.snappedVertices.data();
     const ScreenVertex* screen = ctx.screenVertices.data();
     const int height = ctx.target().height();
     const bool multisampled = ctx.multisampleTarget() != nullptr;
     const bool setUp = state.stopAfter >= PipelineStop::Setup; // else only the partial pipeline's counters
-    const LaneBands bands{0, lanes, height, pattern};
+    const int bandsHigh = bandCount(height);
     Clipper clipper = clipperProto;
-    std::vector<std::uint32_t>* bins = ctx.bins.data() + std::size_t(chunk) * std::size_t(lanes);
+    std::vector<std::uint32_t>* bins = ctx.bins.data() + std::size_t(chunk) * std::size_t(bandsHigh);
     std::vector<RenderContext::SharedSetup>& shared = ctx.sharedSetups[std::size_t(chunk)];
     std::size_t sharedUsed = 0;
     auto nextShared = [&shared, &sharedUsed]() -> RenderContext::SharedSetup& {
         if (sharedUsed == shared.size()) shared.resize(std::max<std::size_t>(64, 2 * shared.size()));
         return shared[sharedUsed];
     };
-    // An entry (triangle or shared record) into the bins of the lanes meeting rows [rowBegin,
-    // rowEnd): the owner of the first row counts it.
+    // The bands rows [rowBegin, rowEnd) meet on the target: [first, last] (first > last: none).
+    auto bandsMet = [height](int rowBegin, int rowEnd, int& first, int& last) {
+        rowBegin = std::max(rowBegin, 0);
+        rowEnd = std::min(rowEnd, height);
+        first = rowBegin / LaneBands::kBandRows;
+        last = rowBegin < rowEnd ? (rowEnd - 1) / LaneBands::kBandRows : first - 1;
+    };
+    // An entry (triangle or shared record) into the bins of the bands rows [rowBegin, rowEnd)
+    // meet, marked in the band of the first row (on the target), which counts it.
     auto addToBins = [&](std::uint32_t entry, int rowBegin, int rowEnd) {
-        const int owner = bands.ownerOfRow(rowBegin);
+        const int owner = std::clamp(rowBegin, 0, std::max(height - 1, 0)) / LaneBands::kBandRows;
         bins[owner].push_back(entry | kBinOwner);
-        std::uint64_t helpers = bands.lanesMeeting(rowBegin, rowEnd) & ~(std::uint64_t(1) << owner);
-        for (; helpers != 0; helpers &= helpers - 1) bins[lowestSetBit(helpers)].push_back(entry);
+        int first = 0, last = 0;
+        bandsMet(rowBegin, rowEnd, first, last);
+        for (int b = first; b <= last; ++b)
+            if (b != owner) bins[b].push_back(entry);
     };
     for (std::size_t tri = triangleBegin; tri < triangleEnd; ++tri) {
         const std::uint32_t i0 = indices[3 * tri], i1 = indices[3 * tri + 1], i2 = indices[3 * tri + 2];
@@ -105,8 +120,9 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
             // whose bands meet its rows fills them.
             int rowBegin = 0, rowEnd = 0;
             rowsOfSnappedExtent(minY, maxY, multisampled, rowBegin, rowEnd);
-            const std::uint64_t meeting = bands.lanesMeeting(rowBegin, rowEnd);
-            if (!setUp || bitCount(meeting) < ctx.sharedSetupLanes) { // each lane sets it up
+            int first = 0, last = 0;
+            bandsMet(rowBegin, rowEnd, first, last);
+            if (!setUp || last - first + 1 < ctx.sharedSetupBands) { // each band sets it up
                 addToBins(std::uint32_t(tri), rowBegin, rowEnd);
                 break;
             }
@@ -123,16 +139,20 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
     }
 }
 
-// Lane `bands.lane`'s share of a binned draw: its bins of every chunk, in chunk order.
+// Band `band` of a draw binned in `chunks` chunks, on a lane (`lane`: its counters and scratch):
+// the band's bins of every chunk, in chunk order.
 template <int kVaryings, class Program>
-void rasterBinned(RenderContext& ctx, const DrawState& state, const LaneBands& bands, LaneState& lane,
-                  const std::uint32_t* indices, Program& program) {
+void fillBinnedBand(RenderContext& ctx, const DrawState& state, int band, int chunks, LaneState& lane,
+                    const std::uint32_t* indices, Program& program) {
     FrameBuffer& fb = ctx.target();
     MsaaBuffer* msaa = ctx.multisampleTarget();
+    const int bandsHigh = bandCount(fb.height());
+    LaneBands bands{0, 1, fb.height()};
+    bands.onlyBand = band;
     RenderStats sink;
     const ScreenVertex* vertices = ctx.screenVertices.data();
-    for (int chunk = 0; chunk < bands.lanes; ++chunk) {
-        const std::vector<std::uint32_t>& bin = ctx.bins[std::size_t(chunk) * std::size_t(bands.lanes) + std::size_t(bands.lane)];
+    for (int chunk = 0; chunk < chunks; ++chunk) {
+        const std::vector<std::uint32_t>& bin = ctx.bins[std::size_t(chunk) * std::size_t(bandsHigh) + std::size_t(band)];
         const RenderContext::SharedSetup* shared = ctx.sharedSetups[std::size_t(chunk)].data();
         const std::size_t count = bin.size();
         for (std::size_t k = 0; k < count; ++k) {

@@ -55,17 +55,6 @@ constexpr std::int64_t firstCentreAtOrAfter(std::int64_t n, std::int64_t d) {
     return ceilDiv(n - std::int64_t(kSubPixelScale / 2) * d, std::int64_t(kSubPixelScale) * d);
 }
 
-// The number of set bits of a word (masks of lanes).
-inline int bitCount(std::uint64_t v) {
-#if defined(__GNUC__) || defined(__clang__)
-    return __builtin_popcountll(v);
-#else
-    int n = 0;
-    for (; v != 0; v &= v - 1) ++n;
-    return n;
-#endif
-}
-
 // Index of the lowest / highest set bit of a non-zero word (masks of pixels, samples and lanes).
 inline int lowestSetBit(std::uint64_t v) {
     assert(v != 0);

@@ -334,7 +334,7 @@ TEST_CASE("MSAA: the same image on every thread count; sample memory only while 
     c2.setThreads(2);
     c3.setThreads(3);
     c3.binningMinTriangles = 0; // every draw binned (the sample rows decide the lanes)
-    c3.sharedSetupLanes = 1;    // and every triangle set up once
+    c3.sharedSetupBands = 1;    // and every triangle set up once
     RenderSettings settings;
     app::renderFrame(c0, scene, view, settings); // the plain path
     for (int n : {1, 2, 4, 8, 1}) {

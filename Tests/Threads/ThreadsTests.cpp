@@ -1,9 +1,11 @@
 // Multi-threaded rendering: images, depth and counters bit-identical to one thread, for many scenes and settings.
 #include "TestFramework.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <random>
 #include <thread>
 #include <tuple>
@@ -42,10 +44,10 @@ std::size_t differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
 
 // binMin: RenderContext::binningMinTriangles (0: every draw on several lanes binned); weights:
 // the lanes' bands fixed to these weights (LaneBalance::fix) instead of adapting;
-// sharedSetupLanes: RenderContext's.
+// sharedSetupBands: RenderContext's.
 Frame renderDefault(const app::SceneOptions& options, int threads, const RenderSettings& settings,
                     std::size_t binMin = kBinningMinTriangles, const std::vector<int>& weights = {},
-                    int sharedSetupLanes = kSharedSetupLanes) {
+                    int sharedSetupBands = kSharedSetupBands) {
     static auto scene = app::loadScene(app::SceneOptions{});
     REQUIRE(scene.ok());
     const FrameView view =
@@ -55,7 +57,7 @@ Frame renderDefault(const app::SceneOptions& options, int threads, const RenderS
     RenderContext ctx(f.fb);
     ctx.setThreads(threads);
     ctx.binningMinTriangles = binMin;
-    ctx.sharedSetupLanes = sharedSetupLanes;
+    ctx.sharedSetupBands = sharedSetupBands;
     if (!weights.empty()) ctx.laneBalance.fix(weights.data(), threads);
     REQUIRE(ctx.threads() == std::max(threads, 1));
     app::renderFrame(ctx, scene.value(), view, settings);
@@ -108,29 +110,6 @@ TEST_CASE("band patterns: equal weights interleave, uneven ones keep their count
         }
         for (int l = 0; l < lanes; ++l) CHECK(count[std::size_t(l)] == weights[std::size_t(l)]);
         for (int b = 0; b < BandPattern::kMaxBands; ++b) CHECK(p.ownerOfBand(b) == p.owners[std::size_t(b % p.period)]);
-    }
-}
-
-TEST_CASE("lanesMeeting: one walk over the bands gives every lane's meets", "[threads]") {
-    std::mt19937 rng(38); // sampled: 2,000 row ranges per split, fixed seed
-    std::vector<BandPattern> patterns;
-    for (const std::vector<int>& weights : kSkewedWeights) patterns.push_back(spreadBands(weights.data(), int(weights.size())));
-    const std::vector<int> equal64(64, BandPattern::kBandsPerLane);
-    patterns.push_back(spreadBands(equal64.data(), 64));
-    std::vector<detail::LaneBands> splits;
-    for (const BandPattern& p : patterns) splits.push_back({0, p.lanes, 1080, &p});
-    for (int lanes : {2, 3, 7, 64}) splits.push_back({0, lanes, 8192, nullptr}); // b % lanes
-    for (const detail::LaneBands& split : splits) {
-        std::uniform_int_distribution<int> row(-100, split.height + 100), length(0, 700);
-        for (int i = 0; i < 2000; ++i) {
-            const int rowBegin = row(rng), rowEnd = rowBegin + (i % 4 == 0 ? length(rng) : length(rng) % 40);
-            const std::uint64_t mask = split.lanesMeeting(rowBegin, rowEnd);
-            INFO(split.lanes << " lanes, rows [" << rowBegin << ", " << rowEnd << ")");
-            for (int l = 0; l < 64; ++l) {
-                const bool meets = l < split.lanes && detail::LaneBands{l, split.lanes, split.height, split.pattern}.meets(rowBegin, rowEnd);
-                REQUIRE(((mask >> l) & 1u) == std::uint64_t(meets));
-            }
-        }
     }
 }
 
@@ -287,7 +266,7 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
             const Frame binned = renderDefault(options, threads, settings, 0);
             CHECK(differingPixels(one.fb, binned.fb) == 0);
             CHECK(sameStats(one.stats, binned.stats));
-            // Binned, every triangle set up once (RenderContext::sharedSetupLanes 1).
+            // Binned, every triangle set up once (RenderContext::sharedSetupBands 1).
             const Frame shared = renderDefault(options, threads, settings, 0, {}, 1);
             CHECK(differingPixels(one.fb, shared.fb) == 0);
             CHECK(sameStats(one.stats, shared.stats));
@@ -345,14 +324,14 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
             if (stop >= PipelineStop::Setup) REQUIRE(ref.stats.rasterized > 1000);
             // Unbinned (every lane walks every triangle, setting up those its bands meet), binned
             // (set up once: clipped pieces and triangles meeting 3 lanes or more), and binned with
-            // every triangle set up once (sharedSetupLanes 1).
+            // every triangle set up once (sharedSetupBands 1).
             enum class Walk { Plain, Binned, Shared };
             auto draw = [&](int threads, Walk walk, const int* weights) {
                 FrameBuffer fb(203, 157);
                 RenderContext ctx(fb);
                 ctx.setThreads(threads);
                 ctx.binningMinTriangles = walk == Walk::Plain ? kBinningMinTriangles : 0;
-                if (walk == Walk::Shared) ctx.sharedSetupLanes = 1;
+                if (walk == Walk::Shared) ctx.sharedSetupBands = 1;
                 if (weights) ctx.laneBalance.fix(weights, threads);
                 ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
                 TieProgram copy{&positions};
@@ -437,6 +416,104 @@ TEST_CASE("a draw stopped after binning fills the bins and nothing else; unbinne
         const auto geometry = draw(threads, binMin, PipelineStop::Geometry, b);
         CHECK(sameStats(std::get<0>(bin), std::get<0>(geometry)));
         CHECK(differingPixels(a, cleared) == 0);
+    }
+}
+
+TEST_CASE("binned draws: each band's bins list the triangles whose rows meet it, in submission order", "[threads]") {
+    // 400 triangles of random sizes (some spanning every band) over a 96 x 150 target: five bands
+    // of 32 rows, the last one 22 rows high. Sampled with a fixed seed.
+    std::mt19937 rng(3803);
+    std::uniform_real_distribution<float> centre(-1.0f, 1.0f), size(0.0f, 1.0f);
+    std::vector<Vec4> positions;
+    std::vector<std::uint32_t> indices;
+    constexpr int kWidth = 96, kHeight = 150, kBands = 5;
+    // Screen y on a quarter-pixel grid offset by 1/8: never within 1/8 pixel of a pixel centre,
+    // so the rows below do not depend on rounding.
+    auto onGrid = [](float y) {
+        const double screen = std::floor((1.0 - double(y)) * 0.5 * kHeight * 4.0) / 4.0 + 0.125;
+        return float(1.0 - 2.0 * screen / kHeight);
+    };
+    for (int t = 0; t < 400; ++t) {
+        const float cx = centre(rng), cy = centre(rng), r = size(rng) * size(rng) * 1.5f;
+        for (int k = 0; k < 3; ++k) {
+            positions.push_back({cx + r * (2 * size(rng) - 1), onGrid(cy + r * (2 * size(rng) - 1)), 0.5f, 1.0f});
+            indices.push_back(std::uint32_t(positions.size() - 1));
+        }
+    }
+    REQUIRE(detail::bandCount(kHeight) == kBands);
+    // The rows whose pixel centres each triangle's y extent [minY, maxY) holds, from its screen
+    // positions (y down: (1 - y) / 2 * height), in double.
+    // A triangle wholly beyond one side of the view is rejected, one of zero area on the 1/256
+    // pixel grid culled ({0, 0}: no row).
+    std::vector<std::pair<int, int>> rows;
+    for (int t = 0; t < 400; ++t) {
+        const Vec4* p = positions.data() + 3 * t;
+        auto beyond = [p](auto side) { return side(p[0]) && side(p[1]) && side(p[2]); };
+        auto snapped = [](double ndc, int size) { return std::llround((ndc + 1.0) * 0.5 * size * 256.0); };
+        const long long x0 = snapped(p[0].x, kWidth), x1 = snapped(p[1].x, kWidth), x2 = snapped(p[2].x, kWidth);
+        const long long y0 = snapped(p[0].y, kHeight), y1 = snapped(p[1].y, kHeight), y2 = snapped(p[2].y, kHeight);
+        if (beyond([](const Vec4& v) { return v.x < -1.0f; }) || beyond([](const Vec4& v) { return v.x > 1.0f; }) ||
+            beyond([](const Vec4& v) { return v.y < -1.0f; }) || beyond([](const Vec4& v) { return v.y > 1.0f; }) ||
+            (x1 - x0) * (y2 - y0) == (x2 - x0) * (y1 - y0)) {
+            rows.emplace_back(0, 0);
+            continue;
+        }
+        double lo = 1e9, hi = -1e9;
+        for (int k = 0; k < 3; ++k) {
+            const double y = (1.0 - double(positions[std::size_t(3 * t + k)].y)) * 0.5 * kHeight;
+            lo = std::min(lo, y);
+            hi = std::max(hi, y);
+        }
+        rows.emplace_back(int(std::ceil(lo - 0.5)), int(std::ceil(hi - 0.5)));
+    }
+    for (int threads : {2, 3}) {
+        for (int shared : {kSharedSetupBands, 1}) {
+            INFO(threads << " threads, set up once from " << shared << " bands");
+            FrameBuffer fb(kWidth, kHeight);
+            RenderContext ctx(fb);
+            ctx.setThreads(threads);
+            ctx.binningMinTriangles = 0;
+            ctx.sharedSetupBands = shared;
+            ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+            DrawState state;
+            TieProgram program{&positions};
+            drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), program);
+            std::size_t sharedEntries = 0, owners = 0;
+            for (int b = 0; b < kBands; ++b) {
+                std::vector<std::size_t> listed; // band b's triangles, chunk by chunk
+                for (int c = 0; c < threads; ++c)
+                    for (std::uint32_t entry : ctx.bins[std::size_t(c * kBands + b)]) {
+                        owners += (entry & detail::kBinOwner) != 0;
+                        if (entry & detail::kBinShared) {
+                            ++sharedEntries;
+                            listed.push_back(ctx.sharedSetups[std::size_t(c)][entry & detail::kBinIndex].triangle);
+                        } else {
+                            listed.push_back(entry & detail::kBinIndex);
+                        }
+                    }
+                CHECK(std::is_sorted(listed.begin(), listed.end())); // submission order
+                CHECK(std::adjacent_find(listed.begin(), listed.end()) == listed.end()); // each once
+                std::vector<std::size_t> expected;
+                for (std::size_t t = 0; t < rows.size(); ++t) {
+                    if (rows[t].first >= rows[t].second) continue; // no centre row: not drawn
+                    // The band of its first row (on the target) counts it; it is in every band it meets.
+                    const int owner = std::clamp(rows[t].first, 0, kHeight - 1) / 32;
+                    const int first = std::max(rows[t].first, 0), end = std::min(rows[t].second, kHeight);
+                    if (b == owner || (first < end && first < 32 * (b + 1) && end > 32 * b)) expected.push_back(t);
+                }
+                std::vector<std::size_t> missing, extra;
+                std::set_difference(expected.begin(), expected.end(), listed.begin(), listed.end(), std::back_inserter(missing));
+                std::set_difference(listed.begin(), listed.end(), expected.begin(), expected.end(), std::back_inserter(extra));
+                CAPTURE(b, missing, extra);
+                CHECK(listed == expected);
+            }
+            CHECK(owners == ctx.stats.rasterized);
+            // Only triangles meeting 3 bands or more share a record (every one with 1); none is clipped.
+            CHECK(ctx.stats.clipped == 0);
+            if (shared == 1) CHECK(ctx.stats.setupsBuilt == ctx.stats.rasterized);
+            else CHECK(ctx.stats.setupsBuilt > ctx.stats.rasterized);
+            CHECK(sharedEntries > 0);
+        }
     }
 }
 
