@@ -63,7 +63,9 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     // on several lanes whose vertices a later draw may reuse (that one may bin), so that the
     // cached vertices of a mesh always have them.
     const std::size_t triangles = indexCount / 3;
-    const bool binned = lanes > 1 && triangles >= ctx.binningMinTriangles && triangles <= std::size_t(kBinIndex);
+    // (Each triangle's bin entries index it, or one of its clipped pieces' shared setups.)
+    const bool binned = lanes > 1 && triangles >= ctx.binningMinTriangles &&
+                        triangles <= std::size_t(kBinIndex) / std::size_t(kMaxClipVertices - 2);
     const bool reusable = vertexSource && ctx.vertexReuse;
     const bool snap = binned || (lanes > 1 && reusable);
     if (snap) ctx.snappedVertices.resize(vertexCount);

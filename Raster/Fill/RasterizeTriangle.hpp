@@ -179,9 +179,9 @@ inline void snappedRowRange(const ScreenVertex& v0, const ScreenVertex& v1, cons
     rowsOfSnappedExtent(std::min({y0, y1, y2}), std::max({y0, y1, y2}), multisampled, begin, end);
 }
 
-// The rows that decide which lanes meet a screen triangle and which one counts it (the owner of
+// The rows that decide which bands a screen triangle meets and which one counts it (the band of
 // the first): snappedRowRange's, or [0, 0) when a vertex lies outside the guard band.
-inline void rowsForLanes(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, bool multisampled,
+inline void rowsForBands(const ScreenVertex& v0, const ScreenVertex& v1, const ScreenVertex& v2, bool multisampled,
                          int& begin, int& end) {
     begin = end = 0;
     if (std::fabs(v0.y) <= kGuardBand && std::fabs(v1.y) <= kGuardBand && std::fabs(v2.y) <= kGuardBand)
@@ -219,7 +219,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     if (role == LaneRole::Helper) stats = &sink; // binned: this lane's bands meet it, another lane counts it
     if (bands.lanes > 1 && role == LaneRole::Unknown) {
         int rowBegin = 0, rowEnd = 0;
-        rowsForLanes(v0, v1, v2, msaa != nullptr, rowBegin, rowEnd);
+        rowsForBands(v0, v1, v2, msaa != nullptr, rowBegin, rowEnd);
         const bool owner = bands.ownerOfRow(rowBegin) == bands.lane;
         if (!owner) {
             if (state.stopAfter <= PipelineStop::Bin || !bands.meets(rowBegin, rowEnd)) return false;

@@ -61,7 +61,7 @@ static_assert(kMaxRenderThreads <= kMaxBalancedLanes, "LaneBalance holds every l
 inline constexpr std::size_t kBinningMinTriangles = 4096;
 // A binned triangle whose rows meet this many bands or more is set up once for all of them
 // (RenderContext::sharedSetups). With 2 (every triangle crossing a band edge) the bunny on 2 threads
-// took 1.07x as long at 1920x1080, 1.05x at 800x600 (cull cw): a record written by one core and read
+// took 1.09x as long at 1920x1080, 1.07x at 800x600 (cull cw): a record written by one core and read
 // by the other costs more than setting up a small triangle again.
 inline constexpr int kSharedSetupBands = 3;
 

@@ -103,7 +103,7 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
                 ++stats.setupsBuilt;
                 record.triangle = tri;
                 int rowBegin = 0, rowEnd = 0;
-                rowsForLanes(a, b, c, multisampled, rowBegin, rowEnd);
+                rowsForBands(a, b, c, multisampled, rowBegin, rowEnd);
                 addToBins(std::uint32_t(sharedUsed++) | kBinShared, rowBegin, rowEnd);
             }
             break;
@@ -116,8 +116,8 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
                 screenSnapped(snapped[i0], snapped[i1], snapped[i2], state.cull, multisampled, minY, maxY);
             if (outcome == SetupOutcome::Culled) ++stats.culled; // isCulled's decision too
             if (outcome != SetupOutcome::Ready || state.stopAfter == PipelineStop::Geometry) break;
-            // rasterizeTriangle's decision: the owner of the first row counts it, every other lane
-            // whose bands meet its rows fills them.
+            // rasterizeTriangle's decision: the band of the first row counts it, every band its
+            // rows meet fills them.
             int rowBegin = 0, rowEnd = 0;
             rowsOfSnappedExtent(minY, maxY, multisampled, rowBegin, rowEnd);
             int first = 0, last = 0;
