@@ -82,6 +82,15 @@ struct TieProgram {
     }
 };
 
+// How a draw on several lanes walks its triangles: Plain (unbinned: every lane walks every
+// triangle, setting up those its bands meet), Binned (the default sharing: clipped pieces and
+// triangles meeting 3 bands or more set up once), Shared (binned, every triangle set up once).
+enum class Walk { Plain, Binned, Shared };
+void setWalk(RenderContext& ctx, Walk walk) {
+    ctx.binningMinTriangles = walk == Walk::Plain ? kBinningMinTriangles : 0;
+    if (walk == Walk::Shared) ctx.sharedSetupBands = 1;
+}
+
 // Uneven band weights (each list sums to BandPattern::kBandsPerLane per lane).
 const std::vector<int> kSkewedWeights[] = {{15, 1}, {1, 15}, {11, 5}, {1, 1, 22}, {10, 4, 10}, {2, 9, 9, 9, 11}};
 
@@ -323,16 +332,11 @@ TEST_CASE("random triangle soup with exact depth ties: submission order survives
             drawProgram<1>(ref, state, positions.size(), indices.data(), indices.size(), program);
             REQUIRE(ref.stats.clipped > 100);
             if (stop >= PipelineStop::Setup) REQUIRE(ref.stats.rasterized > 1000);
-            // Unbinned (every lane walks every triangle, setting up those its bands meet), binned
-            // (set up once: clipped pieces and triangles meeting 3 lanes or more), and binned with
-            // every triangle set up once (sharedSetupBands 1).
-            enum class Walk { Plain, Binned, Shared };
             auto draw = [&](int threads, Walk walk, const int* weights) {
                 FrameBuffer fb(203, 157);
                 RenderContext ctx(fb);
                 ctx.setThreads(threads);
-                ctx.binningMinTriangles = walk == Walk::Plain ? kBinningMinTriangles : 0;
-                if (walk == Walk::Shared) ctx.sharedSetupBands = 1;
+                setWalk(ctx, walk);
                 if (weights) ctx.laneBalance.fix(weights, threads);
                 ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
                 TieProgram copy{&positions};
@@ -387,12 +391,10 @@ TEST_CASE("multisampled soup: 2, 3 and 8 threads, plain, binned and set up once,
         if (t % 13 == 0) positions.back() = positions[positions.size() - 2];
     }
     constexpr int kWidth = 131, kHeight = 203;
-    enum class Walk { Plain, Binned, Shared };
     auto draw = [&](int samples, DepthMode depth, int threads, Walk walk, FrameBuffer& out) {
         RenderContext ctx(out);
         ctx.setThreads(threads);
-        ctx.binningMinTriangles = walk == Walk::Plain ? kBinningMinTriangles : 0;
-        if (walk == Walk::Shared) ctx.sharedSetupBands = 1;
+        setWalk(ctx, walk);
         REQUIRE(ctx.msaa.resize(kWidth, kHeight, samples));
         ctx.multisampling = true;
         ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
