@@ -58,13 +58,14 @@ struct alignas(64) LaneState {
 // Which rows a lane fills. One lane: the whole target. Several: the target is cut into bands
 // of kBandRows rows, band b belonging to lane pattern->ownerOfBand(b) (RenderContext::laneBalance:
 // a repeated pattern weighted by the lanes' speed), or to lane b % lanes without a pattern; both
-// interleave, so a model in the middle of the screen still spreads over every lane.
+// interleave, so a model in the middle of the screen still spreads over every lane. A binned
+// draw's lane fills one band at a time, the one it took (onlyBand).
 struct LaneBands {
     static constexpr int kBandRows = BandPattern::kBandRows;
     static_assert(FrameBuffer::kMaxDimension <= kBandRows * BandPattern::kMaxBands, "a band owner for every row");
     int lane = 0, lanes = 1, height = 0;
     const BandPattern* pattern = nullptr; // null, or pattern->lanes == lanes
-    int onlyBand = -1; // >= 0: the lane fills this one band (a binned draw's band, whoever owns it)
+    int onlyBand = -1; // >= 0: the lane fills this band only (the band of a binned draw it took)
 
     int ownerOfBand(int band) const { return pattern ? pattern->ownerOfBand(band) : band % lanes; }
     int ownerOfRow(int row) const { return ownerOfBand(std::clamp(row, 0, std::max(height - 1, 0)) / kBandRows); }
@@ -188,8 +189,8 @@ inline void rowsForBands(const ScreenVertex& v0, const ScreenVertex& v1, const S
         snappedRowRange(v0, v1, v2, multisampled, begin, end);
 }
 
-// A lane's part in a triangle when the caller already knows it (binned draws: binTriangles):
-// the Owner counts it, a Helper only fills its own bands of it.
+// A lane's part in a triangle when the caller already knows it (binned draws: the bin entry
+// says): the Owner counts it, a Helper only fills its band of it.
 enum class LaneRole { Unknown, Owner, Helper };
 
 // The draw's setup of a screen triangle into `out` (setupTriangleCulled with the draw's cull,
@@ -216,7 +217,7 @@ bool rasterizeTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
                        RenderStats& sink, std::size_t t, const ScreenVertex& v0, const ScreenVertex& v1,
                        const ScreenVertex& v2, Program& program, LaneRole role = LaneRole::Unknown) {
     RenderStats* stats = &lane.stats;
-    if (role == LaneRole::Helper) stats = &sink; // binned: this lane's bands meet it, another lane counts it
+    if (role == LaneRole::Helper) stats = &sink; // binned: another band counts it
     if (bands.lanes > 1 && role == LaneRole::Unknown) {
         int rowBegin = 0, rowEnd = 0;
         rowsForBands(v0, v1, v2, msaa != nullptr, rowBegin, rowEnd);
