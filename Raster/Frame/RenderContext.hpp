@@ -56,9 +56,11 @@ struct RenderStats {
 // Most render threads a context runs (lanes of its pool).
 inline constexpr int kMaxRenderThreads = 64;
 static_assert(kMaxRenderThreads <= kMaxBalancedLanes, "LaneBalance holds every lane");
-// Draws of at least this many triangles are binned when drawn on several lanes (see `bins`): below
-// it the saved walk does not pay for the extra fork-join (tens of microseconds).
-inline constexpr std::size_t kBinningMinTriangles = 4096;
+// Draws of at least this many triangles are binned when drawn on several lanes (see `bins`); a
+// smaller one's lanes walk it whole, one fork-join instead of two. Binning every draw, not only
+// those of 4,096 triangles or more, took 2 threads 0.82x [0.72, 0.97] as long on the spider close-up
+// (its draws have 76-952 triangles), 0.90x [0.65, 1.05] on the built-in scene (9 interleaved rounds).
+inline constexpr std::size_t kBinningMinTriangles = 64;
 // A binned triangle whose rows meet this many bands or more is set up once for all of them
 // (RenderContext::sharedSetups). With 2 (every triangle crossing a band edge) the bunny on 2 threads
 // took 1.09x as long at 1920x1080, 1.07x at 800x600 (cull cw): a record written by one core and read
@@ -122,7 +124,7 @@ public:
     // submission order, the triangles of chunk c whose rows meet band b (32 rows: kBandRows;
     // detail::binTriangles). Kept between draws and frames: no allocation once they have grown. A
     // draw of fewer than binningMinTriangles triangles is not binned (every lane walks all of
-    // them: one fork-join less); tests lower it to bin small draws too.
+    // them: one fork-join less); tests set it to bin every draw, or none.
     std::vector<std::vector<std::uint32_t>> bins;
     std::size_t binningMinTriangles = kBinningMinTriangles;
     // A binned draw's triangles set up once, by the lane that bins them, for the bands that fill

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstring>
 #include <iterator>
+#include <limits>
 #include <random>
 #include <thread>
 #include <tuple>
@@ -86,8 +87,9 @@ struct TieProgram {
 // triangle, setting up those its bands meet), Binned (the default sharing: clipped pieces and
 // triangles meeting 3 bands or more set up once), Shared (binned, every triangle set up once).
 enum class Walk { Plain, Binned, Shared };
+constexpr std::size_t kNeverBinned = std::numeric_limits<std::size_t>::max(); // binningMinTriangles
 void setWalk(RenderContext& ctx, Walk walk) {
-    ctx.binningMinTriangles = walk == Walk::Plain ? kBinningMinTriangles : 0;
+    ctx.binningMinTriangles = walk == Walk::Plain ? kNeverBinned : 0;
     if (walk == Walk::Shared) ctx.sharedSetupBands = 1;
 }
 
@@ -272,7 +274,7 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
             CHECK(many.stats.setupsBuilt <= std::uint64_t(threads) * many.stats.rasterized);
             if (c.height >= 2 * detail::LaneBands::kBandRows && c.width > 100)
                 CHECK(many.stats.setupsBuilt > many.stats.rasterized); // triangles crossing bands
-            // Every draw binned (the built-in scene's draws are below kBinningMinTriangles).
+            // Every draw binned (by default the built-in scene's smallest are not).
             const Frame binned = renderDefault(options, threads, settings, 0);
             CHECK(differingPixels(one.fb, binned.fb) == 0);
             CHECK(sameStats(one.stats, binned.stats));
@@ -288,7 +290,7 @@ TEST_CASE("default scene: N threads give the single-threaded image, depth and co
             const int threads = int(weights.size());
             INFO(c.width << "x" << c.height << " " << shadingModeName(c.shading) << ", weights " << weights[0] << "/"
                           << weights[1] << " over " << threads << " threads");
-            for (std::size_t binMin : {kBinningMinTriangles, std::size_t(0)}) {
+            for (std::size_t binMin : {kNeverBinned, std::size_t(0)}) {
                 const Frame skewed = renderDefault(options, threads, settings, binMin, weights);
                 CHECK(differingPixels(one.fb, skewed.fb) == 0);
                 CHECK(sameStats(one.stats, skewed.stats));
@@ -470,7 +472,7 @@ TEST_CASE("a draw stopped after binning fills the bins and nothing else; unbinne
     CHECK(stats.setupsBuilt == 0);       // set up by nobody
     CHECK(stats.fragmentsShaded == 0);
     // Not binned (one thread, or below the threshold): the same as stopping after geometry.
-    for (auto [threads, binMin] : {std::pair{1, std::size_t(0)}, std::pair{2, kBinningMinTriangles}}) {
+    for (auto [threads, binMin] : {std::pair{1, std::size_t(0)}, std::pair{2, kNeverBinned}}) {
         FrameBuffer a(96, 80), b(96, 80);
         const auto bin = draw(threads, binMin, PipelineStop::Bin, a);
         const auto geometry = draw(threads, binMin, PipelineStop::Geometry, b);
