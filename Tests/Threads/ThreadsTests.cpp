@@ -427,6 +427,84 @@ TEST_CASE("multisampled soup: 2, 3 and 8 threads, plain, binned and set up once,
         }
 }
 
+TEST_CASE("tiny triangles on band edges, triangles larger than the frame and past the guard band: one thread's image",
+          "[threads][clip]") {
+    // Sub-pixel and few-pixel triangles centred on the rows where one 32-row band ends and the
+    // next begins (LaneBands::kBandRows), triangles whose vertices lie beyond the frame on every
+    // side (accepted: each meets every band), and triangles with a vertex far past the guard band
+    // (clipped against it, their pieces set up once at binning), in random depths with every 5th
+    // in one plane (exact ties keep the first drawn). One sample and 4, depth written and off;
+    // compared with one thread by colour, depth bits and counters. Sampled with a fixed seed.
+    constexpr int kWidth = 160, kHeight = 150;
+    static_assert(kHeight > 4 * detail::LaneBands::kBandRows, "five bands");
+    std::mt19937 rng(777);
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), z(0.05f, 0.95f);
+    auto ndcX = [](float px) { return px / kWidth * 2.0f - 1.0f; };
+    auto ndcY = [](float py) { return 1.0f - py / kHeight * 2.0f; };
+    std::vector<Vec4> positions;
+    std::vector<std::uint32_t> indices;
+    int tiny = 0, huge = 0, beyond = 0;
+    for (int t = 0; t < 900; ++t) {
+        const float depth = t % 5 == 0 ? 0.5f : z(rng);
+        Vec4 v[3];
+        if (t % 3 != 2) { // tiny, on a band edge
+            const float cx = unit(rng) * kWidth;
+            const float cy = float(detail::LaneBands::kBandRows * (1 + int(unit(rng) * 4.0f))) + (unit(rng) - 0.5f) * 2.0f;
+            const float r = t % 2 == 0 ? 0.4f : 3.0f;
+            for (Vec4& p : v) p = {ndcX(cx + r * (2 * unit(rng) - 1)), ndcY(cy + r * (2 * unit(rng) - 1)), depth, 1.0f};
+            ++tiny;
+        } else if (t % 9 == 2) { // larger than the frame: every vertex outside it, inside the guard band
+            for (Vec4& p : v) p = {(unit(rng) < 0.5f ? -1 : 1) * (1.5f + 3 * unit(rng)), 6 * unit(rng) - 3, depth, 1.0f};
+            ++huge;
+        } else { // one vertex far past the guard band (tens of millions of pixels away)
+            for (Vec4& p : v) p = {2 * unit(rng) - 1, 2 * unit(rng) - 1, depth, 1.0f};
+            v[t % 3] = {(unit(rng) < 0.5f ? -1 : 1) * 4e5f, 8e5f * unit(rng) - 4e5f, depth, 1.0f};
+            ++beyond;
+        }
+        for (const Vec4& p : v) {
+            positions.push_back(p);
+            indices.push_back(std::uint32_t(positions.size() - 1));
+        }
+    }
+    auto draw = [&](int samples, DepthMode depth, int threads, Walk walk, FrameBuffer& out) {
+        RenderContext ctx(out);
+        ctx.setThreads(threads);
+        setWalk(ctx, walk);
+        if (samples > 1) {
+            REQUIRE(ctx.msaa.resize(kWidth, kHeight, samples));
+            ctx.multisampling = true;
+        }
+        ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+        DrawState state;
+        state.depth = depth;
+        TieProgram program{&positions};
+        drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), program);
+        if (samples > 1) {
+            resolveMsaaRows(ctx.msaa, out, 0, kHeight);
+            ctx.multisampling = false;
+        }
+        return ctx.stats;
+    };
+    REQUIRE((tiny > 500 && huge > 20 && beyond > 150));
+    for (int samples : {1, 4})
+        for (DepthMode depth : {DepthMode::TestWrite, DepthMode::Off}) {
+            FrameBuffer reference(kWidth, kHeight);
+            const RenderStats one = draw(samples, depth, 1, Walk::Plain, reference);
+            REQUIRE(one.clipped >= std::uint64_t(beyond)); // every one past the guard band is clipped
+            REQUIRE(one.rasterized > 400);
+            for (int threads : {2, 3, 8})
+                for (Walk walk : {Walk::Plain, Walk::Binned, Walk::Shared}) {
+                    INFO(samples << " samples, depth mode " << int(depth) << ", " << threads << " threads, walk "
+                                 << int(walk));
+                    FrameBuffer fb(kWidth, kHeight);
+                    const RenderStats many = draw(samples, depth, threads, walk, fb);
+                    CHECK(differingPixels(reference, fb) == 0);
+                    CHECK(sameStats(one, many));
+                    if (walk == Walk::Shared) CHECK(many.setupsBuilt == one.rasterized);
+                }
+        }
+}
+
 TEST_CASE("transparent soup: blended in submission order within each band, for any thread count and walk",
           "[threads][transparency]") {
     // 200 opaque triangles (depth written), then 600 transparent ones over them (alpha 0.4,
