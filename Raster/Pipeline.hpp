@@ -121,7 +121,8 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     };
     if (binned) {
         // 2. Binned primitive stage: each lane screens a chunk of the triangles into the bands'
-        //    bins, then the lanes take the bands one at a time (binTriangles, fillBinnedBand).
+        //    bins, then the lanes take the bands one at a time, the largest first (binTriangles,
+        //    bandsByWork, fillBinnedBand).
         const int bandsHigh = bandCount(fb.height());
         const std::size_t binCount = std::size_t(lanes) * std::size_t(bandsHigh);
         if (ctx.bins.size() < binCount) ctx.bins.resize(binCount);
@@ -137,12 +138,13 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
             for (int l = 0; l < lanes; ++l) ctx.stats += chunkStats[l];
             return;
         }
+        bandsByWork(ctx, lanes, bandsHigh);
         std::atomic<int> nextBand{0};
         auto bandJob = [&](int l) {
             Program copy = program;
-            for (int band = nextBand.fetch_add(1, std::memory_order_relaxed); band < bandsHigh;
-                 band = nextBand.fetch_add(1, std::memory_order_relaxed))
-                fillBinnedBand<kVaryings>(ctx, state, band, lanes, laneStates[l], indices, copy);
+            for (int k = nextBand.fetch_add(1, std::memory_order_relaxed); k < bandsHigh;
+                 k = nextBand.fetch_add(1, std::memory_order_relaxed))
+                fillBinnedBand<kVaryings>(ctx, state, ctx.bandOrder[std::size_t(k)], lanes, laneStates[l], indices, copy);
             flushFill(copy, fb);
         };
         pool.run(bandJob);

@@ -139,6 +139,10 @@ public:
     };
     std::vector<std::vector<SharedSetup>> sharedSetups;
     int sharedSetupBands = kSharedSetupBands;
+    // A binned draw's bands in the order the lanes take them, and their sort keys
+    // (detail::bandsByWork). Kept between draws, as the bins are.
+    std::vector<int> bandOrder;
+    std::vector<std::uint64_t> bandKeys;
 
     // Which lane fills which band of rows in a split draw, weighted by the lanes' measured speed
     // (reset to equal weights by setThreads; tests fix it). The image and the counters do not

@@ -730,6 +730,33 @@ TEST_CASE("binned draws: each band's bins list the triangles whose rows meet it,
     }
 }
 
+TEST_CASE("bandsByWork: the lanes take the bands with the most bin entries first, ties upper first", "[threads]") {
+    // Entries per band summed over the chunks' bins, the order a permutation of the bands.
+    FrameBuffer fb(8, 8);
+    RenderContext ctx(fb);
+    const int chunks = 2, bandsHigh = 6;
+    const std::size_t sizes[2][6] = {{3, 1, 0, 2, 1, 0}, {0, 1, 0, 3, 1, 4}}; // per band: 3 2 0 5 2 4
+    ctx.bins.resize(std::size_t(chunks * bandsHigh));
+    for (int c = 0; c < chunks; ++c)
+        for (int b = 0; b < bandsHigh; ++b)
+            ctx.bins[std::size_t(c * bandsHigh + b)].assign(sizes[c][b], std::uint32_t(b));
+    detail::bandsByWork(ctx, chunks, bandsHigh);
+    CHECK(ctx.bandOrder == std::vector<int>{3, 5, 0, 1, 4, 2});
+    // Every band empty: row order. Fewer bands than before: the order shrinks with them.
+    for (auto& bin : ctx.bins) bin.clear();
+    detail::bandsByWork(ctx, chunks, 4);
+    CHECK(ctx.bandOrder == std::vector<int>{0, 1, 2, 3});
+    // The largest band number a frame can have (kMaxDimension rows) survives the packed key.
+    const int most = detail::bandCount(FrameBuffer::kMaxDimension);
+    ctx.bins.assign(std::size_t(most), {});
+    ctx.bins[std::size_t(most - 1)].assign(7, 0u);
+    detail::bandsByWork(ctx, 1, most);
+    REQUIRE(ctx.bandOrder.size() == std::size_t(most));
+    CHECK(ctx.bandOrder.front() == most - 1);
+    CHECK(ctx.bandOrder[1] == 0);
+    CHECK(ctx.bandOrder.back() == most - 2);
+}
+
 TEST_CASE("wireframe falls back to one lane and still matches", "[threads]") {
     app::SceneOptions options;
     options.width = 120;
