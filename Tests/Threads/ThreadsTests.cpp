@@ -93,6 +93,52 @@ void setWalk(RenderContext& ctx, Walk walk) {
     if (walk == Walk::Shared) ctx.sharedSetupBands = 1;
 }
 
+// A frame on `threads` lanes walking `walk` into `out`, cleared to `clear`, multisampled when
+// samples > 1 (then resolved into `out`, in linear light when `linear`); draws(ctx) draws it.
+template <class Draws>
+RenderStats frameOfDraws(FrameBuffer& out, int samples, int threads, Walk walk, Pixel clear, bool linear, Draws&& draws) {
+    RenderContext ctx(out);
+    ctx.setThreads(threads);
+    setWalk(ctx, walk);
+    if (samples > 1) {
+        REQUIRE(ctx.msaa.resize(out.width(), out.height(), samples));
+        ctx.multisampling = true;
+    }
+    ctx.clearTarget(clear, FrameBuffer::kFarDepth);
+    draws(ctx);
+    if (samples > 1) {
+        resolveMsaaRows(ctx.msaa, out, 0, out.height(), linear);
+        ctx.multisampling = false;
+    }
+    return ctx.stats;
+}
+
+// One TieProgram draw of `indices` over `positions` with depth mode `depth`, as frameOfDraws.
+RenderStats tieFrame(const std::vector<Vec4>& positions, const std::vector<std::uint32_t>& indices, int samples,
+                     DepthMode depth, int threads, Walk walk, FrameBuffer& out) {
+    return frameOfDraws(out, samples, threads, walk, packBgra(0, 0, 0), false, [&](RenderContext& ctx) {
+        DrawState state;
+        state.depth = depth;
+        TieProgram program{&positions};
+        drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), program);
+    });
+}
+
+// render(threads, walk, out) on 2, 3 and 8 lanes, every walk, gives one thread's `reference` and
+// counters `one` (colour, depth bits; set up once: a setup per rasterised triangle).
+template <class Render>
+void expectOneThreadsFrame(const FrameBuffer& reference, const RenderStats& one, Render&& render) {
+    for (int threads : {2, 3, 8})
+        for (Walk walk : {Walk::Plain, Walk::Binned, Walk::Shared}) {
+            INFO(threads << " threads, walk " << int(walk));
+            FrameBuffer fb(reference.width(), reference.height());
+            const RenderStats many = render(threads, walk, fb);
+            CHECK(differingPixels(reference, fb) == 0);
+            CHECK(sameStats(one, many));
+            if (walk == Walk::Shared) CHECK(many.setupsBuilt == one.rasterized);
+        }
+}
+
 // Uneven band weights (each list sums to BandPattern::kBandsPerLane per lane).
 const std::vector<int> kSkewedWeights[] = {{15, 1}, {1, 15}, {11, 5}, {1, 1, 22}, {10, 4, 10}, {2, 9, 9, 9, 11}};
 
@@ -393,37 +439,17 @@ TEST_CASE("multisampled soup: 2, 3 and 8 threads, plain, binned and set up once,
         if (t % 13 == 0) positions.back() = positions[positions.size() - 2];
     }
     constexpr int kWidth = 131, kHeight = 203;
-    auto draw = [&](int samples, DepthMode depth, int threads, Walk walk, FrameBuffer& out) {
-        RenderContext ctx(out);
-        ctx.setThreads(threads);
-        setWalk(ctx, walk);
-        REQUIRE(ctx.msaa.resize(kWidth, kHeight, samples));
-        ctx.multisampling = true;
-        ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
-        DrawState state;
-        state.depth = depth;
-        TieProgram program{&positions};
-        drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), program);
-        resolveMsaaRows(ctx.msaa, out, 0, kHeight);
-        ctx.multisampling = false;
-        return ctx.stats;
-    };
     for (int samples : {2, 4, 8})
         for (DepthMode depth : {DepthMode::TestWrite, DepthMode::Test, DepthMode::Off}) {
+            INFO(samples << " samples, depth mode " << int(depth));
+            auto render = [&](int threads, Walk walk, FrameBuffer& out) {
+                return tieFrame(positions, indices, samples, depth, threads, walk, out);
+            };
             FrameBuffer reference(kWidth, kHeight);
-            const RenderStats one = draw(samples, depth, 1, Walk::Plain, reference);
+            const RenderStats one = render(1, Walk::Plain, reference);
             REQUIRE(one.clipped > 100);
             REQUIRE(one.rasterized > 1000);
-            for (int threads : {2, 3, 8})
-                for (Walk walk : {Walk::Plain, Walk::Binned, Walk::Shared}) {
-                    INFO(samples << " samples, depth mode " << int(depth) << ", " << threads << " threads, walk "
-                                 << int(walk));
-                    FrameBuffer fb(kWidth, kHeight);
-                    const RenderStats many = draw(samples, depth, threads, walk, fb);
-                    CHECK(differingPixels(reference, fb) == 0);
-                    CHECK(sameStats(one, many));
-                    if (walk == Walk::Shared) CHECK(many.setupsBuilt == one.rasterized);
-                }
+            expectOneThreadsFrame(reference, one, render);
         }
 }
 
@@ -466,42 +492,18 @@ TEST_CASE("tiny triangles on band edges, triangles larger than the frame and pas
             indices.push_back(std::uint32_t(positions.size() - 1));
         }
     }
-    auto draw = [&](int samples, DepthMode depth, int threads, Walk walk, FrameBuffer& out) {
-        RenderContext ctx(out);
-        ctx.setThreads(threads);
-        setWalk(ctx, walk);
-        if (samples > 1) {
-            REQUIRE(ctx.msaa.resize(kWidth, kHeight, samples));
-            ctx.multisampling = true;
-        }
-        ctx.clearTarget(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
-        DrawState state;
-        state.depth = depth;
-        TieProgram program{&positions};
-        drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), program);
-        if (samples > 1) {
-            resolveMsaaRows(ctx.msaa, out, 0, kHeight);
-            ctx.multisampling = false;
-        }
-        return ctx.stats;
-    };
     REQUIRE((tiny > 500 && huge > 20 && beyond > 150));
     for (int samples : {1, 4})
         for (DepthMode depth : {DepthMode::TestWrite, DepthMode::Off}) {
+            INFO(samples << " samples, depth mode " << int(depth));
+            auto render = [&](int threads, Walk walk, FrameBuffer& out) {
+                return tieFrame(positions, indices, samples, depth, threads, walk, out);
+            };
             FrameBuffer reference(kWidth, kHeight);
-            const RenderStats one = draw(samples, depth, 1, Walk::Plain, reference);
+            const RenderStats one = render(1, Walk::Plain, reference);
             REQUIRE(one.clipped >= std::uint64_t(beyond)); // every one past the guard band is clipped
             REQUIRE(one.rasterized > 400);
-            for (int threads : {2, 3, 8})
-                for (Walk walk : {Walk::Plain, Walk::Binned, Walk::Shared}) {
-                    INFO(samples << " samples, depth mode " << int(depth) << ", " << threads << " threads, walk "
-                                 << int(walk));
-                    FrameBuffer fb(kWidth, kHeight);
-                    const RenderStats many = draw(samples, depth, threads, walk, fb);
-                    CHECK(differingPixels(reference, fb) == 0);
-                    CHECK(sameStats(one, many));
-                    if (walk == Walk::Shared) CHECK(many.setupsBuilt == one.rasterized);
-                }
+            expectOneThreadsFrame(reference, one, render);
         }
 }
 
@@ -529,29 +531,18 @@ TEST_CASE("transparent soup: blended in submission order within each band, for a
     constexpr int kWidth = 157, kHeight = 141;
     auto render = [&](int samples, bool linear, int threads, Walk walk, const std::vector<std::uint32_t>& transparent,
                       FrameBuffer& out) {
-        RenderContext ctx(out);
-        ctx.setThreads(threads);
-        setWalk(ctx, walk);
-        if (samples > 1) {
-            REQUIRE(ctx.msaa.resize(kWidth, kHeight, samples));
-            ctx.multisampling = true;
-        }
-        ctx.clearTarget(packBgra(30, 60, 90), FrameBuffer::kFarDepth);
-        DrawState solid;
-        solid.depth = DepthMode::TestWrite;
-        TieProgram first{&positions};
-        drawProgram<1>(ctx, solid, positions.size(), opaque.data(), opaque.size(), first);
-        DrawState blended;
-        blended.depth = DepthMode::Test;
-        blended.blendAlpha = 0.4f;
-        blended.linearBlend = linear;
-        TieProgram second{&positions};
-        drawProgram<1>(ctx, blended, positions.size(), transparent.data(), transparent.size(), second);
-        if (samples > 1) {
-            resolveMsaaRows(ctx.msaa, out, 0, kHeight, linear);
-            ctx.multisampling = false;
-        }
-        return ctx.stats;
+        return frameOfDraws(out, samples, threads, walk, packBgra(30, 60, 90), linear, [&](RenderContext& ctx) {
+            DrawState solid;
+            solid.depth = DepthMode::TestWrite;
+            TieProgram first{&positions};
+            drawProgram<1>(ctx, solid, positions.size(), opaque.data(), opaque.size(), first);
+            DrawState blended;
+            blended.depth = DepthMode::Test;
+            blended.blendAlpha = 0.4f;
+            blended.linearBlend = linear;
+            TieProgram second{&positions};
+            drawProgram<1>(ctx, blended, positions.size(), transparent.data(), transparent.size(), second);
+        });
     };
     // The transparent triangles in the opposite order (each keeps its vertices' winding).
     std::vector<std::uint32_t> reversed;
@@ -566,15 +557,9 @@ TEST_CASE("transparent soup: blended in submission order within each band, for a
             // The scene tells the orders apart: drawn back to front, hundreds of pixels change.
             render(samples, linear, 1, Walk::Plain, reversed, backwards);
             REQUIRE(differingPixels(reference, backwards) > 500);
-            for (int threads : {2, 3, 8})
-                for (Walk walk : {Walk::Plain, Walk::Binned, Walk::Shared}) {
-                    INFO(threads << " threads, walk " << int(walk));
-                    FrameBuffer fb(kWidth, kHeight);
-                    const RenderStats many = render(samples, linear, threads, walk, glass, fb);
-                    CHECK(differingPixels(reference, fb) == 0);
-                    CHECK(sameStats(one, many));
-                    if (walk == Walk::Shared) CHECK(many.setupsBuilt == one.rasterized);
-                }
+            expectOneThreadsFrame(reference, one, [&](int threads, Walk walk, FrameBuffer& out) {
+                return render(samples, linear, threads, walk, glass, out);
+            });
         }
 }
 
