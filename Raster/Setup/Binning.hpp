@@ -142,8 +142,8 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
 
 // The order the lanes take a binned draw's bands in (ctx.bandOrder, from its `chunks` x
 // `bandsHigh` bins): the most bin entries first, ties the upper band first. Taken in row order,
-// a band of many triangles taken last kept one lane working while the other waited; taken
-// largest first, the last bands are the smallest and the lanes finish close together (2 threads:
+// a full band taken last can leave one lane drawing while the others wait; taken largest first,
+// the last bands are the smallest and the lanes finish close together (2 threads:
 // bunny 1920x1080 0.977x the time, spider close-up 0.955-0.973x; docs/PERFORMANCE.md). Which lane
 // draws a band does not change the image.
 inline void bandsByWork(RenderContext& ctx, int chunks, int bandsHigh) {
