@@ -86,6 +86,28 @@ struct SpanKernel {
     // the scalar pipeline's very function, lane by lane).
     void put(Pixel& dst, Pixel colour) const { dst = blending() ? blendOver(colour, dst, alpha, p.d->linear) : colour; }
 
+    // planesAt's vector steps: kLanes planes each, as many as the setup's kMaxPlanes-long arrays
+    // hold (past kPlanes their lanes compute unused values); the planes after them one by one.
+    static constexpr int kPlanesPadded = (kPlanes + kLanes - 1) / kLanes * kLanes;
+    static constexpr int kVectorPlanes = kPlanesPadded <= kMaxPlanes ? kPlanesPadded : kPlanes / kLanes * kLanes;
+    static_assert(kVectorPlanes >= kLanes && kLanes / 2 >= kPlaneVarying0, "depth and 1/w in the first step's low half");
+
+    // Every plane's value at (dx, dy) from the setup's origin, fillTriangle's expression
+    // value + ddx * dx + ddy * dy in double, its very operations lane by lane (IEEE, no FMA):
+    // rounded once to float in f[k] (k < kPlanes), and depth and 1/w unrounded in d[kPlaneZ],
+    // d[kPlaneInvW]. A span's start costs a few vector operations instead of a chain per plane.
+    void planesAt(double dx, double dy, float* f, double* d) const {
+        const D x = dset(dx), y = dset(dy);
+        for (int k = 0; k < kVectorPlanes; k += kLanes) {
+            constexpr int kHalf = kLanes / 2;
+            const D low = dload(t.value + k) + dload(t.ddx + k) * x + dload(t.ddy + k) * y;
+            const D high = dload(t.value + k + kHalf) + dload(t.ddx + k + kHalf) * x + dload(t.ddy + k + kHalf) * y;
+            if (k == 0) dstore(d, low);
+            fstore(f + k, toFloat(low, high));
+        }
+        for (int k = kVectorPlanes; k < kPlanes; ++k) f[k] = float(t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy);
+    }
+
     // fillTriangle's depth and 1/w: start + step * ddx in double, rounded once.
     F planeInDouble(D startValue, int plane, F step) const {
         const D g = dset(t.ddx[plane]);
@@ -131,15 +153,15 @@ struct SpanKernel {
     // step 0) and queued, instead of a whole group of lanes for one.
     void queueOne(int y, int x, PlaneOrigin origin) const {
         static_assert(kDepth == DepthMode::Off && kV > 0, "the multisampled fill's centroid pixels");
-        const double dx = (x + 0.5) - origin.x, dy = (y + 0.5) - origin.y;
+        alignas(64) float startF[kPlanesPadded];
+        alignas(64) double startZW[kLanes / 2];
+        planesAt((x + 0.5) - origin.x, (y + 0.5) - origin.y, startF, startZW);
         const int at = queue.count;
-        const double invWValue = t.value[kPlaneInvW] + t.ddx[kPlaneInvW] * dx + t.ddy[kPlaneInvW] * dy;
-        const float invW = float(invWValue + t.ddx[kPlaneInvW] * 0.0);
+        const float invW = float(startZW[kPlaneInvW] + t.ddx[kPlaneInvW] * 0.0);
         const float w = 1.0f / invW;
         for (int k = 0; k < kV; ++k) {
             const int plane = kPlaneVarying0 + k;
-            const float start = float(t.value[plane] + t.ddx[plane] * dx + t.ddy[plane] * dy);
-            const float value = start + t.ddxStep[plane] * 0.0f;
+            const float value = startF[plane] + t.ddxStep[plane] * 0.0f;
             queue.v[k][at] = kPersp == PerspectiveMode::Exact ? value * w : value;
         }
         queue.x[at] = x;
@@ -155,14 +177,10 @@ struct SpanKernel {
 
     void operator()(int y, int x0, int x1) const {
         // Plane values at the centre of the span's first pixel (double, rounded once), as fillTriangle.
-        const double dx = (x0 + 0.5) - t.originX, dy = (y + 0.5) - t.originY;
-        F start[kPlanes];
-        D startD[kPlaneVarying0]; // depth and 1/w, unrounded: evaluated per lane in double
-        for (int k = 0; k < kPlanes; ++k) {
-            const double value = t.value[k] + t.ddx[k] * dx + t.ddy[k] * dy;
-            start[k] = fset(float(value));
-            if (k < kPlaneVarying0) startD[k] = dset(value);
-        }
+        alignas(64) float startF[kPlanesPadded];
+        alignas(64) double startZW[kLanes / 2]; // depth and 1/w, unrounded: evaluated per lane in double
+        planesAt((x0 + 0.5) - t.originX, (y + 0.5) - t.originY, startF, startZW);
+        const D startZ = dset(startZW[kPlaneZ]);
         Pixel* colour = fb.colorRow(y);
         float* depth = fb.depthRow(y);
         const int rowWidth = fb.width();
@@ -187,7 +205,7 @@ struct SpanKernel {
             // span are read and written back unchanged (they belong to this row, i.e. this band).
             const bool inRow = x + kLanes <= rowWidth;
             const F step = fmin(fset(float(x - x0)) + fiota(), lastStep);
-            const F z = planeInDouble(startD[kPlaneZ], kPlaneZ, step);
+            const F z = planeInDouble(startZ, kPlaneZ, step);
             M pass = inside;
             F stored = fzero();
             if constexpr (kDepth != DepthMode::Off) {
@@ -225,13 +243,13 @@ struct SpanKernel {
                 }
                 continue;
             } else {
-                const F invW = planeInDouble(startD[kPlaneInvW], kPlaneInvW, step);
+                const F invW = planeInDouble(dset(startZW[kPlaneInvW]), kPlaneInvW, step);
                 F values[kV];
                 if constexpr (kPersp == PerspectiveMode::Exact) {
                     const F w = fset(1.0f) / invW;
-                    for (int k = 0; k < kV; ++k) values[k] = (start[kPlaneVarying0 + k] + gradient[kPlaneVarying0 + k] * step) * w;
+                    for (int k = 0; k < kV; ++k) values[k] = (fset(startF[kPlaneVarying0 + k]) + gradient[kPlaneVarying0 + k] * step) * w;
                 } else {
-                    for (int k = 0; k < kV; ++k) values[k] = start[kPlaneVarying0 + k] + gradient[kPlaneVarying0 + k] * step;
+                    for (int k = 0; k < kV; ++k) values[k] = fset(startF[kPlaneVarying0 + k]) + gradient[kPlaneVarying0 + k] * step;
                 }
                 const I columns = iset(x) + iiota();
                 if (passBits == bits(mAll())) {

@@ -115,6 +115,8 @@ SR_SIMD_INLINE int reduceMax(I a) {
 
 // --- double -------------------------------------------------------------------------------------
 SR_SIMD_INLINE D dset(double a) { return {_mm256_set1_pd(a)}; }
+SR_SIMD_INLINE D dload(const double* p) { return {_mm256_loadu_pd(p)}; }
+SR_SIMD_INLINE void dstore(double* p, D a) { _mm256_storeu_pd(p, a.v); }
 SR_SIMD_INLINE D lowHalf(F a) { return {_mm256_cvtps_pd(_mm256_castps256_ps128(a.v))}; }
 SR_SIMD_INLINE D highHalf(F a) { return {_mm256_cvtps_pd(_mm256_extractf128_ps(a.v, 1))}; }
 SR_SIMD_INLINE D operator+(D a, D b) { return {_mm256_add_pd(a.v, b.v)}; }

@@ -98,6 +98,8 @@ SR_SIMD_INLINE int reduceMax(I a) { return _mm512_reduce_max_epi32(a.v); }
 
 // --- double -------------------------------------------------------------------------------------
 SR_SIMD_INLINE D dset(double a) { return {_mm512_set1_pd(a)}; }
+SR_SIMD_INLINE D dload(const double* p) { return {_mm512_loadu_pd(p)}; }
+SR_SIMD_INLINE void dstore(double* p, D a) { _mm512_storeu_pd(p, a.v); }
 SR_SIMD_INLINE D lowHalf(F a) { return {_mm512_cvtps_pd(_mm512_castps512_ps256(a.v))}; }
 SR_SIMD_INLINE D highHalf(F a) {
     return {_mm512_cvtps_pd(_mm256_castpd_ps(_mm512_extractf64x4_pd(_mm512_castps_pd(a.v), 1)))};

@@ -123,6 +123,8 @@ SR_SIMD_INLINE int reduceMax(I a) {
 
 // --- double (kLanes / 2 lanes: the low and high halves of an F) ------------------------------
 SR_SIMD_INLINE D dset(double a) { return {_mm_set1_pd(a)}; }
+SR_SIMD_INLINE D dload(const double* p) { return {_mm_loadu_pd(p)}; }
+SR_SIMD_INLINE void dstore(double* p, D a) { _mm_storeu_pd(p, a.v); }
 SR_SIMD_INLINE D lowHalf(F a) { return {_mm_cvtps_pd(a.v)}; }
 SR_SIMD_INLINE D highHalf(F a) { return {_mm_cvtps_pd(_mm_movehl_ps(a.v, a.v))}; }
 SR_SIMD_INLINE D operator+(D a, D b) { return {_mm_add_pd(a.v, b.v)}; }
