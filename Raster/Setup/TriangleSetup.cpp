@@ -5,6 +5,13 @@
 #include <cmath>
 #include <utility>
 
+#if defined(__SSE2__) || defined(_M_X64)
+#include <emmintrin.h>
+#define SR_SETUP_SSE2 1
+#else
+#define SR_SETUP_SSE2 0
+#endif
+
 namespace sr {
 
 namespace {
@@ -132,23 +139,56 @@ SetupOutcome setupTriangleCulled(TriangleSetup& t, const ScreenVertex& v0, const
         t.ddy[k] = (da2 * ex1 - da1 * ex2) * inv;
         t.ddxStep[k] = float(t.ddx[k]);
     };
-    plane(kPlaneZ, double(v0.z), double(v1.z), double(v2.z));
-    plane(kPlaneInvW, double(v0.invW), double(v1.invW), double(v2.invW));
     // Varying planes hold v/w (v * invW) or, for affine, v itself (v * 1.0 is exact).
     const double w0 = perspectiveCorrect ? double(v0.invW) : 1.0;
     const double w1 = perspectiveCorrect ? double(v1.invW) : 1.0;
     const double w2 = perspectiveCorrect ? double(v2.invW) : 1.0;
     // Rebased varyings: float inputs less a whole number of periods, exact in double.
-    for (int k = 0; k < varyingCount; ++k) {
+    const int rebased = std::min(rebase.count, varyingCount);
+    for (int k = 0; k < rebased; ++k) {
         const std::size_t i = std::size_t(k);
         double a0 = v0.varyings[i], a1 = v1.varyings[i], a2 = v2.varyings[i];
-        if (k < rebase.count) {
-            const double offset = rebaseOffset(a0, a1, a2, rebase.period);
-            a0 -= offset;
-            a1 -= offset;
-            a2 -= offset;
-        }
+        const double offset = rebaseOffset(a0, a1, a2, rebase.period);
+        a0 -= offset;
+        a1 -= offset;
+        a2 -= offset;
         plane(kPlaneVarying0 + k, a0 * w0, a1 * w1, a2 * w2);
+    }
+    int k = rebased;
+#if SR_SETUP_SSE2
+    // Two planes at a time: plane()'s double operations lane by lane (IEEE, no FMA), so the same
+    // bits: depth and 1/w together, then the varyings (not rebased) in pairs.
+    {
+        const __m128d ex1v = _mm_set1_pd(ex1), ey1v = _mm_set1_pd(ey1), ex2v = _mm_set1_pd(ex2), ey2v = _mm_set1_pd(ey2),
+                      invv = _mm_set1_pd(inv);
+        auto planes = [&](int first, __m128d a0, __m128d a1, __m128d a2) {
+            const __m128d da1 = _mm_sub_pd(a1, a0), da2 = _mm_sub_pd(a2, a0);
+            const __m128d ddx = _mm_mul_pd(_mm_sub_pd(_mm_mul_pd(da1, ey2v), _mm_mul_pd(da2, ey1v)), invv);
+            const __m128d ddy = _mm_mul_pd(_mm_sub_pd(_mm_mul_pd(da2, ex1v), _mm_mul_pd(da1, ex2v)), invv);
+            _mm_storeu_pd(t.value + first, a0);
+            _mm_storeu_pd(t.ddx + first, ddx);
+            _mm_storeu_pd(t.ddy + first, ddy);
+            const __m128 steps = _mm_cvtpd_ps(ddx); // two floats, rounded as float(ddx) is
+            _mm_storel_epi64(reinterpret_cast<__m128i*>(t.ddxStep + first), _mm_castps_si128(steps));
+        };
+        static_assert(kPlaneInvW == kPlaneZ + 1, "depth and 1/w in adjacent planes");
+        planes(kPlaneZ, _mm_setr_pd(double(v0.z), double(v0.invW)), _mm_setr_pd(double(v1.z), double(v1.invW)),
+               _mm_setr_pd(double(v2.z), double(v2.invW)));
+        auto pair = [](const Varyings& v, int at) { // v[at], v[at + 1] in double
+            return _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(v.data() + at))));
+        };
+        const __m128d w0v = _mm_set1_pd(w0), w1v = _mm_set1_pd(w1), w2v = _mm_set1_pd(w2);
+        for (; k + 2 <= varyingCount; k += 2)
+            planes(kPlaneVarying0 + k, _mm_mul_pd(pair(v0.varyings, k), w0v), _mm_mul_pd(pair(v1.varyings, k), w1v),
+                   _mm_mul_pd(pair(v2.varyings, k), w2v));
+    }
+#else
+    plane(kPlaneZ, double(v0.z), double(v1.z), double(v2.z));
+    plane(kPlaneInvW, double(v0.invW), double(v1.invW), double(v2.invW));
+#endif
+    for (; k < varyingCount; ++k) {
+        const std::size_t i = std::size_t(k);
+        plane(kPlaneVarying0 + k, double(v0.varyings[i]) * w0, double(v1.varyings[i]) * w1, double(v2.varyings[i]) * w2);
     }
     return SetupOutcome::Ready;
 }
