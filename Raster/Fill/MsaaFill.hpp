@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "Raster/Fill/Blend.hpp"
+#include "Raster/Fill/Kernels/Isa.hpp"
 #include "Raster/Fill/ScanlineFill.hpp"
 #include "Raster/Frame/Msaa.hpp"
 #include "Raster/Setup/PipelineModes.hpp" // DepthMode, PerspectiveMode
@@ -101,8 +102,11 @@ struct MsaaStages {
     // passed[x - lo] (the others keep theirs); returns how many pixels had one.
     std::uint64_t (*write)(Pixel* colourRow, const Pixel* shaded, const std::uint8_t* passed, int lo, int hi) = nullptr;
 };
-// The stages for `samples` (validMsaa) samples per pixel and depth mode `depth`.
-MsaaStages msaaStages(int samples, DepthMode depth, MsaaCoverageMethod method = MsaaCoverageMethod::Auto);
+// The stages for `samples` (validMsaa) samples per pixel and depth mode `depth`; with Auto and an
+// `isa` (available) that has AVX2, a small triangle's box is tested eight pixels at a time (the
+// same bits).
+MsaaStages msaaStages(int samples, DepthMode depth, MsaaCoverageMethod method = MsaaCoverageMethod::Auto,
+                      Isa isa = Isa::Scalar);
 
 // The multisampled fill's first stage (MsaaCoverage.cpp): for triangle `t` inside the scissor,
 // fills scratch.rows / covered / passed (the covered samples of each row's pixels, and those
@@ -111,7 +115,8 @@ MsaaStages msaaStages(int samples, DepthMode depth, MsaaCoverageMethod method = 
 // rule at each sample point; a small triangle is tested with edge functions over its bounding
 // box (all samples of a pixel at once, int32), a large one with exact edge walks.
 void coverTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
-                          MsaaScratch& scratch, MsaaCoverageMethod method = MsaaCoverageMethod::Auto);
+                          MsaaScratch& scratch, MsaaCoverageMethod method = MsaaCoverageMethod::Auto,
+                          Isa isa = Isa::Scalar);
 
 // A multisampled draw with texel alpha (Blend.hpp) shades once per pixel like any other, and its
 // alpha travels with the colour in the shading row's X byte (the top byte, 0xFF otherwise) to

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "Raster/Fill/Blend.hpp"
+#include "Raster/Fill/Kernels/Isa.hpp"
 #include "Raster/Fill/Stencil.hpp"
 #include "Raster/Frame/FrameBuffer.hpp"
 #include "Raster/Geometry/Cull.hpp"
@@ -17,6 +18,7 @@ struct DrawState {
     DepthMode depth = DepthMode::TestWrite; // reversed-Z, GREATER
     PipelineStop stopAfter = PipelineStop::Fill;
     PerspectiveMode perspective = PerspectiveMode::Exact; // how varyings are interpolated
+    Isa isa = Isa::Scalar; // the draw's kernels' ISA (RenderSettings::isa); the multisampled coverage follows it
     bool wireframe = false;                 // overlay the (clipped) triangle outlines
     VaryingRebase rebase;                   // uv varyings shifted per triangle (textured draws)
     Pixel wireColour = packBgra(255, 255, 255);

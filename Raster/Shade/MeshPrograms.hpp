@@ -108,6 +108,7 @@ inline DrawState drawStateFor(const DrawContext& d) {
     s.wireWidth = d.settings.antiAliasing.gridSide();
     s.stopAfter = d.settings.stopAfter;
     s.perspective = d.settings.perspective;
+    s.isa = d.settings.isa;
     if (d.texture != nullptr) s.rebase = {2, wrapPeriod(d.settings.wrap)}; // varyings 0-1 are the uv
     if (d.texelAlpha.on()) {
         // Per-fragment alpha (Pipeline.hpp: the fill tests depth, the fragment decides): Blend

@@ -259,58 +259,65 @@ TEST_CASE("MSAA coverage and depth (edge functions, vector depth test) equal the
           "[msaa]") {
     // coverTriangleSamples' two methods on the same random triangles and random stored depths:
     // the rows, covered and passed masks, the pixels to shade (and where) and the depth buffer
-    // after the test must be the same, for every sample count and depth mode, scissored or not.
+    // after the test must be the same, for every sample count and depth mode, scissored or not,
+    // and for every ISA the draw may have (Avx2 and Avx512 test small triangles' boxes eight
+    // pixels at a time).
     constexpr int kW = 48, kH = 40;
     std::mt19937 rng(20261126);
     int small = 0, large = 0;
-    for (int n : {2, 4, 8}) {
-        for (DepthMode depth : {DepthMode::Off, DepthMode::Test, DepthMode::TestWrite}) {
-            CAPTURE(n, int(depth));
-            MsaaBuffer walked, edged;
-            REQUIRE(walked.resize(kW, kH, n));
-            REQUIRE(edged.resize(kW, kH, n));
-            for (int y = 0; y < kH; ++y)
-                for (int i = 0; i < kW * n; ++i)
-                    walked.depthRow(y)[i] = edged.depthRow(y)[i] = uniform(rng, 0.0f, 1.0f);
-            MsaaScratch a, b;
-            for (int i = 0; i < 300; ++i) {
-                CAPTURE(i);
-                // Sizes from sub-pixel to larger than the edge-function box (kMsaaSmallSide).
-                const float size = i % 3 == 0 ? 1.5f : i % 3 == 1 ? 12.0f : 45.0f;
-                const float cx = uniform(rng, -4, kW + 4), cy = uniform(rng, -4, kH + 4);
-                // Every other triangle on the patterns' 1/16-pixel grid: vertices on pixel edges
-                // and on sample points, where the edge-function box (msaaColumnRange) is tightest.
-                const bool onGrid = i % 2 == 1;
-                auto coordinate = [&](float c) { return onGrid ? std::round(c * 16.0f) / 16.0f : c; };
-                auto around = [&] {
-                    return vtx(coordinate(cx + uniform(rng, -size, size)), coordinate(cy + uniform(rng, -size, size)),
-                               uniform(rng, 0.0f, 1.0f));
-                };
-                const ScreenVertex v0 = around(), v1 = around(), v2 = around();
-                TriangleSetup t;
-                if (setupTriangleCulled(t, v0, v1, v2, CullMode::None, 0, true, {}, true) != SetupOutcome::Ready)
-                    continue;
-                (msaaSmallTriangle(t) ? small : large) += 1;
-                Scissor s{0, 0, kW, kH};
-                if (i % 4 == 3) s = {uniformInt(rng, 0, 20), uniformInt(rng, 0, 15), uniformInt(rng, 24, kW), uniformInt(rng, 20, kH)};
-                coverTriangleSamples(t, edged, s, depth, a, MsaaCoverageMethod::Auto);
-                coverTriangleSamples(t, walked, s, depth, b, MsaaCoverageMethod::Reference);
-                REQUIRE(a.rows.size() == b.rows.size());
-                for (std::size_t r = 0; r < a.rows.size(); ++r) {
-                    const MsaaScratch::Row &ra = a.rows[r], &rb = b.rows[r];
-                    REQUIRE((ra.y == rb.y && ra.lo == rb.lo && ra.hi == rb.hi));
-                    for (int x = 0; x < ra.hi - ra.lo; ++x) {
-                        REQUIRE(a.covered[ra.offset + std::size_t(x)] == b.covered[rb.offset + std::size_t(x)]);
-                        REQUIRE(a.passed[ra.offset + std::size_t(x)] == b.passed[rb.offset + std::size_t(x)]);
-                    }
-                }
-                REQUIRE(a.runs.size() == b.runs.size());
-                for (std::size_t r = 0; r < a.runs.size(); ++r) {
-                    const SpanRun &ra = a.runs[r], &rb = b.runs[r];
-                    REQUIRE((ra.y == rb.y && ra.x0 == rb.x0 && ra.x1 == rb.x1 && ra.dx == rb.dx && ra.dy == rb.dy));
-                }
+    for (Isa isa : kAllIsas) {
+        if (!isaAvailable(isa)) continue;
+        CAPTURE(isaName(isa));
+        for (int n : {2, 4, 8}) {
+            for (DepthMode depth : {DepthMode::Off, DepthMode::Test, DepthMode::TestWrite}) {
+                CAPTURE(n, int(depth));
+                MsaaBuffer walked, edged;
+                REQUIRE(walked.resize(kW, kH, n));
+                REQUIRE(edged.resize(kW, kH, n));
                 for (int y = 0; y < kH; ++y)
-                    REQUIRE(std::equal(edged.depthRow(y), edged.depthRow(y) + kW * n, walked.depthRow(y)));
+                    for (int i = 0; i < kW * n; ++i)
+                        walked.depthRow(y)[i] = edged.depthRow(y)[i] = uniform(rng, 0.0f, 1.0f);
+                MsaaScratch a, b;
+                for (int i = 0; i < 300; ++i) {
+                    CAPTURE(i);
+                    // Sizes from sub-pixel to larger than the edge-function box (kMsaaSmallSide).
+                    const float size = i % 3 == 0 ? 1.5f : i % 3 == 1 ? 12.0f : 45.0f;
+                    const float cx = uniform(rng, -4, kW + 4), cy = uniform(rng, -4, kH + 4);
+                    // Every other triangle on the patterns' 1/16-pixel grid: vertices on pixel edges
+                    // and on sample points, where the edge-function box (msaaColumnRange) is tightest.
+                    const bool onGrid = i % 2 == 1;
+                    auto coordinate = [&](float c) { return onGrid ? std::round(c * 16.0f) / 16.0f : c; };
+                    auto around = [&] {
+                        return vtx(coordinate(cx + uniform(rng, -size, size)), coordinate(cy + uniform(rng, -size, size)),
+                                   uniform(rng, 0.0f, 1.0f));
+                    };
+                    const ScreenVertex v0 = around(), v1 = around(), v2 = around();
+                    TriangleSetup t;
+                    if (setupTriangleCulled(t, v0, v1, v2, CullMode::None, 0, true, {}, true) != SetupOutcome::Ready)
+                        continue;
+                    (msaaSmallTriangle(t) ? small : large) += 1;
+                    Scissor s{0, 0, kW, kH};
+                    if (i % 4 == 3)
+                        s = {uniformInt(rng, 0, 20), uniformInt(rng, 0, 15), uniformInt(rng, 24, kW), uniformInt(rng, 20, kH)};
+                    coverTriangleSamples(t, edged, s, depth, a, MsaaCoverageMethod::Auto, isa);
+                    coverTriangleSamples(t, walked, s, depth, b, MsaaCoverageMethod::Reference);
+                    REQUIRE(a.rows.size() == b.rows.size());
+                    for (std::size_t r = 0; r < a.rows.size(); ++r) {
+                        const MsaaScratch::Row &ra = a.rows[r], &rb = b.rows[r];
+                        REQUIRE((ra.y == rb.y && ra.lo == rb.lo && ra.hi == rb.hi));
+                        for (int x = 0; x < ra.hi - ra.lo; ++x) {
+                            REQUIRE(a.covered[ra.offset + std::size_t(x)] == b.covered[rb.offset + std::size_t(x)]);
+                            REQUIRE(a.passed[ra.offset + std::size_t(x)] == b.passed[rb.offset + std::size_t(x)]);
+                        }
+                    }
+                    REQUIRE(a.runs.size() == b.runs.size());
+                    for (std::size_t r = 0; r < a.runs.size(); ++r) {
+                        const SpanRun &ra = a.runs[r], &rb = b.runs[r];
+                        REQUIRE((ra.y == rb.y && ra.x0 == rb.x0 && ra.x1 == rb.x1 && ra.dx == rb.dx && ra.dy == rb.dy));
+                    }
+                    for (int y = 0; y < kH; ++y)
+                        REQUIRE(std::equal(edged.depthRow(y), edged.depthRow(y) + kW * n, walked.depthRow(y)));
+                }
             }
         }
     }
