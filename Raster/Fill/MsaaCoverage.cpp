@@ -222,8 +222,101 @@ void testAndListRow(const TriangleSetup& t, const SampleOffset* pattern, float* 
     }
 }
 
+#if SR_KERNELS_X86
+// The sample points' offsets from the pixel centre, in pixels (depthTestRow's
+// double(pattern[k].x) / kSubPixelScale), for loading four at a time.
+template <int kN>
+struct SamplePoints {
+    alignas(32) double x[kN], y[kN];
+};
+template <int kN>
+const SamplePoints<kN>& samplePoints() {
+    static const SamplePoints<kN> points = [] {
+        SamplePoints<kN> p;
+        const SampleOffset* pattern = msaaPattern(kN);
+        for (int k = 0; k < kN; ++k) {
+            p.x[k] = double(pattern[k].x) / kSubPixelScale;
+            p.y[k] = double(pattern[k].y) / kSubPixelScale;
+        }
+        return p;
+    }();
+    return points;
+}
+
+// testAndListRow's one pass with AVX2 (draws whose kernels are AVX2 or AVX-512), 4 or 8 samples
+// with a depth test: the samples' depth planes at the row's first pixel four doubles per step,
+// and each pixel's depths as one `start + step * ddx` per four samples, with planeAt's and
+// depthTestRow's double operations lane by lane, rounded once to float: the same floats.
+SR_BEGIN_TARGET(SR_TARGET_STRING_AVX2)
+template <int kN, DepthMode kDepth>
+void testAndListRowAvx2(const TriangleSetup& t, float* depth, MsaaScratch& scratch, int y, int lo, int hi, int c0,
+                        int c1, const std::uint8_t* covered, std::uint8_t* passed) {
+    static_assert(kN % 4 == 0 && kDepth != DepthMode::Off, "four samples per group, a depth test");
+    constexpr int kGroups = kN / 4;
+    const SamplePoints<kN>& points = samplePoints<kN>();
+    const __m256d ddx = _mm256_set1_pd(t.ddx[kPlaneZ]);
+    const __m256d rowX = _mm256_set1_pd(lo + 0.5), rowY = _mm256_set1_pd(y + 0.5);
+    __m256d zStart[kGroups];
+    for (int g = 0; g < kGroups; ++g) {
+        const __m256d dx = _mm256_sub_pd(_mm256_add_pd(rowX, _mm256_load_pd(points.x + 4 * g)), _mm256_set1_pd(t.originX));
+        const __m256d dy = _mm256_sub_pd(_mm256_add_pd(rowY, _mm256_load_pd(points.y + 4 * g)), _mm256_set1_pd(t.originY));
+        zStart[g] = _mm256_add_pd(_mm256_add_pd(_mm256_set1_pd(t.value[kPlaneZ]), _mm256_mul_pd(ddx, dx)),
+                                  _mm256_mul_pd(_mm256_set1_pd(t.ddy[kPlaneZ]), dy));
+    }
+    RunList<kN> runs(scratch, y, lo, hi, c0, c1);
+    for (int x = lo; x < hi; ++x) {
+        const unsigned cover = covered[x - lo];
+        if (cover == 0) {
+            passed[x - lo] = 0;
+            runs(x, 0u, 0u);
+            continue;
+        }
+        float* stored = depth + std::size_t(x) * kN;
+        const __m256d steps = _mm256_set1_pd(double(x - lo));
+        unsigned pass = 0;
+        if constexpr (kN == 4) {
+            const __m128 z = _mm256_cvtpd_ps(_mm256_add_pd(zStart[0], _mm256_mul_pd(ddx, steps)));
+            const __m128 old = _mm_loadu_ps(stored);
+            pass = unsigned(_mm_movemask_ps(_mm_cmpgt_ps(z, old))) & cover;
+            if constexpr (kDepth == DepthMode::TestWrite)
+                if (pass != 0) _mm_storeu_ps(stored, _mm_blendv_ps(old, z, _mm_castsi128_ps(laneMask(pass))));
+        } else {
+            const __m256 z = _mm256_set_m128(_mm256_cvtpd_ps(_mm256_add_pd(zStart[1], _mm256_mul_pd(ddx, steps))),
+                                             _mm256_cvtpd_ps(_mm256_add_pd(zStart[0], _mm256_mul_pd(ddx, steps))));
+            const __m256 old = _mm256_loadu_ps(stored);
+            pass = unsigned(_mm256_movemask_ps(_mm256_cmp_ps(z, old, _CMP_GT_OQ))) & cover;
+            if constexpr (kDepth == DepthMode::TestWrite) {
+                if (pass != 0) {
+                    const __m256i bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+                    const __m256i keep = _mm256_cmpeq_epi32(_mm256_and_si256(_mm256_set1_epi32(int(pass)), bit), bit);
+                    _mm256_storeu_ps(stored, _mm256_blendv_ps(old, z, _mm256_castsi256_ps(keep)));
+                }
+            }
+        }
+        passed[x - lo] = std::uint8_t(pass);
+        runs(x, pass, cover);
+    }
+    runs.close(hi);
+}
+SR_END_TARGET
+#endif
+
+// testAndListRow, or its AVX2 pass where the draw's ISA has AVX2 (kWide) and it applies.
+template <int kN, DepthMode kDepth, bool kVector, bool kWide>
+void testAndListRowFor(const TriangleSetup& t, const SampleOffset* pattern, float* depth, MsaaScratch& scratch, int y,
+                       int lo, int hi, int c0, int c1, const std::uint8_t* covered, std::uint8_t* passed) {
+#if SR_KERNELS_X86
+    if constexpr (kWide && kN >= 4 && kDepth != DepthMode::Off) {
+        (void)pattern;
+        testAndListRowAvx2<kN, kDepth>(t, depth, scratch, y, lo, hi, c0, c1, covered, passed);
+        return;
+    }
+#endif
+    testAndListRow<kN, kDepth, kVector>(t, pattern, depth, scratch, y, lo, hi, c0, c1, covered, passed);
+}
+
 // --- Large triangles: exact edge walks, one per sample and one for the centre ------------------
-template <int kN, DepthMode kDepth, bool kVector>
+template <int kN, DepthMode kDepth, bool kVector, bool kWide>
 void coverByWalks(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, int rowBegin, int rowEnd,
                   MsaaScratch& scratch) {
     constexpr int n = kN;
@@ -273,8 +366,8 @@ void coverByWalks(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
         std::fill(covered + (inner0 - lo), covered + (inner1 - lo), std::uint8_t((1u << n) - 1u));
         for (int x = inner1; x < hi; ++x) covered[x - lo] = maskAt(x);
         target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
-        testAndListRow<kN, kDepth, kVector>(t, pattern, target.depthRow(y), scratch, y, lo, hi, spans[2 * n],
-                                            spans[2 * n + 1], covered, passed);
+        testAndListRowFor<kN, kDepth, kVector, kWide>(t, pattern, target.depthRow(y), scratch, y, lo, hi, spans[2 * n],
+                                                      spans[2 * n + 1], covered, passed);
     }
 }
 
@@ -468,7 +561,8 @@ void coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, int x0, in
         addRow(scratch, y, lo, hi, offset);
         target.prepareSpan(y, lo, hi); // a pending fast clear made real before the test
         const std::size_t listed = scratch.runs.size();
-        testAndListRow<kN, kDepth, true>(t, pattern, target.depthRow(y), scratch, y, lo, hi, c0, c1, covered, passed);
+        testAndListRowFor<kN, kDepth, true, kWide>(t, pattern, target.depthRow(y), scratch, y, lo, hi, c0, c1, covered,
+                                                   passed);
         if (scratch.runs.size() != listed) {
             // A sample passed: the row's colour is written after the shading; ask for its lines.
             Pixel* colour = target.colourRow(y);
@@ -515,8 +609,8 @@ void coverSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
         }
     }
     if (edgeFunctions) coverByEdgeFunctions<kN, kDepth, kWide>(t, target, boxX0, boxX1, rowBegin, rowEnd, scratch);
-    else if (method == MsaaCoverageMethod::Reference) coverByWalks<kN, kDepth, false>(t, target, s, rowBegin, rowEnd, scratch);
-    else coverByWalks<kN, kDepth, true>(t, target, s, rowBegin, rowEnd, scratch);
+    else if (method == MsaaCoverageMethod::Reference) coverByWalks<kN, kDepth, false, false>(t, target, s, rowBegin, rowEnd, scratch);
+    else coverByWalks<kN, kDepth, true, kWide>(t, target, s, rowBegin, rowEnd, scratch);
 }
 
 template <int kN, DepthMode kDepth, MsaaCoverageMethod kMethod, bool kWide = false>
