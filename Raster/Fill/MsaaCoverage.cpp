@@ -227,7 +227,7 @@ void testAndListRow(const TriangleSetup& t, const SampleOffset* pattern, float* 
 // double(pattern[k].x) / kSubPixelScale), for loading four at a time.
 template <int kN>
 struct SamplePoints {
-    alignas(32) double x[kN], y[kN];
+    alignas(32) double x[kN < 4 ? 4 : kN], y[kN < 4 ? 4 : kN]; // (2 samples: the last two 0, unused)
 };
 template <int kN>
 const SamplePoints<kN>& samplePoints() {
@@ -243,18 +243,43 @@ const SamplePoints<kN>& samplePoints() {
     return points;
 }
 
-// testAndListRow's one pass with AVX2 (draws whose kernels are AVX2 or AVX-512), 4 or 8 samples
-// with a depth test: the samples' depth planes at the row's first pixel four doubles per step,
-// and each pixel's depths as one `start + step * ddx` per four samples, with planeAt's and
-// depthTestRow's double operations lane by lane, rounded once to float: the same floats.
+// testAndListRow's one pass with AVX2 (draws whose kernels are AVX2 or AVX-512), 2, 4 or 8
+// samples with a depth test: the samples' depth planes at the row's first pixel four (two)
+// doubles per step, and each pixel's depths as one `start + step * ddx` per four (two) samples,
+// with planeAt's and depthTestRow's double operations lane by lane, rounded once to float: the
+// same floats.
 SR_BEGIN_TARGET(SR_TARGET_STRING_AVX2)
 template <int kN, DepthMode kDepth>
 void testAndListRowAvx2(const TriangleSetup& t, float* depth, MsaaScratch& scratch, int y, int lo, int hi, int c0,
                         int c1, const std::uint8_t* covered, std::uint8_t* passed) {
-    static_assert(kN % 4 == 0 && kDepth != DepthMode::Off, "four samples per group, a depth test");
-    constexpr int kGroups = kN / 4;
+    static_assert((kN == 2 || kN % 4 == 0) && kDepth != DepthMode::Off, "2, 4 or 8 samples, a depth test");
+    constexpr int kGroups = (kN + 3) / 4;
     const SamplePoints<kN>& points = samplePoints<kN>();
     const __m256d ddx = _mm256_set1_pd(t.ddx[kPlaneZ]);
+    if constexpr (kN == 2) { // two doubles
+        const __m128d slope = _mm256_castpd256_pd128(ddx);
+        const __m128d dx = _mm_sub_pd(_mm_add_pd(_mm_set1_pd(lo + 0.5), _mm_load_pd(points.x)), _mm_set1_pd(t.originX));
+        const __m128d dy = _mm_sub_pd(_mm_add_pd(_mm_set1_pd(y + 0.5), _mm_load_pd(points.y)), _mm_set1_pd(t.originY));
+        const __m128d zStart = _mm_add_pd(_mm_add_pd(_mm_set1_pd(t.value[kPlaneZ]), _mm_mul_pd(slope, dx)),
+                                          _mm_mul_pd(_mm_set1_pd(t.ddy[kPlaneZ]), dy));
+        RunList<kN> runs(scratch, y, lo, hi, c0, c1);
+        for (int x = lo; x < hi; ++x) {
+            const unsigned cover = covered[x - lo];
+            unsigned pass = 0;
+            if (cover != 0) {
+                double* stored = reinterpret_cast<double*>(depth + std::size_t(x) * kN); // the pixel's two floats
+                const __m128 z = _mm_cvtpd_ps(_mm_add_pd(zStart, _mm_mul_pd(slope, _mm_set1_pd(double(x - lo))))); // (upper 0)
+                const __m128 old = _mm_castpd_ps(_mm_load_sd(stored));
+                pass = unsigned(_mm_movemask_ps(_mm_cmpgt_ps(z, old))) & cover;
+                if constexpr (kDepth == DepthMode::TestWrite)
+                    if (pass != 0) _mm_store_sd(stored, _mm_castps_pd(_mm_blendv_ps(old, z, _mm_castsi128_ps(laneMask(pass)))));
+            }
+            passed[x - lo] = std::uint8_t(pass);
+            runs(x, pass, cover);
+        }
+        runs.close(hi);
+        return;
+    }
     const __m256d rowX = _mm256_set1_pd(lo + 0.5), rowY = _mm256_set1_pd(y + 0.5);
     __m256d zStart[kGroups];
     for (int g = 0; g < kGroups; ++g) {
@@ -306,7 +331,7 @@ template <int kN, DepthMode kDepth, bool kVector, bool kWide>
 void testAndListRowFor(const TriangleSetup& t, const SampleOffset* pattern, float* depth, MsaaScratch& scratch, int y,
                        int lo, int hi, int c0, int c1, const std::uint8_t* covered, std::uint8_t* passed) {
 #if SR_KERNELS_X86
-    if constexpr (kWide && kN >= 4 && kDepth != DepthMode::Off) {
+    if constexpr (kWide && kN >= 2 && kDepth != DepthMode::Off) {
         (void)pattern;
         testAndListRowAvx2<kN, kDepth>(t, depth, scratch, y, lo, hi, c0, c1, covered, passed);
         return;
