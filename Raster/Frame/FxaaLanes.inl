@@ -16,13 +16,6 @@ SR_SIMD_INLINE F gatherLuma(const float* luma, I index) {
     return asFloat(gather(reinterpret_cast<const std::uint32_t*>(luma), index));
 }
 
-// Set bits of a lane mask (no POPCNT at the x86-64 baseline): a nibble table.
-SR_SIMD_INLINE int setLanes(int b) {
-    int n = 0;
-    for (; b != 0; b >>= 4) n += int((0x4332322132212110ull >> (4 * (b & 0xF))) & 0xFu);
-    return n;
-}
-
 SR_SIMD_INLINE M notMask(M m) { return andNot(mAll(), m); }
 SR_SIMD_INLINE M differ(M a, M b) { return andNot(a, b) | andNot(b, a); }
 
@@ -57,7 +50,7 @@ SR_SIMD_INLINE void queueEdges(const FxaaScratch& s, int x0, int y, M valid, Edg
     compressStore(q.l[kNE] + at, fload(lc - stride + 1), edge);
     compressStore(q.l[kSW] + at, fload(lc + stride - 1), edge);
     compressStore(q.l[kSE] + at, fload(lc + stride + 1), edge);
-    q.count += setLanes(bits(edge));
+    q.count += laneCount(edge);
 }
 
 // The filter at the first kLanes queued pixels of row y (`work`: those queued); their colours.

@@ -41,8 +41,9 @@ CpuFeatures detect() {
     f.sse2 = true; // the x86-64 baseline
 #if defined(__GNUC__) || defined(__clang__)
     __builtin_cpu_init();
-    // __builtin_cpu_supports includes the OS's YMM / ZMM state checks (XGETBV).
-    f.avx2 = __builtin_cpu_supports("avx2") != 0;
+    // __builtin_cpu_supports includes the OS's YMM / ZMM state checks (XGETBV). The AVX2 and
+    // AVX-512 kernels also count lanes with POPCNT (every AVX2 CPU has it; checked all the same).
+    f.avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("popcnt");
     f.avx512 = f.avx2 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
                __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl");
 #else
@@ -50,11 +51,11 @@ CpuFeatures detect() {
     __cpuid(info, 0);
     const int maxLeaf = info[0];
     __cpuid(info, 1);
-    const bool osxsave = (info[2] & (1 << 27)) != 0, avx = (info[2] & (1 << 28)) != 0;
+    const bool osxsave = (info[2] & (1 << 27)) != 0, avx = (info[2] & (1 << 28)) != 0, popcnt = (info[2] & (1 << 23)) != 0;
     if (maxLeaf >= 7 && osxsave && avx) {
         const unsigned long long xcr0 = _xgetbv(0);
         __cpuidex(info, 7, 0);
-        f.avx2 = (xcr0 & 6) == 6 && (info[1] & (1 << 5)) != 0;
+        f.avx2 = (xcr0 & 6) == 6 && (info[1] & (1 << 5)) != 0 && popcnt;
         const unsigned ebx = unsigned(info[1]);
         const bool bits512 = (ebx & (1u << 16)) && (ebx & (1u << 17)) && (ebx & (1u << 30)) && (ebx & (1u << 31));
         f.avx512 = f.avx2 && (xcr0 & 0xE6) == 0xE6 && bits512; // F, DQ, BW, VL; opmask + ZMM state

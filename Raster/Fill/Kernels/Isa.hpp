@@ -8,7 +8,7 @@ namespace sr {
 
 // Scalar is the readable reference loop (ScanlineFill.hpp's fillTriangle + the programs'
 // fragment()); the others are the lane-width-generic kernels of Raster/Fill/Kernels/Kernels.inl
-// instantiated for 4 (SSE2), 8 (AVX2) and 16 (AVX-512 F/BW/DQ/VL) lanes. Every kernel is
+// instantiated for 4 (SSE2), 8 (AVX2, with POPCNT) and 16 (AVX-512 F/BW/DQ/VL) lanes. Every kernel is
 // bit-identical to the scalar reference (Tests/Threads/KernelIdentityTests.cpp).
 enum class Isa { Scalar, Sse2, Avx2, Avx512 };
 inline constexpr Isa kAllIsas[] = {Isa::Scalar, Isa::Sse2, Isa::Avx2, Isa::Avx512};

@@ -29,8 +29,8 @@
 #endif
 
 #define SR_TARGET_STRING_SSE2 "sse2"
-#define SR_TARGET_STRING_AVX2 "avx2"
-#define SR_TARGET_STRING_AVX512 "avx2,avx512f,avx512bw,avx512dq,avx512vl"
+#define SR_TARGET_STRING_AVX2 "avx2,popcnt"
+#define SR_TARGET_STRING_AVX512 "avx2,popcnt,avx512f,avx512bw,avx512dq,avx512vl"
 
 // Force-inlined vector operations; SR_SIMD_LAMBDA does the same for a lambda (after its
 // parameter list); SR_SIMD_NOINLINE keeps a function out of line (one copy per ISA);

@@ -13,13 +13,6 @@
 
 using sr::programs::DrawContext;
 
-// Set bits of a lane mask (no POPCNT at the x86-64 baseline): a nibble table.
-SR_SIMD_INLINE int popcount(int b) {
-    int n = 0;
-    for (; b != 0; b >>= 4) n += int((0x4332322132212110ull >> (4 * (b & 0xF))) & 0xFu);
-    return n;
-}
-
 // The lane-wise building blocks, one concept per file, in the order they use each other.
 #include "Raster/Fill/Kernels/LaneColour.inl"
 #include "Raster/Fill/Kernels/LaneShadow.inl"
@@ -230,7 +223,7 @@ struct SpanKernel {
                         if (passBits & (1 << i)) depth[x + i] = zs[i];
                 }
             }
-            const int passed = popcount(passBits);
+            const int passed = laneCount(pass);
             shaded += std::uint64_t(passed);
             if constexpr (kV == 0) {
                 if constexpr (Prog::kMode == ShadingMode::Flat) p.ensureLit(); // lazy flat lighting

@@ -51,6 +51,7 @@ SR_SIMD_INLINE M operator&(M a, M b) { return {_mm256_and_ps(a.v, b.v)}; }
 SR_SIMD_INLINE M operator|(M a, M b) { return {_mm256_or_ps(a.v, b.v)}; }
 SR_SIMD_INLINE M andNot(M a, M b) { return {_mm256_andnot_ps(b.v, a.v)}; }
 SR_SIMD_INLINE int bits(M m) { return _mm256_movemask_ps(m.v); }
+SR_SIMD_INLINE int laneCount(M m) { return _mm_popcnt_u32(unsigned(bits(m))); } // how many lanes are set
 SR_SIMD_INLINE M mAll() { return {_mm256_castsi256_ps(_mm256_set1_epi32(-1))}; }
 SR_SIMD_INLINE M firstN(int n) {
     return {_mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(n), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)))};

@@ -53,6 +53,7 @@ SR_SIMD_INLINE M operator&(M a, M b) { return {__mmask16(a.v & b.v)}; }
 SR_SIMD_INLINE M operator|(M a, M b) { return {__mmask16(a.v | b.v)}; }
 SR_SIMD_INLINE M andNot(M a, M b) { return {__mmask16(a.v & ~b.v)}; }
 SR_SIMD_INLINE int bits(M m) { return int(m.v); }
+SR_SIMD_INLINE int laneCount(M m) { return _mm_popcnt_u32(unsigned(m.v)); } // how many lanes are set
 SR_SIMD_INLINE M mAll() { return {__mmask16(0xFFFF)}; }
 SR_SIMD_INLINE M firstN(int n) { return {__mmask16((1u << n) - 1u)}; }
 

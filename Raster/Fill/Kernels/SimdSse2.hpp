@@ -54,6 +54,8 @@ SR_SIMD_INLINE M operator&(M a, M b) { return {_mm_and_ps(a.v, b.v)}; }
 SR_SIMD_INLINE M operator|(M a, M b) { return {_mm_or_ps(a.v, b.v)}; }
 SR_SIMD_INLINE M andNot(M a, M b) { return {_mm_andnot_ps(b.v, a.v)}; } // a & ~b
 SR_SIMD_INLINE int bits(M m) { return _mm_movemask_ps(m.v); }
+// How many lanes are set: four bits, one entry of a nibble table (no POPCNT at the x86-64 baseline).
+SR_SIMD_INLINE int laneCount(M m) { return int((0x4332322132212110ull >> (4 * bits(m))) & 0xFu); }
 SR_SIMD_INLINE M mAll() { return {_mm_castsi128_ps(_mm_set1_epi32(-1))}; }
 // Lanes [0, n) set, n in [0, kLanes].
 SR_SIMD_INLINE M firstN(int n) {
