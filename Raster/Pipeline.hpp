@@ -79,7 +79,8 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
 
     // The multisampled fill's stages, chosen once for the draw.
     MsaaStages stages;
-    if (const MsaaBuffer* msaaTarget = ctx.multisampleTarget()) stages = msaaStages(msaaTarget->samples(), state.depth, MsaaCoverageMethod::Auto, state.isa);
+    if (const MsaaBuffer* msaaTarget = ctx.multisampleTarget())
+        stages = msaaStages(msaaTarget->samples(), state.depth, MsaaCoverageMethod::Auto, state.isa);
     if (lanes <= 1) {
         LaneState lane;
         lane.msaaStages = stages;
