@@ -305,7 +305,7 @@ void testAndListRowAvx2(const TriangleSetup& t, float* depth, MsaaScratch& scrat
             pass = unsigned(_mm_movemask_ps(_mm_cmpgt_ps(z, old))) & cover;
             if constexpr (kDepth == DepthMode::TestWrite)
                 if (pass != 0) _mm_storeu_ps(stored, _mm_blendv_ps(old, z, _mm_castsi128_ps(laneMask(pass))));
-        } else {
+        } else if constexpr (kN == 8) {
             const __m256 z = _mm256_set_m128(_mm256_cvtpd_ps(_mm256_add_pd(zStart[1], _mm256_mul_pd(ddx, steps))),
                                              _mm256_cvtpd_ps(_mm256_add_pd(zStart[0], _mm256_mul_pd(ddx, steps))));
             const __m256 old = _mm256_loadu_ps(stored);
