@@ -61,11 +61,12 @@ void addRow(MsaaScratch& scratch, int y, int lo, int hi, std::size_t offset) {
     row.hi = hi;
     row.offset = offset;
 }
-void addRun(MsaaScratch& scratch, int y, int x0, int x1, double dx, double dy) {
+void addRun(MsaaScratch& scratch, int y, int x0, int x1, std::size_t passedAt, double dx, double dy) {
     SpanRun& run = scratch.runs.emplace_back();
     run.y = y;
     run.x0 = x0;
     run.x1 = x1;
+    run.passedAt = std::uint32_t(passedAt);
     run.dx = dx;
     run.dy = dy;
 }
@@ -160,6 +161,7 @@ template <int kN>
 void listRuns(MsaaScratch& scratch, int y, int lo, int hi, int c0, int c1, const std::uint8_t* covered,
               const std::uint8_t* passed) {
     const Centroid* centroids = centroidTable<kN>();
+    const std::size_t at = std::size_t(passed - scratch.passed.data()); // pixel lo's mask
     c0 = std::max(c0, lo);
     c1 = std::min(c1, hi);
     for (int x = lo; x < hi;) {
@@ -168,10 +170,10 @@ void listRuns(MsaaScratch& scratch, int y, int lo, int hi, int c0, int c1, const
         } else if (x >= c0 && x < c1) {
             const int from = x;
             while (x < c1 && passed[x - lo] != 0) ++x;
-            addRun(scratch, y, from, x, 0.0, 0.0);
+            addRun(scratch, y, from, x, at + std::size_t(from - lo), 0.0, 0.0);
         } else {
             const Centroid& m = centroids[covered[x - lo]];
-            addRun(scratch, y, x, x + 1, m.dx, m.dy);
+            addRun(scratch, y, x, x + 1, at + std::size_t(x - lo), m.dx, m.dy);
             ++x;
         }
     }
@@ -184,11 +186,14 @@ template <int kN>
 struct RunList {
     MsaaScratch& scratch;
     const Centroid* centroids = centroidTable<kN>();
-    int y = 0, c0 = 0, c1 = 0;
-    int from = -1; // the open run's first pixel (-1: none)
+    int y = 0, lo = 0, c0 = 0, c1 = 0;
+    std::size_t at = 0; // where pixel lo's mask is in scratch.passed
+    int from = -1;      // the open run's first pixel (-1: none)
 
-    RunList(MsaaScratch& s, int row, int lo, int hi, int centre0, int centre1)
-        : scratch(s), y(row), c0(std::max(centre0, lo)), c1(std::min(centre1, hi)) {}
+    // Row `row`'s pixels [lo, hi), their masks of passing samples at `passed` (in scratch.passed).
+    RunList(MsaaScratch& s, int row, int first, int hi, int centre0, int centre1, const std::uint8_t* passed)
+        : scratch(s), y(row), lo(first), c0(std::max(centre0, first)), c1(std::min(centre1, hi)),
+          at(std::size_t(passed - s.passed.data())) {}
     void operator()(int x, unsigned pass, unsigned cover) {
         if (pass != 0 && x >= c0 && x < c1) {
             if (from < 0) from = x;
@@ -197,12 +202,12 @@ struct RunList {
         close(x);
         if (pass != 0) {
             const Centroid& m = centroids[cover];
-            addRun(scratch, y, x, x + 1, m.dx, m.dy);
+            addRun(scratch, y, x, x + 1, at + std::size_t(x - lo), m.dx, m.dy);
         }
     }
     void close(int x) {
         if (from < 0) return;
-        addRun(scratch, y, from, x, 0.0, 0.0);
+        addRun(scratch, y, from, x, at + std::size_t(from - lo), 0.0, 0.0);
         from = -1;
     }
 };
@@ -213,7 +218,7 @@ template <int kN, DepthMode kDepth, bool kVector>
 void testAndListRow(const TriangleSetup& t, const SampleOffset* pattern, float* depth, MsaaScratch& scratch, int y,
                     int lo, int hi, int c0, int c1, const std::uint8_t* covered, std::uint8_t* passed) {
     if constexpr (kVector) {
-        RunList<kN> runs(scratch, y, lo, hi, c0, c1);
+        RunList<kN> runs(scratch, y, lo, hi, c0, c1, passed);
         depthTestRow<kN, kDepth, true>(t, pattern, depth, y, lo, hi, covered, passed, runs);
         runs.close(hi);
     } else {
@@ -262,7 +267,7 @@ void testAndListRowAvx2(const TriangleSetup& t, float* depth, MsaaScratch& scrat
         const __m128d dy = _mm_sub_pd(_mm_add_pd(_mm_set1_pd(y + 0.5), _mm_load_pd(points.y)), _mm_set1_pd(t.originY));
         const __m128d zStart = _mm_add_pd(_mm_add_pd(_mm_set1_pd(t.value[kPlaneZ]), _mm_mul_pd(slope, dx)),
                                           _mm_mul_pd(_mm_set1_pd(t.ddy[kPlaneZ]), dy));
-        RunList<kN> runs(scratch, y, lo, hi, c0, c1);
+        RunList<kN> runs(scratch, y, lo, hi, c0, c1, passed);
         for (int x = lo; x < hi; ++x) {
             const unsigned cover = covered[x - lo];
             unsigned pass = 0;
@@ -288,7 +293,7 @@ void testAndListRowAvx2(const TriangleSetup& t, float* depth, MsaaScratch& scrat
         zStart[g] = _mm256_add_pd(_mm256_add_pd(_mm256_set1_pd(t.value[kPlaneZ]), _mm256_mul_pd(ddx, dx)),
                                   _mm256_mul_pd(_mm256_set1_pd(t.ddy[kPlaneZ]), dy));
     }
-    RunList<kN> runs(scratch, y, lo, hi, c0, c1);
+    RunList<kN> runs(scratch, y, lo, hi, c0, c1, passed);
     for (int x = lo; x < hi; ++x) {
         const unsigned cover = covered[x - lo];
         if (cover == 0) {

@@ -17,11 +17,27 @@ namespace sr {
 // Pixels [x0, x1) of row y, to be shaded at their centres moved by (dx, dy) pixels: (0, 0) for
 // runs of pixels whose centre the triangle covers, the centroid's offset for a single pixel whose
 // centre it does not. A moved point is evaluated as the plane with its origin moved the other
-// way (moveOrigin), so the span loops and kernels need no other change.
+// way (moveOrigin), so the span loops and kernels need no other change. The run's pixels' masks
+// of passing samples start at MsaaScratch::passed[passedAt] (one per pixel, x0 first).
 struct SpanRun {
     int y = 0, x0 = 0, x1 = 0;
+    std::uint32_t passedAt = 0;
     double dx = 0.0, dy = 0.0;
 };
+
+// Where a run shader may write its colours itself (kernels whose shading reads nothing of the
+// triangle: Kernels.inl, shadeRunSpans): the target's samples whose bits are set in the runs'
+// masks, passed[run.passedAt + (x - run.x0)]. Null target: the draw blends or discards per
+// sample (transparent, texel alpha), so the colours go to the shading rows.
+struct SampleWrite {
+    MsaaBuffer* target = nullptr;
+    const std::uint8_t* passed = nullptr;
+};
+
+// What a program's run shader did with a triangle's runs: nothing (no kernel for this draw: the
+// scalar loop shades), shaded them into the shading rows, or wrote them to the samples
+// (SampleWrite).
+enum class RunShading { NotDone, IntoRows, IntoSamples };
 
 // The plane origin that makes `t`'s planes evaluate at (x + run.dx, y + run.dy) when asked for
 // (x, y): moved the other way, rounded once (the same in every path).
@@ -144,11 +160,16 @@ void fillTriangleSamples(const MsaaStages& stages, const TriangleSetup& t, MsaaB
     if (scratch.runs.empty()) return;
 
     // 2. Shade once per listed pixel, all rows in one call; the colours land in the pixel-sized
-    //    shading rows.
-    shadeRuns(static_cast<const SpanRun*>(scratch.runs.data()), int(scratch.runs.size()));
+    //    shading rows, or (an opaque draw's kernel that can wait: shadeRuns returns true) in the
+    //    passing samples themselves, now or once a whole group of lanes is queued, in order.
+    const bool opaque = alpha >= 1.0f && texelAlpha == AlphaMode::Off;
+    const SampleWrite write{opaque ? &target : nullptr, scratch.passed.data()};
+    if (shadeRuns(static_cast<const SpanRun*>(scratch.runs.data()), int(scratch.runs.size()), write)) {
+        for (const SpanRun& run : scratch.runs) shaded += std::uint64_t(run.x1 - run.x0);
+        return;
+    }
 
     // 3. Write each shaded colour to the samples that passed.
-    const bool opaque = alpha >= 1.0f && texelAlpha == AlphaMode::Off;
     for (const MsaaScratch::Row& row : scratch.rows) {
         const Pixel* shadedRow = shadeRow(row.y);
         const std::uint8_t* passed = scratch.passed.data() + row.offset;
@@ -206,8 +227,10 @@ void fillTriangleSamples(const MsaaStages& stages, const TriangleSetup& t, MsaaB
 //    against that sample's depth;
 //  - shading ONCE per pixel with at least one covered sample that passed: at the pixel centre
 //    when the centre is inside the triangle, otherwise at the centroid of the covered samples (no
-//    attribute is extrapolated outside the triangle), by one call shadeRuns(runs, count) per
-//    triangle (SpanRun), which writes the colours to shadeRow(y)[x] (pixel-sized scratch rows);
+//    attribute is extrapolated outside the triangle), by one call shadeRuns(runs, count, write)
+//    per triangle (SpanRun), which writes the colours to shadeRow(y)[x] (pixel-sized scratch
+//    rows) and returns false, or writes them to the passing samples itself (SampleWrite, given
+//    for opaque draws) and returns true;
 //  - the colour goes to every covered sample that passed (alpha < 1: blended over each, Blend.hpp,
 //    in linear light when `linear`);
 //  - texelAlpha (Mask or Blend; the depth mode is then Test): the shaded colour carries its alpha in the

@@ -89,15 +89,17 @@ struct LaneBands {
 // drawMesh's programs carry the kernel chosen once per draw (Raster/Fill/Kernels/KernelTable.hpp).
 template <class Program, class = void>
 struct HasFillKernel : std::false_type {};
-// ... and optionally bool shadeRuns(const TriangleSetup&, FrameBuffer&, const SpanRun*, int count):
-// shades the runs' pixels (SpanRun: at the centre or moved) into fb's rows (no depth test), as
-// fillSpan with DepthMode::Off and fragment() would, or returns false (the multisampled fill).
+// ... and optionally RunShading shadeRuns(const TriangleSetup&, FrameBuffer&, const SpanRun*, int
+// count, const SampleWrite&): shades the runs' pixels (SpanRun: at the centre or moved) into fb's
+// rows or the samples (no depth test), as fillSpan with DepthMode::Off and fragment() would, or
+// does nothing (the multisampled fill).
 template <class Program, class = void>
 struct HasShadeRuns : std::false_type {};
 template <class Program>
 struct HasShadeRuns<Program, std::void_t<decltype(std::declval<Program&>().shadeRuns(
                                  std::declval<const TriangleSetup&>(), std::declval<FrameBuffer&>(),
-                                 std::declval<const SpanRun*>(), 0))>> : std::true_type {};
+                                 std::declval<const SpanRun*>(), 0, std::declval<const SampleWrite&>()))>>
+    : std::true_type {};
 // ... and optionally float fragmentAlpha(const Fragment<kVaryings>&): the fragment's texel alpha,
 // for draws with DrawState::texelAlpha on.
 template <class Program, int kVaryings, class = void>
@@ -275,9 +277,14 @@ void fillSetUpTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
     auto fillSamples = [&](const Scissor& scissor, auto perspTag) {
         constexpr PerspectiveMode kPersp = decltype(perspTag)::value;
         auto shadeRow = [&fb](int y) -> const Pixel* { return fb.colorRow(y); };
-        auto shadeRuns = [&](const SpanRun* runs, int count) {
+        auto shadeRuns = [&](const SpanRun* runs, int count, const SampleWrite& write) {
             if constexpr (HasShadeRuns<Program>::value) {
-                if (!texelAlpha.on() && program.shadeRuns(setup, fb, runs, count)) return;
+                if (!texelAlpha.on()) {
+                    const RunShading done = program.shadeRuns(setup, fb, runs, count, write);
+                    if (done != RunShading::NotDone) return done == RunShading::IntoSamples;
+                }
+            } else {
+                (void)write;
             }
             // With texel alpha, the alpha rides in the shading row's X byte (MsaaAlpha).
             auto fragment = [&program, texelAlpha](const Fragment<kVaryings>& f) {
@@ -296,6 +303,7 @@ void fillSetUpTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
                 moveOrigin(setup, runs[r], moved);
                 fillSpan<DepthMode::Off, kVaryings, kPersp>(moved, fb, runs[r].y, runs[r].x0, runs[r].x1, fragment);
             }
+            return false;
         };
         fillTriangleMsaa(lane.msaaStages, setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha,
                          texelAlpha.mode, state.linearBlend);

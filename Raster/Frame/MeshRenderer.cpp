@@ -33,10 +33,10 @@ struct KernelProgram : Base {
     void flushFill(FrameBuffer& fb) const {
         if (flushKernel) flushKernel(*this, fb);
     }
-    bool shadeRuns(const TriangleSetup& t, FrameBuffer& fb, const SpanRun* runs, int count) const {
-        if (!runsKernel) return false;
-        runsKernel(*this, t, fb, runs, count);
-        return true;
+    RunShading shadeRuns(const TriangleSetup& t, FrameBuffer& fb, const SpanRun* runs, int count,
+                         const SampleWrite& write) const {
+        if (!runsKernel) return RunShading::NotDone;
+        return runsKernel(*this, t, fb, runs, count, write) ? RunShading::IntoSamples : RunShading::IntoRows;
     }
 };
 

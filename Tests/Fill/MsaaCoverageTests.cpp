@@ -42,14 +42,17 @@ MsaaFillResult fillSamples(const ScreenVertex& a, const ScreenVertex& b, const S
     if (setupTriangleCulled(t, a, b, c, CullMode::None, 0, true, {}, true) == SetupOutcome::Ready) {
         MsaaScratch scratch;
         auto shadeRow = [&](int y) -> const Pixel* { return shadeRows.colorRow(y); };
-        auto shadeRuns = [&](const SpanRun* runs, int count) {
+        auto shadeRuns = [&](const SpanRun* runs, int count, const SampleWrite& write) {
+            REQUIRE(write.target == &target); // an opaque draw: the samples offered
             for (int k = 0; k < count; ++k)
                 for (int x = runs[k].x0, y = runs[k].y; x < runs[k].x1; ++x) {
                     shadeRows.colorRow(y)[x] = kInk;
                     const bool centre = runs[k].dx == 0.0 && runs[k].dy == 0.0;
                     (centre ? r.centreShaded : r.centroidShaded).push_back(y * width + x);
                     if (!centre) REQUIRE(runs[k].x1 == x + 1); // centroids one pixel at a time
+                    REQUIRE(write.passed[runs[k].passedAt + std::uint32_t(x - runs[k].x0)] != 0); // a sample passed
                 }
+            return false; // written to the rows: the fill's write step stores the samples
         };
         fillTriangleMsaa<DepthMode::Off>(t, target, Scissor{0, 0, width, height}, scratch, shadeRow, shadeRuns,
                                          r.shadedCount);
@@ -311,9 +314,20 @@ TEST_CASE("MSAA coverage and depth (edge functions, vector depth test) equal the
                         }
                     }
                     REQUIRE(a.runs.size() == b.runs.size());
+                    std::size_t row = 0; // the record of the runs' row (runs are listed row by row)
                     for (std::size_t r = 0; r < a.runs.size(); ++r) {
                         const SpanRun &ra = a.runs[r], &rb = b.runs[r];
                         REQUIRE((ra.y == rb.y && ra.x0 == rb.x0 && ra.x1 == rb.x1 && ra.dx == rb.dx && ra.dy == rb.dy));
+                        // Each run's masks are its pixels' passing samples in the row records.
+                        while (a.rows[row].y != ra.y) ++row;
+                        const MsaaScratch::Row &rowA = a.rows[row], &rowB = b.rows[row];
+                        for (int x = ra.x0; x < ra.x1; ++x) {
+                            const std::uint8_t pass = a.passed[rowA.offset + std::size_t(x - rowA.lo)];
+                            REQUIRE(pass != 0);
+                            REQUIRE(a.passed[ra.passedAt + std::size_t(x - ra.x0)] == pass);
+                            REQUIRE(b.passed[rb.passedAt + std::size_t(x - rb.x0)] ==
+                                    b.passed[rowB.offset + std::size_t(x - rowB.lo)]);
+                        }
                     }
                     for (int y = 0; y < kH; ++y)
                         REQUIRE(std::equal(edged.depthRow(y), edged.depthRow(y) + kW * n, walked.depthRow(y)));

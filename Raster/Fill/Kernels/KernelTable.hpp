@@ -33,13 +33,17 @@ template <class Prog>
 using FillKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, const Scissor&, std::uint64_t& shaded);
 
 // The multisampled fill's run shader (MsaaFill.hpp): shades the pixels of `count` runs (SpanRun:
-// at their centres or moved) into fb's rows, without a depth test. Bit-identical to
-// fillSpan<DepthMode::Off> + fragment() on the setup (or its moved copy, moveOrigin).
+// at their centres or moved) without a depth test, bit-identical to fillSpan<DepthMode::Off> +
+// fragment() on the setup (or its moved copy, moveOrigin). Into fb's rows, returning false; or,
+// when `write` has a target and the program's shading reads nothing of the triangle, into the
+// target's passing samples (queued across the draw's triangles, in order; the flush kernel
+// writes the rest), returning true.
 template <class Prog>
-using ShadeRunsKernel = void (*)(const Prog&, const TriangleSetup&, FrameBuffer&, const SpanRun* runs, int count);
+using ShadeRunsKernel = bool (*)(const Prog&, const TriangleSetup&, FrameBuffer&, const SpanRun* runs, int count,
+                                 const SampleWrite& write);
 
-// The fill kernel's deferred queue (Kernels.inl, fillSpans): shades and writes the fragments a
-// draw's fill kernel left queued on this thread; called by the pipeline at the end of each lane's
+// The fill kernel's deferred queue (Kernels.inl, fillSpans), and the run shader's: shades and
+// writes the fragments a draw's kernels left queued on this thread; called by the pipeline at the end of each lane's
 // walk of the draw and before a wireframe edge (anything else that writes colour). `p`: any
 // program of the draw.
 template <class Prog>

@@ -23,14 +23,17 @@ using sr::programs::DrawContext;
 // --- The span loop ---------------------------------------------------------------------------
 // The fragments of one triangle that passed the depth test in partial groups, waiting to be
 // shaded kLanes at a time (left-packed: entries [0, count) are used). Room for two groups: a
-// whole vector is stored at `count` < kLanes.
+// whole vector is stored at `count` < kLanes. With `samples` (the multisampled run shader's
+// queue of an opaque draw), each fragment's colour goes to its passing samples there, mask[i].
 template <int kV>
 struct FragmentQueue {
     int count = 0;
+    MsaaBuffer* samples = nullptr;
     alignas(64) std::int32_t x[2 * kLanes];
     alignas(64) std::int32_t y[2 * kLanes];
     alignas(64) float invW[2 * kLanes];
     alignas(64) float v[kV > 0 ? kV : 1][2 * kLanes];
+    alignas(64) std::int32_t mask[2 * kLanes];
 };
 
 // fillTriangle (ScanlineFill.hpp) kLanes pixels per step. Per span: the plane values at the
@@ -107,13 +110,74 @@ struct SpanKernel {
         return toFloat(startValue + g * lowHalf(step), startValue + g * highHalf(step));
     }
 
-    // Shades the queue's first kLanes fragments and stores the first `used` colours.
+    // The varyings of the lanes `step` pixels right of a span's first pixel (whose plane values
+    // are startF), divided by their 1/w `invW` (Exact): fillTriangle's expressions, lane by lane.
+    void varyingsAt(const float* startF, F step, F invW, F* values) const {
+        if constexpr (kPersp == PerspectiveMode::Exact) {
+            const F w = fset(1.0f) / invW;
+            for (int k = 0; k < kV; ++k) values[k] = (fset(startF[kPlaneVarying0 + k]) + gradient[kPlaneVarying0 + k] * step) * w;
+        } else {
+            for (int k = 0; k < kV; ++k) values[k] = fset(startF[kPlaneVarying0 + k]) + gradient[kPlaneVarying0 + k] * step;
+        }
+    }
+
+    // Shades the queue's first kLanes fragments and stores the first `used` colours (to the
+    // samples: kToSamples, a queue with samples; else to fb).
+    template <bool kToSamples>
     void shadeQueued(int used) const {
         F values[kV > 0 ? kV : 1];
         for (int k = 0; k < kV; ++k) values[k] = fload(queue.v[k]);
         alignas(64) std::uint32_t out[kLanes];
         istore(out, shadeGroup<Prog, kPersp, kFilter>(p, values, fload(queue.invW), iload(queue.x), iload(queue.y), triangleLod));
-        for (int i = 0; i < used; ++i) put(fb.colorRow(queue.y[i])[queue.x[i]], out[i]);
+        if constexpr (kToSamples) {
+            withSampleCount([&](auto n) {
+                constexpr int kN = decltype(n)::value;
+                MsaaBuffer& target = *queue.samples;
+                for (int i = 0; i < used; ++i)
+                    writeSamples<kN>(target.colourRow(queue.y[i]) + std::size_t(queue.x[i]) * kN, out[i], unsigned(queue.mask[i]));
+            });
+        } else {
+            for (int i = 0; i < used; ++i) put(fb.colorRow(queue.y[i])[queue.x[i]], out[i]);
+        }
+    }
+    // The same, to wherever the queue writes.
+    void shadeQueuedAnywhere(int used) const {
+        if (queue.samples) shadeQueued<true>(used);
+        else shadeQueued<false>(used);
+    }
+
+    // f(std::integral_constant<int, n>) for the queue's target's n samples per pixel.
+    template <class F>
+    void withSampleCount(F&& f) const {
+        switch (queue.samples->samples()) {
+        case 2: f(std::integral_constant<int, 2>{}); break;
+        case 4: f(std::integral_constant<int, 4>{}); break;
+        case 8: f(std::integral_constant<int, 8>{}); break;
+        default: assert(false);
+        }
+    }
+
+    // Colour c to a pixel's samples whose bits are set in `mask`.
+    template <int kN>
+    static void writeSamples(Pixel* samples, Pixel c, unsigned mask) {
+        if (mask == (1u << kN) - 1u) { // every sample (inside the triangle): stored unmasked
+            for (int k = 0; k < kN; ++k) samples[k] = c;
+            return;
+        }
+        for (int k = 0; k < kN; ++k)
+            if (mask >> k & 1u) samples[k] = c;
+    }
+
+    // After shadeQueued(kLanes): moves the rest (fewer than kLanes) to the front (with their
+    // sample masks: kMasks).
+    template <bool kMasks>
+    void dropShadedGroup() const {
+        queue.count -= kLanes;
+        istore(queue.x, iload(queue.x + kLanes));
+        istore(queue.y, iload(queue.y + kLanes));
+        fstore(queue.invW, fload(queue.invW + kLanes));
+        for (int k = 0; k < kV; ++k) fstore(queue.v[k], fload(queue.v[k] + kLanes));
+        if constexpr (kMasks) istore(queue.mask, iload(queue.mask + kLanes));
     }
 
     // Shades and writes the queued fragments (fewer than kLanes) and empties the queue.
@@ -127,7 +191,7 @@ struct SpanKernel {
         istore(queue.y, select(keep, iload(queue.y), iset(queue.y[used - 1])));
         fstore(queue.invW, select(keep, fload(queue.invW), fset(queue.invW[used - 1])));
         for (int k = 0; k < kV; ++k) fstore(queue.v[k], select(keep, fload(queue.v[k]), fset(queue.v[k][used - 1])));
-        shadeQueued(used);
+        shadeQueuedAnywhere(used);
         queue.count = 0;
     }
 
@@ -143,8 +207,9 @@ struct SpanKernel {
     // A one-pixel span [x, x + 1) of row y on the setup with its plane origin at `origin`
     // (movedOrigin: a pixel shaded at its centroid), without a depth test: lane 0 of operator()'s
     // one group, computed alone (the same double plane values, the same float operations with
-    // step 0) and queued, instead of a whole group of lanes for one.
-    void queueOne(int y, int x, PlaneOrigin origin) const {
+    // step 0) and queued, instead of a whole group of lanes for one. `mask`: its passing samples
+    // (a queue with samples).
+    void queueOne(int y, int x, PlaneOrigin origin, unsigned mask = 0) const {
         static_assert(kDepth == DepthMode::Off && kV > 0, "the multisampled fill's centroid pixels");
         alignas(64) float startF[kPlanesPadded];
         alignas(64) double startZW[kLanes / 2];
@@ -160,11 +225,55 @@ struct SpanKernel {
         queue.x[at] = x;
         queue.y[at] = y;
         queue.invW[at] = invW;
+        queue.mask[at] = std::int32_t(mask);
         ++shaded;
         queue.count = at + 1;
         if (queue.count == kLanes) {
-            shadeQueued(kLanes);
+            shadeQueuedAnywhere(kLanes);
             queue.count = 0;
+        }
+    }
+
+    // Pixels [x0, x1) of row y at their centres, without a depth test, written to their passing
+    // samples masks[x - x0] (a queue with samples): operator()'s values for DepthMode::Off, lane
+    // by lane. A whole group of lanes is shaded and written at once (after the queued fragments
+    // of its pixels: queuedIn), the rest queued, so that every colour reaches the samples in the
+    // order the fragments came.
+    void queueRun(int y, int x0, int x1, const std::uint8_t* masks) const {
+        static_assert(kDepth == DepthMode::Off && kV > 0, "the multisampled fill's runs");
+        alignas(64) float startF[kPlanesPadded];
+        alignas(64) double startZW[kLanes / 2];
+        planesAt((x0 + 0.5) - t.originX, (y + 0.5) - t.originY, startF, startZW);
+        const F lastStep = fset(float(x1 - 1 - x0));
+        const I row = iset(y);
+        for (int x = x0; x < x1; x += kLanes) {
+            const int n = std::min(kLanes, x1 - x);
+            const F step = fmin(fset(float(x - x0)) + fiota(), lastStep);
+            const F invW = planeInDouble(dset(startZW[kPlaneInvW]), kPlaneInvW, step);
+            F values[kV];
+            varyingsAt(startF, step, invW, values);
+            if (n == kLanes) {
+                if (queue.count > 0 && queuedIn(y, x)) flush();
+                alignas(64) std::uint32_t out[kLanes];
+                istore(out, shadeGroup<Prog, kPersp, kFilter>(p, values, invW, iset(x) + iiota(), row, triangleLod));
+                withSampleCount([&](auto samples) {
+                    constexpr int kN = decltype(samples)::value;
+                    Pixel* at = queue.samples->colourRow(y) + std::size_t(x) * kN;
+                    for (int i = 0; i < kLanes; ++i) writeSamples<kN>(at + i * kN, out[i], masks[x - x0 + i]);
+                });
+                continue;
+            }
+            const int at = queue.count; // below kLanes: a whole vector fits at `at`
+            for (int k = 0; k < kV; ++k) fstore(queue.v[k] + at, values[k]);
+            istore(queue.x + at, iset(x) + iiota());
+            istore(queue.y + at, row);
+            fstore(queue.invW + at, invW);
+            for (int i = 0; i < n; ++i) queue.mask[at + i] = masks[x - x0 + i];
+            queue.count = at + n;
+            if (queue.count >= kLanes) {
+                shadeQueued<true>(kLanes);
+                dropShadedGroup<true>();
+            }
         }
     }
 
@@ -265,12 +374,8 @@ struct SpanKernel {
                 for (int k = 0; k < kV; ++k) compressStore(queue.v[k] + at, values[k], pass);
                 queue.count = at + passed;
                 if (queue.count >= kLanes) {
-                    shadeQueued(kLanes);
-                    queue.count -= kLanes; // move the rest (fewer than kLanes) to the front
-                    istore(queue.x, iload(queue.x + kLanes));
-                    istore(queue.y, iload(queue.y + kLanes));
-                    fstore(queue.invW, fload(queue.invW + kLanes));
-                    for (int k = 0; k < kV; ++k) fstore(queue.v[k], fload(queue.v[k] + kLanes));
+                    shadeQueued<false>(kLanes);
+                    dropShadedGroup<false>();
                 }
             }
         }
@@ -307,34 +412,75 @@ void fillSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const Sci
     if constexpr (Prog::kVaryings > 0 && !Span::kDeferrable) span.flush();
 }
 
-// Shades and writes what fillSpans left queued on this thread (nothing for a program that is not
-// kDeferrable); `p` is any program of the draw (the queued fragments read only its constants).
+// The multisampled run shader's queue: one per thread and kernel (as fillQueue).
+template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
+FragmentQueue<Prog::kVaryings>& runQueue() {
+    static thread_local FragmentQueue<Prog::kVaryings> queue;
+    return queue;
+}
+
+// Shades and writes what fillSpans and shadeRunSpans left queued on this thread (nothing for a
+// program that is not kDeferrable); `p` is any program of the draw (the queued fragments read
+// only its constants).
 template <class Prog, DepthMode kDepth, PerspectiveMode kPersp, TextureFilter kFilter>
 void flushSpans(const Prog& p, FrameBuffer& fb) {
     using Span = SpanKernel<Prog, kDepth, kPersp, kFilter>;
     if constexpr (Span::kDeferrable) {
-        FragmentQueue<Prog::kVaryings>& queue = fillQueue<Prog, kDepth, kPersp, kFilter>();
-        if (queue.count == 0) return;
         const TriangleSetup none{}; // (the shading of a deferrable program reads no triangle)
         std::uint64_t shaded = 0;   // (counted when queued)
-        const Span span(p, none, fb, shaded, queue, p.d->alpha, true);
-        span.flush();
+        FragmentQueue<Prog::kVaryings>& queue = fillQueue<Prog, kDepth, kPersp, kFilter>();
+        if (queue.count > 0) {
+            const Span span(p, none, fb, shaded, queue, p.d->alpha, true);
+            span.flush();
+        }
+        FragmentQueue<Prog::kVaryings>& runs = runQueue<Prog, kPersp, kFilter>();
+        if (runs.count > 0) {
+            const SpanKernel<Prog, DepthMode::Off, kPersp, kFilter> span(p, none, fb, shaded, runs);
+            span.flush();
+        }
     } else {
         (void)p;
         (void)fb;
     }
 }
 
-// The multisampled fill's shading (MsaaFill.hpp): the pixels of the given runs, shaded into fb's
-// rows without a depth test, as fillSpan<DepthMode::Off> with fragment() does (SpanKernel's very
-// loop, one span per run; the queue is flushed before returning).
+// The multisampled fill's shading (MsaaFill.hpp): the pixels of the given runs, shaded without a
+// depth test as fillSpan<DepthMode::Off> with fragment() does (SpanKernel's values). Into fb's
+// rows (SpanKernel's very loop, one span per run; the queue flushed before returning), or, for
+// an opaque draw (write.target) of a kDeferrable program, straight into the passing samples:
+// a run's whole groups of lanes at once, its other pixels queued with their masks (queueRun,
+// queueOne) and written when a whole group is queued. The queue outlives the triangle (a draw of
+// small triangles shades full groups, not one per triangle), fragments reach the samples in
+// submission order, and flushSpans writes the rest at the end of the lane's walk. The depth test
+// was made per sample before (coverTriangleSamples), so the samples are those of the per-triangle
+// path, and the shading rows in fb are not used.
 template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
-void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const SpanRun* runs, int count) {
+bool shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const SpanRun* runs, int count,
+                   const SampleWrite& write) {
     assert(Prog::kVaryings <= t.varyingCount);
-    static thread_local FragmentQueue<Prog::kVaryings> queue;
-    queue.count = 0;
-    std::uint64_t shaded = 0; // the multisampled fill counts its pixels itself
     using Span = SpanKernel<Prog, DepthMode::Off, kPersp, kFilter>;
+    FragmentQueue<Prog::kVaryings>& queue = runQueue<Prog, kPersp, kFilter>();
+    std::uint64_t shaded = 0; // the multisampled fill counts its pixels itself
+    if constexpr (Span::kDeferrable) {
+        if (write.target) {
+            assert(queue.count == 0 || queue.samples == write.target);
+            queue.samples = write.target;
+            const Span span(p, t, fb, shaded, queue);
+            for (int r = 0; r < count; ++r) {
+                const SpanRun& run = runs[r];
+                const std::uint8_t* masks = write.passed + run.passedAt;
+                if (run.dx != 0.0 || run.dy != 0.0) { // at the centroid: one lane each
+                    const PlaneOrigin origin = movedOrigin(t, run);
+                    for (int x = run.x0; x < run.x1; ++x) span.queueOne(run.y, x, origin, masks[x - run.x0]);
+                    continue;
+                }
+                span.queueRun(run.y, run.x0, run.x1, masks);
+            }
+            return true;
+        }
+    }
+    queue.count = 0;
+    queue.samples = nullptr;
     // Runs at the centre go through the span loop; a pixel shaded off its centre (at its
     // centroid) is queued on its own with the plane origin moved (queueOne, movedOrigin).
     Span span(p, t, fb, shaded, queue);
@@ -352,6 +498,7 @@ void shadeRunSpans(const Prog& p, const TriangleSetup& t, FrameBuffer& fb, const
         span(run.y, run.x0, run.x1); // (without varyings the colour is the triangle's wherever it is shaded)
     }
     if constexpr (Prog::kVaryings > 0) span.flush();
+    return false;
 }
 
 // --- The table ---------------------------------------------------------------------------------
