@@ -129,7 +129,8 @@ MsaaStages msaaStages(int samples, DepthMode depth, MsaaCoverageMethod method = 
 // that passed the depth test, which TestWrite also writes) and scratch.runs (the pixels to
 // shade: runs at the centre, single pixels at their centroid). Sample coverage is the top-left
 // rule at each sample point; a small triangle is tested with edge functions over its bounding
-// box (all samples of a pixel at once, int32), a large one with exact edge walks.
+// box (all samples of a pixel at once, int32), a large one with exact edge walks. With a depth
+// test, a small triangle that every stored depth of its box hides (Auto) lists no rows and no runs.
 void coverTriangleSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, DepthMode depth,
                           MsaaScratch& scratch, MsaaCoverageMethod method = MsaaCoverageMethod::Auto,
                           Isa isa = Isa::Scalar);

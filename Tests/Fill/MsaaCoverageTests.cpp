@@ -267,7 +267,7 @@ TEST_CASE("MSAA coverage and depth (edge functions, vector depth test) equal the
     // pixels at a time).
     constexpr int kW = 48, kH = 40;
     std::mt19937 rng(20261126);
-    int small = 0, large = 0;
+    int small = 0, large = 0, hidden = 0;
     for (Isa isa : kAllIsas) {
         if (!isaAvailable(isa)) continue;
         CAPTURE(isaName(isa));
@@ -304,7 +304,16 @@ TEST_CASE("MSAA coverage and depth (edge functions, vector depth test) equal the
                         s = {uniformInt(rng, 0, 20), uniformInt(rng, 0, 15), uniformInt(rng, 24, kW), uniformInt(rng, 20, kH)};
                     coverTriangleSamples(t, edged, s, depth, a, MsaaCoverageMethod::Auto, isa);
                     coverTriangleSamples(t, walked, s, depth, b, MsaaCoverageMethod::Reference);
-                    REQUIRE(a.rows.size() == b.rows.size());
+                    if (a.rows.empty() && !b.rows.empty()) {
+                        // A small triangle behind every stored depth of its box lists no rows
+                        // (hiddenBehind): then no sample passes in the reference either.
+                        REQUIRE(depth != DepthMode::Off);
+                        REQUIRE(msaaSmallTriangle(t));
+                        for (const MsaaScratch::Row& rb : b.rows)
+                            for (int x = 0; x < rb.hi - rb.lo; ++x) REQUIRE(b.passed[rb.offset + std::size_t(x)] == 0);
+                        ++hidden;
+                    }
+                    REQUIRE((a.rows.size() == b.rows.size() || a.rows.empty()));
                     for (std::size_t r = 0; r < a.rows.size(); ++r) {
                         const MsaaScratch::Row &ra = a.rows[r], &rb = b.rows[r];
                         REQUIRE((ra.y == rb.y && ra.lo == rb.lo && ra.hi == rb.hi));
@@ -335,9 +344,53 @@ TEST_CASE("MSAA coverage and depth (edge functions, vector depth test) equal the
             }
         }
     }
-    // Both methods were exercised (the large triangles go to the walks under Auto as well).
+    // Both methods were exercised (the large triangles go to the walks under Auto as well), and
+    // so was the hidden triangles' shortcut.
     CHECK(small > 1000);
     CHECK(large > 200);
+    CHECK(hidden > 100);
+}
+
+TEST_CASE("MSAA: a small triangle behind every stored depth of its box lists nothing; one barely in front is found",
+          "[msaa]") {
+    // Stored depth 0.3 everywhere. A small triangle whose vertices are all at most 0.3 deep (larger
+    // is nearer) passes no sample and is skipped before its coverage (no rows); raising its third
+    // vertex to 0.31 brings the samples near that vertex in front, which the shortcut must not
+    // hide: Auto lists the reference walks' runs and depths. Every ISA and sample count.
+    constexpr int kW = 24, kH = 20;
+    for (Isa isa : kAllIsas) {
+        if (!isaAvailable(isa)) continue;
+        for (int n : {2, 4, 8})
+            for (DepthMode depth : {DepthMode::Test, DepthMode::TestWrite}) {
+                CAPTURE(isaName(isa), n, int(depth));
+                MsaaBuffer edged, walked;
+                REQUIRE(edged.resize(kW, kH, n));
+                REQUIRE(walked.resize(kW, kH, n));
+                edged.clearRows(0, kH, 0, 0.3f);
+                walked.clearRows(0, kH, 0, 0.3f);
+                MsaaScratch a, b;
+                TriangleSetup behind, front;
+                REQUIRE(setupTriangleCulled(behind, vtx(3.2f, 2.7f, 0.29f), vtx(13.6f, 5.1f, 0.295f), vtx(6.3f, 14.4f, 0.3f),
+                                            CullMode::None, 0, true, {}, true) == SetupOutcome::Ready);
+                REQUIRE(setupTriangleCulled(front, vtx(3.2f, 2.7f, 0.29f), vtx(13.6f, 5.1f, 0.295f), vtx(6.3f, 14.4f, 0.31f),
+                                            CullMode::None, 0, true, {}, true) == SetupOutcome::Ready);
+                REQUIRE(msaaSmallTriangle(behind));
+                coverTriangleSamples(behind, edged, Scissor{0, 0, kW, kH}, depth, a, MsaaCoverageMethod::Auto, isa);
+                coverTriangleSamples(behind, walked, Scissor{0, 0, kW, kH}, depth, b, MsaaCoverageMethod::Reference);
+                CHECK(a.rows.empty()); // skipped
+                CHECK(a.runs.empty());
+                CHECK_FALSE(b.rows.empty()); // the walks cover its samples, none passes
+                CHECK(b.runs.empty());
+                coverTriangleSamples(front, edged, Scissor{0, 0, kW, kH}, depth, a, MsaaCoverageMethod::Auto, isa);
+                coverTriangleSamples(front, walked, Scissor{0, 0, kW, kH}, depth, b, MsaaCoverageMethod::Reference);
+                REQUIRE(b.runs.size() > 3);
+                REQUIRE(a.runs.size() == b.runs.size());
+                for (std::size_t r = 0; r < a.runs.size(); ++r)
+                    CHECK((a.runs[r].y == b.runs[r].y && a.runs[r].x0 == b.runs[r].x0 && a.runs[r].x1 == b.runs[r].x1));
+                for (int y = 0; y < kH; ++y)
+                    CHECK(std::equal(edged.depthRow(y), edged.depthRow(y) + kW * n, walked.depthRow(y)));
+            }
+    }
 }
 
 TEST_CASE("msaaStages: one choice per sample count and depth mode, made once per draw", "[msaa]") {
