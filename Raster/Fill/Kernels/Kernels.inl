@@ -147,8 +147,8 @@ struct SpanKernel {
     }
 
     // f(std::integral_constant<int, n>) for the queue's target's n samples per pixel.
-    template <class F>
-    void withSampleCount(F&& f) const {
+    template <class Body>
+    void withSampleCount(Body&& f) const {
         switch (queue.samples->samples()) {
         case 2: f(std::integral_constant<int, 2>{}); break;
         case 4: f(std::integral_constant<int, 4>{}); break;
