@@ -2,6 +2,7 @@
 // a triangle covers, which of them pass the depth test, and the pixels to shade.
 #include "Raster/Fill/MsaaFill.hpp"
 #include "Raster/Fill/Kernels/KernelConfig.hpp"
+#include "Raster/Fill/Occlusion.hpp"
 #include "Raster/Fill/Prefetch.hpp"
 
 #include <algorithm>
@@ -605,26 +606,13 @@ void coverByEdgeFunctions(const TriangleSetup& t, MsaaBuffer& target, int x0, in
 }
 
 // Whether no sample of pixels [x0, x1) x [rowBegin, rowEnd) (a small triangle's box) can pass
-// the depth test `z > stored` against triangle `t`: every stored depth there is at least a bound
-// on the depth t can have at a sample it covers. Then finding its coverage is skipped (with no
-// back faces culled, about half of a closed mesh's triangles pass no sample); the answer is the
-// same, as no sample would pass. The bound: the depth plane's largest value at the three vertices
-// (a covered sample lies in the triangle, where the plane is at most that), plus a slack far above
-// the rounding of any plane evaluation over the box, rounded to float (monotonic). Pending blocks
-// of a fast clear hold their row's clear depth; a NaN anywhere keeps the triangle.
+// the depth test `z > stored` against triangle `t`: every stored depth there is at least
+// nearestDepthBound. Then finding its coverage is skipped (with no back faces culled, about half
+// of a closed mesh's triangles pass no sample); the answer is the same, as no sample would pass.
+// Pending blocks of a fast clear hold their row's clear depth; a NaN anywhere keeps the triangle.
 template <int kN>
 bool hiddenBehind(const TriangleSetup& t, const MsaaBuffer& target, int x0, int x1, int rowBegin, int rowEnd) {
-    const FixedEdge& l = t.longEdge;
-    auto zAt = [&t](std::int64_t x, std::int64_t y) {
-        return t.planeAt(kPlaneZ, double(x) / kSubPixelScale, double(y) / kSubPixelScale);
-    };
-    const double zMax = std::max({zAt(l.x0, l.y0), zAt(t.lowerEdge.x0, t.lowerEdge.y0),
-                                  zAt(std::int64_t(l.x0) + l.dx, std::int64_t(l.y0) + l.dy)});
-    const double reachX = std::max(std::fabs(x0 - t.originX), std::fabs(x1 - t.originX)) + 2.0;
-    const double reachY = std::max(std::fabs(rowBegin - t.originY), std::fabs(rowEnd - t.originY)) + 2.0;
-    const double slack = (std::fabs(t.value[kPlaneZ]) + std::fabs(t.ddx[kPlaneZ]) * 2.0 * reachX +
-                          std::fabs(t.ddy[kPlaneZ]) * reachY) * 0x1p-44;
-    const float bound = float(zMax + slack);
+    const float bound = nearestDepthBound(t, x0, x1, rowBegin, rowEnd);
     if (!(bound == bound)) return false;
     for (int y = rowBegin; y < rowEnd; ++y) {
         const float* depth = target.depthRow(y);
@@ -683,7 +671,7 @@ void coverSamples(const TriangleSetup& t, MsaaBuffer& target, const Scissor& s, 
         }
     }
     if constexpr (kDepth != DepthMode::Off)
-        if (edgeFunctions && hiddenBehind<kN>(t, target, boxX0, boxX1, rowBegin, rowEnd)) return;
+        if (edgeFunctions && occlusionCandidate(t) && hiddenBehind<kN>(t, target, boxX0, boxX1, rowBegin, rowEnd)) return;
     if (edgeFunctions) coverByEdgeFunctions<kN, kDepth, kWide>(t, target, boxX0, boxX1, rowBegin, rowEnd, scratch);
     else if (method == MsaaCoverageMethod::Reference) coverByWalks<kN, kDepth, false, false>(t, target, s, rowBegin, rowEnd, scratch);
     else coverByWalks<kN, kDepth, true, kWide>(t, target, s, rowBegin, rowEnd, scratch);

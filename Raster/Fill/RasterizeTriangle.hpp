@@ -308,7 +308,8 @@ void fillSetUpTriangle(FrameBuffer& fb, MsaaBuffer* msaa, const DrawState& state
         fillTriangleMsaa(lane.msaaStages, setup, *msaa, scissor, lane.msaa, shadeRow, shadeRuns, shaded, alpha,
                          texelAlpha.mode, state.linearBlend);
     };
-    auto fillIn = [&](auto depthTag, const Scissor& scissor) {
+    // (Inlined: out of line, as GCC 12 leaves it once the kernel call grows, each triangle pays a call.)
+    auto fillIn = [&](auto depthTag, const Scissor& scissor) SR_SIMD_LAMBDA {
         constexpr DepthMode kDepth = decltype(depthTag)::value;
         if (msaa) {
             if (kVaryings > 0 && state.perspective == PerspectiveMode::Affine)

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "Raster/Fill/Kernels/KernelTable.hpp"
+#include "Raster/Fill/Occlusion.hpp"
 #include "Raster/Pipeline.hpp"
 #include "Raster/Shade/MeshPrograms.hpp"
 #include "Raster/Shade/PbrProgram.hpp"
@@ -25,8 +26,12 @@ struct KernelProgram : Base {
     FillKernel<Base> kernel = nullptr;
     ShadeRunsKernel<Base> runsKernel = nullptr;
     FlushKernel<Base> flushKernel = nullptr;
+    bool depthTested = false; // the draw's test is `z > stored`: a hidden triangle may be skipped
     bool fillKernel(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) const {
         if (!kernel) return false;
+        // Nothing of a triangle the stored depths hide would pass (Occlusion.hpp). The scalar loop,
+        // the kernels' reference, fills every triangle.
+        if (depthTested && occlusionCandidate(t) && hiddenInFrame(t, fb, s)) return true;
         kernel(*this, t, fb, s, shaded);
         return true;
     }
@@ -58,6 +63,8 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
         withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
         withKernel.flushKernel = selectFlushKernel<Program>(d.settings.isa, key);
+        // (Mesh draws always test depth today; the check needs the test `z > stored`.)
+        withKernel.depthTested = state.depth != DepthMode::Off && !state.depthEqualPasses;
     }
     // The programs' vertex() reads the mesh, the view and (Gouraud) the specular constants, which
     // it names in vertexVariant(): draws of one mesh share their vertex stage inside a
