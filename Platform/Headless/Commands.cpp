@@ -191,10 +191,17 @@ int runBench(const std::vector<std::string>& args, Streams io) {
     j += ",\"msaa\":" + std::to_string(settings.antiAliasing.msaaSamples());
     j += std::string(",\"fxaa\":") + (settings.antiAliasing.postFiltered() ? "true" : "false");
     j += ",\"textured\":" + std::string(p.textured ? "true" : "false");
-    if (p.autoQuality)
+    if (p.autoQuality) {
         j += ",\"quality_auto\":{\"setting\":\"" + p.autoQuality->label + "\",\"probe_ms\":" + jsonNumber(p.autoQuality->ms) +
              ",\"error\":" + jsonNumber(p.autoQuality->error) + ",\"candidates\":" + std::to_string(p.autoQuality->candidates) +
-             ",\"probe_s\":" + jsonNumber(p.autoQuality->probeSeconds) + "}";
+             ",\"probe_s\":" + jsonNumber(p.autoQuality->probeSeconds);
+        // What it chose from, in probe order: each candidate's probed time and error.
+        j += ",\"probed\":[";
+        for (std::size_t k = 0; k < p.autoProbe.points.size(); ++k)
+            j += std::string(k ? "," : "") + "{\"setting\":\"" + app::settingLabel(p.autoProbe.settings[k], p.textured) +
+                 "\",\"ms\":" + jsonNumber(p.autoProbe.points[k].ms) + ",\"error\":" + jsonNumber(p.autoProbe.points[k].error) + "}";
+        j += "]}";
+    }
     j += ",\"hardware_threads\":" + std::to_string(std::thread::hardware_concurrency()) + "}";
 
     // The image (if asked) goes first so that stdout's last line is the JSON.
