@@ -63,7 +63,7 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
         withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
         withKernel.flushKernel = selectFlushKernel<Program>(d.settings.isa, key);
-        // (Mesh draws always test depth today; the check needs the test `z > stored`.)
+        // (Mesh draws test depth with `z > stored`, which the check needs; the stencil path, GEQUAL, never reaches it.)
         withKernel.depthTested = state.depth != DepthMode::Off && !state.depthEqualPasses;
     }
     // The programs' vertex() reads the mesh, the view and (Gouraud) the specular constants, which
