@@ -35,8 +35,13 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
         else out = encodeLanes(p, applyTerms(kd, d.specular.ks, Terms{v[kT], v[kT + 1]}));
     } else {
         const V3 n = normalizeFast({v[kT + 3], v[kT + 4], v[kT + 5]}, ok);
-        const Vec3 eye = d.view.eye;
-        const V3 toEye = normalizeFast({fset(eye.x) - v[kT], fset(eye.y) - v[kT + 1], fset(eye.z) - v[kT + 2]}, ok);
+        // The direction to the eye feeds the specular term only: without one (black Ks or Ns 0,
+        // as the spider's materials), no lane forms it (and none fails on it).
+        V3 toEye{fzero(), fzero(), fzero()};
+        if (d.specular.on()) {
+            const Vec3 eye = d.view.eye;
+            toEye = normalizeFast({fset(eye.x) - v[kT], fset(eye.y) - v[kT + 1], fset(eye.z) - v[kT + 2]}, ok);
+        }
         // Coloured, point or spot lights: the out-of-line RGB path, kept off the white-light path's registers.
         if (SR_UNLIKELY(!d.whiteLights || d.view.shadows)) {
             const TermsRgb t = lightsRgb(d.view.lighting, d.specular, d.view.shadows, n.x, n.y, n.z, v[kT], v[kT + 1], v[kT + 2], toEye.x,
