@@ -122,8 +122,8 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     };
     if (binned) {
         // 2. Binned primitive stage: each lane screens a chunk of the triangles into the bands'
-        //    bins, then the lanes take the bands one at a time, the largest first (binTriangles,
-        //    bandsByWork, fillBinnedBand).
+        //    bins, then each lane takes the bands of its own part of the rows, the largest first,
+        //    then what the others left (binTriangles, bandsByWork, BandQueue, fillBinnedBand).
         const int bandsHigh = bandCount(fb.height());
         const std::size_t binCount = std::size_t(lanes) * std::size_t(bandsHigh);
         if (ctx.bins.size() < binCount) ctx.bins.resize(binCount);
@@ -139,12 +139,11 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
             for (int l = 0; l < lanes; ++l) ctx.stats += chunkStats[l];
             return;
         }
-        bandsByWork(ctx, lanes, bandsHigh);
-        std::atomic<int> nextBand{0};
+        bandsByWork(ctx, lanes, bandsHigh, lanes);
+        BandQueue queue(bandsHigh, lanes);
         auto bandJob = [&](int l) {
             Program copy = program;
-            for (int k = nextBand.fetch_add(1, std::memory_order_relaxed); k < bandsHigh;
-                 k = nextBand.fetch_add(1, std::memory_order_relaxed))
+            for (int k = queue.next(l); k >= 0; k = queue.next(l))
                 fillBinnedBand<kVaryings>(ctx, state, ctx.bandOrder[std::size_t(k)], lanes, laneStates[l], indices, copy);
             flushFill(copy, fb);
         };

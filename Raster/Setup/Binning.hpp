@@ -4,6 +4,7 @@
 #pragma once
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -20,8 +21,9 @@ namespace detail {
 // (screenSnapped, from the positions the vertex stage snapped once per vertex: the decisions
 // setupTriangleCulled would make) and appends each survivor to chunk c's bins of the 32-row bands
 // (LaneBands::kBandRows) its rows meet, marked in the band of its first row, which counts it. Then
-// each lane takes the next band not yet taken, the largest first (bandsByWork), until none is
-// left (fillBinnedBand), and draws its bins chunk by chunk, so in submission order: a band is
+// each lane takes the bands of its own part of the rows, the largest first, then what the other
+// lanes left (bandsByWork, BandQueue), until none is left (fillBinnedBand), and draws its bins
+// chunk by chunk, so in submission order: a band is
 // drawn by one lane, whole, while its rows are in that lane's cache, and a lane that runs slower
 // (or shares its CPU) simply takes fewer.
 // Every piece of a triangle that crosses a clip plane (clipped here, once), and a triangle whose
@@ -140,14 +142,18 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
     }
 }
 
+// The bands' split into `regions` parts of consecutive rows, regionSize(bands, regions) bands
+// each (the last may be shorter): part r is first drawn by lane r (BandQueue).
+inline int regionSize(int bands, int regions) { return (bands + regions - 1) / regions; }
+
 // The order the lanes take a binned draw's bands in (ctx.bandOrder, from its `chunks` x
-// `bandsHigh` bins): the most bin entries first, ties the upper band first. Taken in row order,
-// a full band taken last can leave one lane drawing while the others wait; taken largest first,
-// the last bands are the smallest and the lanes finish close together (2 threads:
-// bunny 1920x1080 0.977x the time, spider close-up 0.955-0.973x; docs/PERFORMANCE.md). Which lane
-// draws a band does not change the image.
-inline void bandsByWork(RenderContext& ctx, int chunks, int bandsHigh) {
-    // Key: entries << 16 | (65535 - band), sorted descending.
+// `bandsHigh` bins), within each of `regions` parts (regionSize): the most bin entries first,
+// ties the upper band first. Taken in row order, a full band taken last can leave one lane
+// drawing while the others wait; taken largest first, the last bands are the smallest and the
+// lanes finish close together (2 threads: bunny 1920x1080 0.977x the time; docs/PERFORMANCE.md).
+// Which lane draws a band does not change the image.
+inline void bandsByWork(RenderContext& ctx, int chunks, int bandsHigh, int regions = 1) {
+    // Key: entries << 16 | (65535 - band), sorted descending within each part.
     static_assert(FrameBuffer::kMaxDimension / LaneBands::kBandRows < 65536, "a band number fits 16 bits");
     std::vector<std::uint64_t>& keys = ctx.bandKeys;
     keys.resize(std::size_t(bandsHigh));
@@ -157,10 +163,44 @@ inline void bandsByWork(RenderContext& ctx, int chunks, int bandsHigh) {
             entries += ctx.bins[std::size_t(c) * std::size_t(bandsHigh) + std::size_t(b)].size();
         keys[std::size_t(b)] = entries << 16 | std::uint64_t(65535 - b);
     }
-    std::sort(keys.begin(), keys.end(), [](std::uint64_t x, std::uint64_t y) { return x > y; });
+    const int size = regionSize(bandsHigh, std::max(regions, 1));
+    for (int begin = 0; begin < bandsHigh; begin += size)
+        std::sort(keys.begin() + begin, keys.begin() + std::min(bandsHigh, begin + size),
+                  [](std::uint64_t x, std::uint64_t y) { return x > y; });
     ctx.bandOrder.resize(std::size_t(bandsHigh));
     for (int k = 0; k < bandsHigh; ++k) ctx.bandOrder[std::size_t(k)] = 65535 - int(keys[std::size_t(k)] & 0xFFFFu);
 }
+
+// Which entry of ctx.bandOrder each lane draws next. The bands are split into one part of
+// consecutive rows per lane (regionSize); a lane takes its own part's bands first, in order, then
+// what is left of the other parts. So a band is mostly drawn by the same lane (the same thread
+// and core) from draw to draw and frame to frame, and its rows' colour and depth are still in
+// that core's cache instead of another's (2 threads, spider close-up: 0.90-0.94x the time of one
+// shared counter over all the bands); a lane that runs slower still takes fewer. Every band is
+// handed out exactly once, whatever the interleaving of the lanes' calls.
+class BandQueue {
+public:
+    BandQueue(int bands, int lanes) : bands_(bands), lanes_(std::clamp(lanes, 1, kMaxRenderThreads)), size_(regionSize(bands, lanes_)) {}
+    // The next entry of the order for lane `lane` (its own part's first), or -1: none left.
+    int next(int lane) {
+        for (int i = 0; i < lanes_; ++i) {
+            const int r = (lane + i) % lanes_, begin = r * size_, end = std::min(bands_, begin + size_);
+            if (begin >= end) continue;
+            // (Past its end a part's count keeps growing by one per lane that asks: harmless.)
+            const int k = begin + parts_[r].taken.fetch_add(1, std::memory_order_relaxed);
+            if (k < end) return k;
+        }
+        return -1;
+    }
+
+private:
+    struct Part { // 64 bytes apart: no two lanes' counters share a cache line (no over-alignment
+        std::atomic<int> taken{0}; // asked of the stack, which MinGW does not honour)
+        char padding[64 - sizeof(std::atomic<int>)];
+    };
+    int bands_, lanes_, size_;
+    Part parts_[kMaxRenderThreads];
+};
 
 // Band `band` of a draw binned in `chunks` chunks, on a lane (`lane`: its counters and scratch):
 // the band's bins of every chunk, in chunk order.

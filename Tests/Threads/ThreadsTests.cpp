@@ -7,6 +7,7 @@
 #include <cstring>
 #include <iterator>
 #include <limits>
+#include <numeric>
 #include <random>
 #include <thread>
 #include <tuple>
@@ -740,6 +741,60 @@ TEST_CASE("bandsByWork: the lanes take the bands with the most bin entries first
     CHECK(ctx.bandOrder.front() == most - 1);
     CHECK(ctx.bandOrder[1] == 0);
     CHECK(ctx.bandOrder.back() == most - 2);
+}
+
+TEST_CASE("bandsByWork with parts: the most bin entries first within each lane's part of the rows", "[threads]") {
+    FrameBuffer fb(8, 8);
+    RenderContext ctx(fb);
+    const int chunks = 2, bandsHigh = 6;
+    const std::size_t sizes[2][6] = {{3, 1, 0, 2, 1, 0}, {0, 1, 0, 3, 1, 4}}; // per band: 3 2 0 5 2 4
+    ctx.bins.resize(std::size_t(chunks * bandsHigh));
+    for (int c = 0; c < chunks; ++c)
+        for (int b = 0; b < bandsHigh; ++b)
+            ctx.bins[std::size_t(c * bandsHigh + b)].assign(sizes[c][b], std::uint32_t(b));
+    detail::bandsByWork(ctx, chunks, bandsHigh, 2); // parts {0, 1, 2} and {3, 4, 5}
+    CHECK(ctx.bandOrder == std::vector<int>{0, 1, 2, 3, 5, 4});
+    detail::bandsByWork(ctx, chunks, bandsHigh, 4); // parts of 2: {0, 1} {2, 3} {4, 5}
+    CHECK(ctx.bandOrder == std::vector<int>{0, 1, 3, 2, 5, 4});
+}
+
+TEST_CASE("BandQueue: a lane takes its own part first, then the others'; every band exactly once", "[threads]") {
+    // One lane asking alone: its part in order, then the next parts, then -1.
+    {
+        detail::BandQueue queue(7, 2); // parts [0, 4) and [4, 7)
+        std::vector<int> got;
+        for (int k = queue.next(1); k >= 0; k = queue.next(1)) got.push_back(k);
+        CHECK(got == std::vector<int>{4, 5, 6, 0, 1, 2, 3});
+        CHECK(queue.next(0) == -1);
+    }
+    {
+        detail::BandQueue queue(7, 2);
+        CHECK(queue.next(0) == 0);
+        CHECK(queue.next(1) == 4);
+        CHECK(queue.next(0) == 1);
+    }
+    // Lanes on threads of their own, racing: the bands handed out are 0 .. bands - 1, each once.
+    for (int lanes : {1, 2, 3, 8}) {
+        for (int bands : {1, 2, 5, 19, 34, 70}) {
+            CAPTURE(lanes, bands);
+            for (int round = 0; round < 20; ++round) {
+                detail::BandQueue queue(bands, lanes);
+                std::vector<std::vector<int>> got(static_cast<std::size_t>(lanes));
+                std::vector<std::thread> threads;
+                for (int l = 0; l < lanes; ++l)
+                    threads.emplace_back([&, l] {
+                        for (int k = queue.next(l); k >= 0; k = queue.next(l)) got[std::size_t(l)].push_back(k);
+                    });
+                for (std::thread& t : threads) t.join();
+                std::vector<int> all;
+                for (const std::vector<int>& g : got) all.insert(all.end(), g.begin(), g.end());
+                std::sort(all.begin(), all.end());
+                std::vector<int> expected(static_cast<std::size_t>(bands));
+                std::iota(expected.begin(), expected.end(), 0);
+                REQUIRE(all == expected);
+            }
+        }
+    }
 }
 
 TEST_CASE("wireframe falls back to one lane and still matches", "[threads]") {
