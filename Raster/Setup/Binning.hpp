@@ -23,9 +23,8 @@ namespace detail {
 // (LaneBands::kBandRows) its rows meet, marked in the band of its first row, which counts it. Then
 // each lane takes the bands of its own part of the rows, the largest first, then what the other
 // lanes left (bandsByWork, BandQueue), until none is left (fillBinnedBand), and draws its bins
-// chunk by chunk, so in submission order: a band is
-// drawn by one lane, whole, while its rows are in that lane's cache, and a lane that runs slower
-// (or shares its CPU) simply takes fewer.
+// chunk by chunk, so in submission order: a band is drawn by one lane, whole, while its rows are
+// in that lane's cache, and a lane that runs slower (or shares its CPU) simply takes fewer.
 // Every piece of a triangle that crosses a clip plane (clipped here, once), and a triangle whose
 // rows meet RenderContext::sharedSetupBands bands or more, is set up here, once, into the chunk's
 // shared records (RenderContext::sharedSetups), which its bands read; any other triangle is set up
@@ -175,12 +174,13 @@ inline void bandsByWork(RenderContext& ctx, int chunks, int bandsHigh, int regio
 // consecutive rows per lane (regionSize); a lane takes its own part's bands first, in order, then
 // what is left of the other parts. So a band is mostly drawn by the same lane (the same thread
 // and core) from draw to draw and frame to frame, and its rows' colour and depth are still in
-// that core's cache instead of another's (2 threads, spider close-up: 0.90-0.94x the time of one
+// that core's cache instead of another's (2 threads, spider close-up: 0.88-0.90x the time of one
 // shared counter over all the bands); a lane that runs slower still takes fewer. Every band is
 // handed out exactly once, whatever the interleaving of the lanes' calls.
 class BandQueue {
 public:
-    BandQueue(int bands, int lanes) : bands_(bands), lanes_(std::clamp(lanes, 1, kMaxRenderThreads)), size_(regionSize(bands, lanes_)) {}
+    BandQueue(int bands, int lanes)
+        : bands_(bands), lanes_(std::clamp(lanes, 1, kMaxRenderThreads)), size_(regionSize(bands, lanes_)) {}
     // The next entry of the order for lane `lane` (its own part's first), or -1: none left.
     int next(int lane) {
         for (int i = 0; i < lanes_; ++i) {

@@ -728,6 +728,11 @@ TEST_CASE("bandsByWork: the lanes take the bands with the most bin entries first
             ctx.bins[std::size_t(c * bandsHigh + b)].assign(sizes[c][b], std::uint32_t(b));
     detail::bandsByWork(ctx, chunks, bandsHigh);
     CHECK(ctx.bandOrder == std::vector<int>{3, 5, 0, 1, 4, 2});
+    // In parts of consecutive bands (one per lane: BandQueue), the same rule within each part.
+    detail::bandsByWork(ctx, chunks, bandsHigh, 2); // parts {0, 1, 2} and {3, 4, 5}
+    CHECK(ctx.bandOrder == std::vector<int>{0, 1, 2, 3, 5, 4});
+    detail::bandsByWork(ctx, chunks, bandsHigh, 4); // parts of 2: {0, 1} {2, 3} {4, 5}
+    CHECK(ctx.bandOrder == std::vector<int>{0, 1, 3, 2, 5, 4});
     // Every band empty: row order. Fewer bands than before: the order shrinks with them.
     for (auto& bin : ctx.bins) bin.clear();
     detail::bandsByWork(ctx, chunks, 4);
@@ -741,21 +746,6 @@ TEST_CASE("bandsByWork: the lanes take the bands with the most bin entries first
     CHECK(ctx.bandOrder.front() == most - 1);
     CHECK(ctx.bandOrder[1] == 0);
     CHECK(ctx.bandOrder.back() == most - 2);
-}
-
-TEST_CASE("bandsByWork with parts: the most bin entries first within each lane's part of the rows", "[threads]") {
-    FrameBuffer fb(8, 8);
-    RenderContext ctx(fb);
-    const int chunks = 2, bandsHigh = 6;
-    const std::size_t sizes[2][6] = {{3, 1, 0, 2, 1, 0}, {0, 1, 0, 3, 1, 4}}; // per band: 3 2 0 5 2 4
-    ctx.bins.resize(std::size_t(chunks * bandsHigh));
-    for (int c = 0; c < chunks; ++c)
-        for (int b = 0; b < bandsHigh; ++b)
-            ctx.bins[std::size_t(c * bandsHigh + b)].assign(sizes[c][b], std::uint32_t(b));
-    detail::bandsByWork(ctx, chunks, bandsHigh, 2); // parts {0, 1, 2} and {3, 4, 5}
-    CHECK(ctx.bandOrder == std::vector<int>{0, 1, 2, 3, 5, 4});
-    detail::bandsByWork(ctx, chunks, bandsHigh, 4); // parts of 2: {0, 1} {2, 3} {4, 5}
-    CHECK(ctx.bandOrder == std::vector<int>{0, 1, 3, 2, 5, 4});
 }
 
 TEST_CASE("BandQueue: a lane takes its own part first, then the others'; every band exactly once", "[threads]") {
