@@ -8,7 +8,9 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <type_traits>
+#include <utility>
 
 #include "Raster/Fill/RasterizeTriangle.hpp"
 #include "Raster/Frame/RenderContext.hpp"
@@ -44,10 +46,6 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     for (std::size_t t = 0; t < indexCount; ++t) assert(indices[t] < vertexCount);
 #endif
     if (MsaaBuffer* msaaTarget = ctx.multisampleTarget()) msaaTarget->markDrawn();
-    ctx.clipVertices.resize(vertexCount);
-    ctx.screenVertices.resize(vertexCount);
-    ctx.usable.resize(vertexCount);
-    ctx.clipCodes.resize(vertexCount);
 
     ClipParams params;
     params.viewportWidth = fb.width();
@@ -68,14 +66,25 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
                         triangles <= std::size_t(kBinIndex) / std::size_t(kMaxClipVertices - 2);
     const bool reusable = vertexSource && ctx.vertexReuse;
     const bool snap = binned || (lanes > 1 && reusable);
-    if (snap) ctx.snappedVertices.resize(vertexCount);
+    // A binned draw inside a DeferredFillScope waits to be filled with the pass's other draws
+    // (RenderContext::deferral); any other draw fills the waiting ones first.
+    const bool waits = binned && ctx.deferral.active && state.stopAfter > PipelineStop::Bin;
+    if (!waits) ctx.fillDeferred();
     RenderContext::VertexCacheKey key;
     if (reusable)
         key = {vertexSource, &kVertexProgramTag<Program>, vertexVariantOf(program), vertexCount, fb.width(), fb.height(),
                state.clipFar, snap};
     const bool transformed = key.source && ctx.vertexCache == key;
     ctx.vertexCache = key;
-    if (!transformed) ctx.stats.verticesTransformed += vertexCount;
+    if (!transformed) {
+        ctx.stats.verticesTransformed += vertexCount;
+        ctx.releaseHeldVertices(); // a waiting draw's vertices stay as they are
+    }
+    ctx.clipVertices.resize(vertexCount);
+    ctx.screenVertices.resize(vertexCount);
+    ctx.usable.resize(vertexCount);
+    ctx.clipCodes.resize(vertexCount);
+    if (snap) ctx.snappedVertices.resize(vertexCount);
 
     // The multisampled fill's stages, chosen once for the draw.
     MsaaStages stages;
@@ -123,7 +132,9 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
     if (binned) {
         // 2. Binned primitive stage: each lane screens a chunk of the triangles into the bands'
         //    bins, then each lane takes the bands of its own part of the rows, the largest first,
-        //    then what the others left (binTriangles, bandsByWork, BandQueue, fillBinnedBand).
+        //    then what the others left (binTriangles, bandsByWork, BandQueue, fillBinnedBand); or,
+        //    inside a DeferredFillScope, the draw waits to be filled band by band with the pass's
+        //    other waiting draws (DeferredDrawOf, fillDeferredDraws).
         const int bandsHigh = bandCount(fb.height());
         const std::size_t binCount = std::size_t(lanes) * std::size_t(bandsHigh);
         if (ctx.bins.size() < binCount) ctx.bins.resize(binCount);
@@ -135,23 +146,41 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
             binTriangles<kVaryings>(ctx, state, clipper, c, indices, chunk.begin, chunk.end, chunkStats[c]);
         };
         pool.run(binJob);
-        if (state.stopAfter <= PipelineStop::Bin) { // binning also clipped and culled
-            for (int l = 0; l < lanes; ++l) ctx.stats += chunkStats[l];
+        for (int l = 0; l < lanes; ++l) ctx.stats += chunkStats[l];
+        if (state.stopAfter <= PipelineStop::Bin) return; // binning also clipped and culled
+        if (waits) {
+            auto draw = std::make_unique<DeferredDrawOf<kVaryings, Program>>(state, indices, program, stages);
+            RenderContext::Deferral& q = ctx.deferral;
+            if (!q.spareBins.empty()) {
+                draw->bins = std::move(q.spareBins.back());
+                q.spareBins.pop_back();
+            }
+            if (!q.spareSetups.empty()) {
+                draw->sharedSetups = std::move(q.spareSetups.back());
+                q.spareSetups.pop_back();
+            }
+            std::swap(draw->bins, ctx.bins);
+            std::swap(draw->sharedSetups, ctx.sharedSetups);
+            draw->vertices = ctx.screenVertices.data();
+            draw->chunks = lanes;
+            q.holdsCurrent = true;
+            q.fill = &fillDeferredDraws;
+            q.draws.push_back(std::move(draw));
             return;
         }
         bandsByWork(ctx, lanes, bandsHigh, lanes);
         BandQueue queue(bandsHigh, lanes);
+        const BinnedDraw draw{ctx.bins.data(), ctx.sharedSetups.data(), ctx.screenVertices.data(), lanes, bandsHigh};
+        MsaaBuffer* msaa = ctx.multisampleTarget();
         auto bandJob = [&](int l) {
             Program copy = program;
             for (int k = queue.next(l); k >= 0; k = queue.next(l))
-                fillBinnedBand<kVaryings>(ctx, state, ctx.bandOrder[std::size_t(k)], lanes, laneStates[l], indices, copy);
+                fillBinnedBand<kVaryings>(fb, msaa, draw, state, ctx.bandOrder[std::size_t(k)], laneStates[l], indices,
+                                          copy);
             flushFill(copy, fb);
         };
         pool.run(bandJob);
-        for (int l = 0; l < lanes; ++l) {
-            ctx.stats += chunkStats[l];
-            ctx.stats += laneStates[l].stats;
-        }
+        for (int l = 0; l < lanes; ++l) ctx.stats += laneStates[l].stats;
         return;
     }
     // 2. Primitive stage: every lane walks the triangles in order and fills its own bands.

@@ -2,6 +2,8 @@
 #include "Raster/Frame/MeshRenderer.hpp"
 
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <type_traits>
 
 #include "Raster/Fill/Kernels/KernelTable.hpp"
@@ -88,16 +90,27 @@ void drawShaded(RenderContext& ctx, const DrawContext& d, ShadingMode mode, std:
     }
 }
 
+// What a draw's program points to (its DrawContext and what that refers to): on drawMesh's stack,
+// or kept by the context while the draw's fill may wait (RenderContext::deferral).
+struct DrawInputs final : RenderContext::Kept {
+    RenderSettings settings;
+    FrameView phongView;
+    SurfaceMaterial material;
+    std::optional<DrawContext> draw, pbrDraw;
+};
+
 // A glTF material under ShadingMode::Pbr: the maps it has (with uvs), the tangents its normal
 // map needs (without them the map is not applied).
-void drawPbr(RenderContext& ctx, const DrawContext& base, const SurfaceMaterial& material, std::size_t indexCount) {
+void drawPbr(RenderContext& ctx, DrawInputs& in, std::size_t indexCount) {
+    const DrawContext& base = *in.draw;
+    const SurfaceMaterial& material = in.material;
     const Mesh& mesh = base.mesh;
     const Texture* anyMap = material.texture      ? material.texture
                             : material.metallicRoughness ? material.metallicRoughness
                             : material.emissive   ? material.emissive
                                                   : material.normalMap;
     const bool maps = anyMap != nullptr && mesh.hasUvs();
-    DrawContext d = base;
+    DrawContext& d = in.pbrDraw.emplace(base);
     d.texture = maps ? anyMap : nullptr; // the uv varyings' rebase (drawStateFor)
     if (!maps) drawWith(ctx, d, indexCount, PbrProgram<false, false>(&d));
     else if (material.normalMap && mesh.hasTangents()) drawWith(ctx, d, indexCount, PbrProgram<true, true>(&d));
@@ -107,10 +120,15 @@ void drawPbr(RenderContext& ctx, const DrawContext& base, const SurfaceMaterial&
 } // namespace
 
 void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& frameSettings, const Mesh& mesh,
-              const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& material) {
+              const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& surface) {
+    DrawInputs local;
+    DrawInputs& in = ctx.deferral.active ? ctx.keep(std::make_unique<DrawInputs>()) : local;
+    in.material = surface;
+    const SurfaceMaterial& material = in.material;
     const bool textured = material.texture != nullptr && mesh.hasUvs();
     // The texture's own sampler where the settings let the file choose (glTF).
-    RenderSettings settings = frameSettings;
+    RenderSettings& settings = in.settings;
+    settings = frameSettings;
     if (textured && material.wrap && settings.wrapFromFile) settings.wrap = *material.wrap;
     if (textured && material.filter && settings.filterFromFile) settings.filter = *material.filter;
     ShadingMode mode = settings.shading;
@@ -119,24 +137,24 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& f
     const bool pbr = mode == ShadingMode::Pbr && material.pbr != nullptr;
     // The Blinn-Phong models see physical lights divided by pi (Lighting::physical): the frame's
     // copy of the view with those lights, or one made here.
-    FrameView phongView;
     const FrameView* v = &view;
     if (!pbr && view.lighting.physical) {
         if (view.blinnPhong) {
             v = view.blinnPhong;
         } else {
-            phongView = view;
-            phongView.lighting = blinnPhongLighting(view.lighting);
-            v = &phongView;
+            in.phongView = view;
+            in.phongView.lighting = blinnPhongLighting(view.lighting);
+            v = &in.phongView;
         }
     }
-    DrawContext d{*v,       settings, mesh, indices, textured ? material.texture : nullptr,
-                  textured ? material.tint : material.kd, material.specular, material.alpha,
-                  v->lighting.whiteDirectional(), material.doubleSided, activeTexelAlpha(material, mesh)};
+    DrawContext& d = in.draw.emplace(DrawContext{*v, settings, mesh, indices, textured ? material.texture : nullptr,
+                                                 textured ? material.tint : material.kd, material.specular,
+                                                 material.alpha, v->lighting.whiteDirectional(), material.doubleSided,
+                                                 activeTexelAlpha(material, mesh)});
     d.linear = settings.colour == ColorMode::Linear;
     d.exposureScale = std::exp2(settings.exposure);
     d.material = &material;
-    if (pbr) drawPbr(ctx, d, material, indexCount);
+    if (pbr) drawPbr(ctx, in, indexCount);
     else if (textured) drawShaded<true>(ctx, d, mode, indexCount);
     else drawShaded<false>(ctx, d, mode, indexCount);
 }

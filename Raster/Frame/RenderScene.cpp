@@ -134,6 +134,9 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         target.releaseStencil(); // memory only while outlining
     }
     bool anyTransparent = false;
+    // The opaque draws' fills wait for the end of the loop and then run together, band by band
+    // (several threads: RenderContext::deferral).
+    DeferredFillScope opaque(ctx);
     for (const SceneDraw& d : scene.draws) {
         assert(d.mesh >= 0 && std::size_t(d.mesh) < scene.meshes.size());
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
@@ -145,6 +148,7 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         }
         drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
     }
+    opaque.finish();
     // Lines and points: depth-tested and written, before the transparent surfaces blend over them.
     const int lineWidth = settings.antiAliasing.gridSide();
     for (const SceneLines& l : scene.lines)

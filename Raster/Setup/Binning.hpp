@@ -150,24 +150,33 @@ inline int regionSize(int bands, int regions) { return (bands + regions - 1) / r
 // ties the upper band first. Taken in row order, a full band taken last can leave one lane
 // drawing while the others wait; taken largest first, the last bands are the smallest and the
 // lanes finish close together (2 threads: bunny 1920x1080 0.977x the time; docs/PERFORMANCE.md).
-// Which lane draws a band does not change the image.
-inline void bandsByWork(RenderContext& ctx, int chunks, int bandsHigh, int regions = 1) {
+// Which lane draws a band does not change the image. orderBands: that order from each band's bin
+// entries in ctx.bandKeys[band] (overwritten); bandsByWork: from the bins in ctx.bins.
+inline void orderBands(RenderContext& ctx, int bandsHigh, int regions) {
     // Key: entries << 16 | (65535 - band), sorted descending within each part.
     static_assert(FrameBuffer::kMaxDimension / LaneBands::kBandRows < 65536, "a band number fits 16 bits");
     std::vector<std::uint64_t>& keys = ctx.bandKeys;
-    keys.resize(std::size_t(bandsHigh));
-    for (int b = 0; b < bandsHigh; ++b) {
-        std::uint64_t entries = 0;
-        for (int c = 0; c < chunks; ++c)
-            entries += ctx.bins[std::size_t(c) * std::size_t(bandsHigh) + std::size_t(b)].size();
-        keys[std::size_t(b)] = entries << 16 | std::uint64_t(65535 - b);
-    }
+    for (int b = 0; b < bandsHigh; ++b) keys[std::size_t(b)] = keys[std::size_t(b)] << 16 | std::uint64_t(65535 - b);
     const int size = regionSize(bandsHigh, std::max(regions, 1));
     for (int begin = 0; begin < bandsHigh; begin += size)
         std::sort(keys.begin() + begin, keys.begin() + std::min(bandsHigh, begin + size),
                   [](std::uint64_t x, std::uint64_t y) { return x > y; });
     ctx.bandOrder.resize(std::size_t(bandsHigh));
     for (int k = 0; k < bandsHigh; ++k) ctx.bandOrder[std::size_t(k)] = 65535 - int(keys[std::size_t(k)] & 0xFFFFu);
+}
+
+// Adds each band's entries in `bins` (chunks x bandsHigh, as RenderContext::bins) to keys[band].
+inline void countBinEntries(std::vector<std::uint64_t>& keys, const std::vector<std::vector<std::uint32_t>>& bins,
+                            int chunks, int bandsHigh) {
+    for (int c = 0; c < chunks; ++c)
+        for (int b = 0; b < bandsHigh; ++b)
+            keys[std::size_t(b)] += bins[std::size_t(c) * std::size_t(bandsHigh) + std::size_t(b)].size();
+}
+
+inline void bandsByWork(RenderContext& ctx, int chunks, int bandsHigh, int regions = 1) {
+    ctx.bandKeys.assign(std::size_t(bandsHigh), 0);
+    countBinEntries(ctx.bandKeys, ctx.bins, chunks, bandsHigh);
+    orderBands(ctx, bandsHigh, regions);
 }
 
 // Which entry of ctx.bandOrder each lane draws next. The bands are split into one part of
@@ -181,9 +190,10 @@ class BandQueue {
 public:
     BandQueue(int bands, int lanes)
         : bands_(bands), lanes_(std::clamp(lanes, 1, kMaxRenderThreads)), size_(regionSize(bands, lanes_)) {}
-    // The next entry of the order for lane `lane` (its own part's first), or -1: none left.
-    int next(int lane) {
-        for (int i = 0; i < lanes_; ++i) {
+    // The next entry of the order for lane `lane` (its own part's first), or -1: none left (with
+    // ownOnly: none left in its own part).
+    int next(int lane, bool ownOnly = false) {
+        for (int i = 0; i < (ownOnly ? 1 : lanes_); ++i) {
             const int r = (lane + i) % lanes_, begin = r * size_, end = std::min(bands_, begin + size_);
             if (begin >= end) continue;
             // (Past its end a part's count keeps growing by one per lane that asks: harmless.)
@@ -202,21 +212,31 @@ private:
     Part parts_[kMaxRenderThreads];
 };
 
-// Band `band` of a draw binned in `chunks` chunks, on a lane (`lane`: its counters and scratch):
-// the band's bins of every chunk, in chunk order.
+// What a binned draw's fill reads: its bins (chunks x bandsHigh, as RenderContext::bins), shared
+// setups (one list per chunk) and screen vertices; RenderContext's own for a draw filled at once, a
+// waiting draw's record (RenderContext::DeferredDraw) otherwise.
+struct BinnedDraw {
+    const std::vector<std::uint32_t>* bins = nullptr;
+    const std::vector<RenderContext::SharedSetup>* sharedSetups = nullptr;
+    const ScreenVertex* vertices = nullptr;
+    int chunks = 0, bandsHigh = 0;
+    const std::vector<std::uint32_t>& bin(int chunk, int band) const {
+        return bins[std::size_t(chunk) * std::size_t(bandsHigh) + std::size_t(band)];
+    }
+};
+
+// Band `band` of a binned draw on a lane (`lane`: its counters and scratch): the band's bins of
+// every chunk, in chunk order.
 template <int kVaryings, class Program>
-void fillBinnedBand(RenderContext& ctx, const DrawState& state, int band, int chunks, LaneState& lane,
-                    const std::uint32_t* indices, Program& program) {
-    FrameBuffer& fb = ctx.target();
-    MsaaBuffer* msaa = ctx.multisampleTarget();
-    const int bandsHigh = bandCount(fb.height());
+void fillBinnedBand(FrameBuffer& fb, MsaaBuffer* msaa, const BinnedDraw& draw, const DrawState& state, int band,
+                    LaneState& lane, const std::uint32_t* indices, Program& program) {
     LaneBands bands{0, 1, fb.height()};
     bands.onlyBand = band;
     RenderStats sink;
-    const ScreenVertex* vertices = ctx.screenVertices.data();
-    for (int chunk = 0; chunk < chunks; ++chunk) {
-        const std::vector<std::uint32_t>& bin = ctx.bins[std::size_t(chunk) * std::size_t(bandsHigh) + std::size_t(band)];
-        const RenderContext::SharedSetup* shared = ctx.sharedSetups[std::size_t(chunk)].data();
+    const ScreenVertex* vertices = draw.vertices;
+    for (int chunk = 0; chunk < draw.chunks; ++chunk) {
+        const std::vector<std::uint32_t>& bin = draw.bin(chunk, band);
+        const RenderContext::SharedSetup* shared = draw.sharedSetups[std::size_t(chunk)].data();
         const std::size_t count = bin.size();
         for (std::size_t k = 0; k < count; ++k) {
             if (k + kPrefetchTriangles < count) {
@@ -254,6 +274,76 @@ void fillBinnedBand(RenderContext& ctx, const DrawState& state, int band, int ch
                                          program, (entry & kBinOwner) ? LaneRole::Owner : LaneRole::Helper);
         }
     }
+}
+
+// A binned draw waiting for its pass's fill (RenderContext::deferral): its state, its program and
+// the draw's stages while multisampling.
+template <int kVaryings, class Program>
+struct DeferredDrawOf final : RenderContext::DeferredDraw {
+    DeferredDrawOf(const DrawState& s, const std::uint32_t* i, const Program& p, const MsaaStages& m)
+        : state(s), indices(i), program(p), stages(m) {}
+    void fillBand(RenderContext& ctx, int band, LaneState& laneState) override {
+        const BinnedDraw draw{bins.data(), sharedSetups.data(), vertices, chunks, bandCount(ctx.target().height())};
+        bool any = false;
+        for (int c = 0; c < chunks && !any; ++c) any = !draw.bin(c, band).empty();
+        if (!any) return;
+        // The lane's own copy (per-triangle state), on its stack: lanes never write one cache line.
+        Program copy = program;
+        laneState.msaaStages = stages;
+        fillBinnedBand<kVaryings>(ctx.target(), ctx.multisampleTarget(), draw, state, band, laneState, indices, copy);
+        // Its queued colours written before the next draw's triangles reach these pixels.
+        flushFill(copy, ctx.target());
+    }
+    DrawState state;
+    const std::uint32_t* indices;
+    Program program;
+    MsaaStages stages;
+};
+
+// A lane fills the waiting draws over this many bands of its own part at a time, draw by draw:
+// each draw's texture is read for two bands before the next draw's takes its place in the cache.
+// One band at a time, the spider at its own camera (five draws, five textures) took 1.05-1.07x
+// the time of filling each draw at once on 2 threads; two: 0.91x; three: no better.
+inline constexpr int kDeferredBatch = 2;
+
+// Fills the waiting draws (RenderContext::deferral) on every lane: each lane takes its own part's
+// bands first, the most bin entries of all the draws first, then what the others left (orderBands,
+// BandQueue), kDeferredBatch of its own at a time, and fills them with every draw in submission
+// order. Then their storage goes back to the spares (what their programs point to stays kept
+// until the scope's end: the draw that cannot wait, which fills them first, may have its own
+// inputs there).
+inline void fillDeferredDraws(RenderContext& ctx) {
+    RenderContext::Deferral& q = ctx.deferral;
+    if (q.draws.empty()) return;
+    const int bandsHigh = bandCount(ctx.target().height());
+    const int lanes = ctx.threads();
+    ctx.bandKeys.assign(std::size_t(bandsHigh), 0);
+    for (const auto& d : q.draws) countBinEntries(ctx.bandKeys, d->bins, d->chunks, bandsHigh);
+    orderBands(ctx, bandsHigh, lanes);
+    BandQueue queue(bandsHigh, lanes);
+    LaneState laneStates[kMaxRenderThreads];
+    auto job = [&](int l) {
+        for (int k = queue.next(l); k >= 0; k = queue.next(l)) {
+            int batch[kDeferredBatch];
+            int n = 0;
+            batch[n++] = ctx.bandOrder[std::size_t(k)];
+            for (int more = 0; n < kDeferredBatch && (more = queue.next(l, true)) >= 0;)
+                batch[n++] = ctx.bandOrder[std::size_t(more)];
+            for (const auto& d : q.draws)
+                for (int i = 0; i < n; ++i) d->fillBand(ctx, batch[i], laneStates[l]);
+        }
+    };
+    if (ThreadPool* pool = ctx.pool()) pool->run(job);
+    else job(0);
+    for (int l = 0; l < lanes; ++l) ctx.stats += laneStates[l].stats;
+    for (auto& d : q.draws) {
+        q.spareBins.push_back(std::move(d->bins));
+        q.spareSetups.push_back(std::move(d->sharedSetups));
+    }
+    q.draws.clear();
+    for (auto& v : q.heldVertices) q.spareVertices.push_back(std::move(v));
+    q.heldVertices.clear();
+    q.holdsCurrent = false;
 }
 
 } // namespace detail
