@@ -840,6 +840,9 @@ TEST_CASE("a pass's binned draws wait and are filled together, band by band: one
                 const SurfaceMaterial material = materialOf(scene, d, nullptr);
                 drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
             }
+            // What each draw's program points to lives until the scope ends, also across the fill
+            // that a draw which cannot wait runs first (its own inputs are among them).
+            CHECK(ctx.deferral.kept.size() == (threads > 1 ? k + 1 : 0));
             if (k == 1) {
                 p.waitingBeforeCube = ctx.deferral.draws.size();
                 for (int y = 0; y < p.fb.height(); ++y)
