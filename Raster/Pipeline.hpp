@@ -151,16 +151,8 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         if (waits) {
             auto draw = std::make_unique<DeferredDrawOf<kVaryings, Program>>(state, indices, program, stages);
             RenderContext::Deferral& q = ctx.deferral;
-            if (!q.spareBins.empty()) {
-                draw->bins = std::move(q.spareBins.back());
-                q.spareBins.pop_back();
-            }
-            if (!q.spareSetups.empty()) {
-                draw->sharedSetups = std::move(q.spareSetups.back());
-                q.spareSetups.pop_back();
-            }
-            std::swap(draw->bins, ctx.bins);
-            std::swap(draw->sharedSetups, ctx.sharedSetups);
+            draw->bins = std::exchange(ctx.bins, q.takeSpare(q.spareBins));
+            draw->sharedSetups = std::exchange(ctx.sharedSetups, q.takeSpare(q.spareSetups));
             draw->vertices = ctx.screenVertices.data();
             draw->chunks = lanes;
             q.holdsCurrent = true;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "Raster/Frame/FrameBuffer.hpp"
@@ -183,6 +184,14 @@ public:
         std::vector<std::vector<std::vector<SharedSetup>>> spareSetups;
         std::vector<std::vector<ScreenVertex>> spareVertices;
         void (*fill)(RenderContext&) = nullptr; // fills and releases the waiting draws (detail::fillDeferredDraws)
+        // The last of `spares` (moved out), or an empty one.
+        template <class T>
+        static T takeSpare(std::vector<T>& spares) {
+            if (spares.empty()) return T{};
+            T spare = std::move(spares.back());
+            spares.pop_back();
+            return spare;
+        }
     };
     Deferral deferral;
     // Keeps `object` (what a program of a draw that may wait points to) until the DeferredFillScope
@@ -203,11 +212,7 @@ public:
     void releaseHeldVertices() {
         if (!deferral.holdsCurrent) return;
         deferral.heldVertices.push_back(std::move(screenVertices));
-        screenVertices.clear();
-        if (!deferral.spareVertices.empty()) {
-            screenVertices = std::move(deferral.spareVertices.back());
-            deferral.spareVertices.pop_back();
-        }
+        screenVertices = Deferral::takeSpare(deferral.spareVertices);
         deferral.holdsCurrent = false;
     }
 
