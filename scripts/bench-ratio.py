@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Interleaved cost ratios of quality settings against a baseline, per scene, 1 render thread.
+"""Interleaved cost ratios of quality settings against a baseline, per scene, 1 render thread (a
+setting may name its own: "--threads 2" gives the 2-thread time over the 1-thread one).
 
 Each round runs `softraster bench` once per scene and setting (the baseline first), so drift on a
 shared machine hits them alike; each setting's time is divided by the same round's baseline time
@@ -33,8 +34,8 @@ def main():
     for _ in range(rounds):
         for label, flags in scenes:
             for setting in settings:
-                cmd = [binary, "bench", *shlex.split(flags), *shlex.split(setting), "--frames", frames, "--warmup", "3",
-                       "--threads", "1", "--quiet"]
+                cmd = [binary, "bench", *shlex.split(flags), "--frames", frames, "--warmup", "3", "--threads", "1",
+                       *shlex.split(setting), "--quiet"]
                 out = subprocess.run(cmd, capture_output=True, text=True, check=True).stdout
                 ms = json.loads(out.strip().splitlines()[-1])["ms_per_frame_median"]
                 times.setdefault((label, setting), []).append(ms)

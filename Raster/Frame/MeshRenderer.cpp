@@ -85,7 +85,8 @@ void drawShaded(RenderContext& ctx, const DrawContext& d, ShadingMode mode, std:
         break;
     case ShadingMode::Phong:
     case ShadingMode::Pbr: // a draw without a glTF material (drawMesh): Phong
-        drawWith(ctx, d, indexCount, PhongProgram<kTextured>(&d));
+        if (programs::phongReadsPosition(d)) drawWith(ctx, d, indexCount, PhongProgram<kTextured>(&d));
+        else drawWith(ctx, d, indexCount, PhongProgram<kTextured, true>(&d)); // normals only: three varyings fewer
         break;
     }
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -55,6 +56,11 @@ struct DrawContext {
 inline Pixel encode(const DrawContext& d, Color c) {
     return d.linear ? packLinearBgra8(c, d.settings.toneMap, d.exposureScale) : packBgra8(c);
 }
+
+// Whether a Phong draw's shading reads the fragment's position: for the direction to the eye
+// (a specular term), to point and spot lights, or for the shadow maps. When it does not,
+// drawMesh draws it with PhongProgram<kTextured, true>, whose fragments carry no position.
+inline bool phongReadsPosition(const DrawContext& d) { return !d.whiteLights || d.view.shadows || d.specular.on(); }
 
 // The lighting terms at world point p with unit normal n and unit view vector v, per channel:
 // blinnPhong's one-number terms when every light is white and directional (the same floats as
@@ -251,33 +257,45 @@ struct GouraudProgram {
 };
 
 // Phong shading: world position and normal interpolated (perspective-correct), the normal
-// renormalised and Blinn-Phong evaluated per pixel (litTerms: any lights).
-template <bool kTextured>
+// renormalised and Blinn-Phong evaluated per pixel (litTerms: any lights). kNormalOnly: the
+// variant for draws whose shading reads no position (phongReadsPosition false: white
+// directional lights, no specular term, no shadows), without the three position varyings.
+template <bool kTextured, bool kNormalOnly = false>
 struct PhongProgram {
     static constexpr ShadingMode kMode = ShadingMode::Phong;
     static constexpr bool kIsTextured = kTextured;
-    static constexpr int kP = kTextured ? 2 : 0; // position varyings kP..kP+2, normal kP+3..kP+5
-    static constexpr int kVaryings = kP + 6;
+    static constexpr bool kPositions = !kNormalOnly;
+    static constexpr int kP = kTextured ? 2 : 0;         // position varyings kP..kP+2 (kPositions)
+    static constexpr int kN = kPositions ? kP + 3 : kP; // normal kN..kN+2
+    static constexpr int kVaryings = kN + 3;
     const DrawContext* d;
     const TriangleSetup* setup = nullptr;
     explicit PhongProgram(const DrawContext* dc) : d(dc) {}
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kTextured>(*d, i, out);
-        const Vec3 p = d->mesh.positions[i], n = d->mesh.normals[i];
-        out.varyings[kP] = p.x;
-        out.varyings[kP + 1] = p.y;
-        out.varyings[kP + 2] = p.z;
-        out.varyings[kP + 3] = n.x;
-        out.varyings[kP + 4] = n.y;
-        out.varyings[kP + 5] = n.z;
+        const Vec3 n = d->mesh.normals[i];
+        if constexpr (kPositions) {
+            const Vec3 p = d->mesh.positions[i];
+            out.varyings[kP] = p.x;
+            out.varyings[kP + 1] = p.y;
+            out.varyings[kP + 2] = p.z;
+        }
+        out.varyings[kN] = n.x;
+        out.varyings[kN + 1] = n.y;
+        out.varyings[kN + 2] = n.z;
     }
     void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
     Pixel fragment(const Fragment<kVaryings>& f) const {
-        const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
-        const Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
-        const Vec3 v = normalize(d->view.eye - p);
-        const RgbTerms t = d->view.shadows ? shadowedTerms(d->view.lighting, d->specular, n, p, v, *d->view.shadows)
-                                           : litTerms(*d, n, p, v);
+        const Vec3 n = normalize(Vec3{f.varyings[kN], f.varyings[kN + 1], f.varyings[kN + 2]});
+        RgbTerms t;
+        if constexpr (kPositions) {
+            const Vec3 p{f.varyings[kP], f.varyings[kP + 1], f.varyings[kP + 2]};
+            const Vec3 v = normalize(d->view.eye - p);
+            t = d->view.shadows ? shadowedTerms(d->view.lighting, d->specular, n, p, v, *d->view.shadows) : litTerms(*d, n, p, v);
+        } else {
+            assert(!phongReadsPosition(*d));
+            t = RgbTerms::grey(blinnPhong(d->view.lighting, d->specular, n, Vec3{})); // (no specular: no direction to the eye)
+        }
         if constexpr (kTextured) return encode(*d, applyTerms(sampleKd(*d, setup, f), d->specular.ks, t));
         else return encode(*d, applyTerms(d->kd, d->specular.ks, t));
     }

@@ -16,28 +16,39 @@ TEST_CASE("specialised pipelines render the default scene exactly like the gener
     auto scene = app::loadScene(options);
     REQUIRE(scene.ok());
     scene.value().scene = test::opaqueOnly(std::move(scene.value().scene)); // the general renderer draws opaque draws only
-    const FrameView view =
+    const FrameView sceneView =
         app::makeFrameView(app::resolveCamera(options, scene.value()), options.width, options.height, options.light,
                             scene.value().lights);
-    for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
-        for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
-            for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear}) {
-                INFO("mode " << shadingModeName(mode) << ", " << perspectiveModeName(persp) << ", " << filterName(filter));
-                RenderSettings settings = app::makeRenderSettings(options);
-                settings.shading = mode;
-                settings.perspective = persp;
-                settings.filter = filter;
-                FrameBuffer special(options.width, options.height), general(options.width, options.height);
-                RenderContext cs(special), cg(general);
-                app::renderFrame(cs, scene.value(), view, settings);
-                general.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
-                test::renderSceneGeneral(cg, scene.value().scene, view, settings);
-                int differing = 0;
-                for (int y = 0; y < special.height(); ++y)
-                    for (int x = 0; x < special.width(); ++x) differing += special.pixel(x, y) != general.pixel(x, y);
-                CHECK(differing == 0);
-                CHECK(cs.stats.fragmentsShaded == cg.stats.fragmentsShaded);
-            }
+    // Then under the white key light alone and without a specular term on any draw: Phong draws
+    // take the program without position varyings (nothing reads them; phongReadsPosition).
+    for (bool specular : {true, false}) {
+        FrameView view = sceneView;
+        if (!specular) {
+            for (SceneDraw& d : scene.value().scene.draws) d.specular.ks = {0.0f, 0.0f, 0.0f};
+            view.lighting.lights.resize(1); // the key light (the built-in scene's fill light is a point light)
+            REQUIRE(view.lighting.whiteDirectional());
+        }
+        for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
+            for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
+                for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear}) {
+                    INFO("mode " << shadingModeName(mode) << ", " << perspectiveModeName(persp) << ", " << filterName(filter)
+                                 << (specular ? "" : ", no specular"));
+                    RenderSettings settings = app::makeRenderSettings(options);
+                    settings.shading = mode;
+                    settings.perspective = persp;
+                    settings.filter = filter;
+                    FrameBuffer special(options.width, options.height), general(options.width, options.height);
+                    RenderContext cs(special), cg(general);
+                    app::renderFrame(cs, scene.value(), view, settings);
+                    general.clear(packBgra(0, 0, 0), FrameBuffer::kFarDepth);
+                    test::renderSceneGeneral(cg, scene.value().scene, view, settings);
+                    int differing = 0;
+                    for (int y = 0; y < special.height(); ++y)
+                        for (int x = 0; x < special.width(); ++x) differing += special.pixel(x, y) != general.pixel(x, y);
+                    CHECK(differing == 0);
+                    CHECK(cs.stats.fragmentsShaded == cg.stats.fragmentsShaded);
+                }
+    }
 }
 
 TEST_CASE("drawMesh renders the same image with every ISA's kernels and with the scalar loop", "[render][shading][kernels]") {
@@ -54,9 +65,11 @@ TEST_CASE("drawMesh renders the same image with every ISA's kernels and with the
                             scene.value().lights);
     // With the wireframe overlay too: an edge drawn after its triangle's fill must not be covered
     // by fill colours the kernel still had queued (fillSpans defers them; the pipeline flushes
-    // before each edge).
-    for (float shininess : {32.0f, 12.5f}) {
+    // before each edge). Shininess 0 (no specular term) under the key light alone: Phong's
+    // program without position varyings.
+    for (float shininess : {32.0f, 12.5f, 0.0f}) {
         for (SceneDraw& d : scene.value().scene.draws) d.specular.shininess = shininess;
+        if (shininess == 0.0f) view.lighting.lights.resize(1);
         for (ShadingMode mode : {ShadingMode::Unlit, ShadingMode::Flat, ShadingMode::Gouraud, ShadingMode::Phong})
             for (TextureFilter filter : {TextureFilter::Nearest, TextureFilter::Bilinear})
             for (bool wireframe : {false, true}) {

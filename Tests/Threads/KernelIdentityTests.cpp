@@ -174,6 +174,7 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
     const Specular speculars[] = {Specular{}, coloured, none};
     std::vector<std::string> ran, skipped;
     Totals totals;
+    int normalOnly = 0; // normal-only Phong programs compared (no specular term: `none`)
     for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
         if (!isaAvailable(isa)) {
             skipped.push_back(isaName(isa));
@@ -199,6 +200,12 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                             compareKernel<FlatProgram<true>>(isa, key, [&] { return FlatProgram<true>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<true>>(isa, key, [&] { return GouraudProgram<true>(&d); }, rng, totals);
                             compareKernel<PhongProgram<true>>(isa, key, [&] { return PhongProgram<true>(&d); }, rng, totals);
+                            // Without a specular term under white directional lights, drawMesh's
+                            // choice: the program without position varyings.
+                            if (!phongReadsPosition(d)) {
+                                compareKernel<PhongProgram<true, true>>(isa, key, [&] { return PhongProgram<true, true>(&d); }, rng, totals);
+                                ++normalOnly;
+                            }
                         }
                         if (depth == DepthMode::Test) {
                             // A transparent draw (alpha 0.4: every colour blended over the target),
@@ -227,6 +234,10 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                             compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&d); }, rng, totals);
                             compareKernel<GouraudProgram<false>>(isa, key, [&] { return GouraudProgram<false>(&d); }, rng, totals);
                             compareKernel<PhongProgram<false>>(isa, key, [&] { return PhongProgram<false>(&d); }, rng, totals);
+                            if (!phongReadsPosition(d)) {
+                                compareKernel<PhongProgram<false, true>>(isa, key, [&] { return PhongProgram<false, true>(&d); }, rng, totals);
+                                ++normalOnly;
+                            }
                             const DrawContext c{colouredView, settings, mesh, mesh.indices.data(), nullptr,
                                                 Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f, false, true, {}};
                             compareKernel<FlatProgram<false>>(isa, key, [&] { return FlatProgram<false>(&c); }, rng, totals);
@@ -244,6 +255,34 @@ TEST_CASE("every span kernel on every ISA of this CPU is bit-identical to the sc
                                << " shaded pixels");
     REQUIRE(!ran.empty());
     CHECK(totals.pixels > 100000 * long(ran.size()));
+    // Per ISA: 3 depth modes x 2 perspective modes x (3 filters x 2 textures, and one untextured draw).
+    CHECK(normalOnly == 3 * 2 * (3 * 2 + 1) * int(ran.size()));
+}
+
+TEST_CASE("Phong drops the position varyings only where nothing reads them", "[threads][kernels][shading]") {
+    // phongReadsPosition: drawMesh's choice of PhongProgram<kTextured, true>, whose fragments carry
+    // no position: only white directional lights, no specular term and no shadows.
+    const Mesh mesh = oneTriangle();
+    FrameView view;
+    view.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1)))};
+    Specular none;
+    none.ks = {0.0f, 0.0f, 0.0f};
+    Specular noExponent;
+    noExponent.shininess = 0.0f;
+    const RenderSettings settings;
+    auto draw = [&](const FrameView& v, const Specular& sp, bool whiteLights) {
+        return DrawContext{v, settings, mesh, mesh.indices.data(), nullptr, Color{0.7f, 0.4f, 0.2f, 1.0f}, sp, 1.0f, whiteLights, true, {}};
+    };
+    CHECK_FALSE(phongReadsPosition(draw(view, none, true)));
+    CHECK_FALSE(phongReadsPosition(draw(view, noExponent, true)));
+    CHECK(phongReadsPosition(draw(view, Specular{}, true)));  // the half vector needs the direction to the eye
+    CHECK(phongReadsPosition(draw(view, none, false)));       // point, spot or coloured lights: the RGB path
+    const SceneShadows shadows;
+    FrameView shadowed = view;
+    shadowed.shadows = &shadows;
+    CHECK(phongReadsPosition(draw(shadowed, none, true)));    // the shadow maps are looked up at the position
+    CHECK(PhongProgram<true, true>::kVaryings == PhongProgram<true>::kVaryings - 3);
+    CHECK(PhongProgram<false, true>::kVaryings == 3);
 }
 
 TEST_CASE("in linear light every span kernel is bit-identical to the scalar reference", "[threads][simd][kernels][colour]") {

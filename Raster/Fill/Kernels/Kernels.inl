@@ -576,18 +576,22 @@ FlushKernel<Prog> flushKernel(const KernelKey& key) {
 // The one shading model this translation unit instantiates, untextured and textured:
 // SR_KERNEL_PROGRAM, defined by the file that includes Kernels<Isa>.inl (one file per ISA and
 // shading model, so that no single file compiles all 2 x 4 programs' kernels).
+#ifndef SR_KERNEL_FLAG_VARIANTS_ONLY // (Phong's normal-only programs: a file of their own)
 template FillKernel<programs::SR_KERNEL_PROGRAM<false>> fillKernel(const KernelKey&);
 template FillKernel<programs::SR_KERNEL_PROGRAM<true>> fillKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false>> shadeRunsKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true>> shadeRunsKernel(const KernelKey&);
 template FlushKernel<programs::SR_KERNEL_PROGRAM<false>> flushKernel(const KernelKey&);
 template FlushKernel<programs::SR_KERNEL_PROGRAM<true>> flushKernel(const KernelKey&);
+#endif
 #ifdef SR_KERNEL_NORMAL_MAP_VARIANT // the textured program's normal-mapped variant too (pbr)
 template FillKernel<programs::SR_KERNEL_PROGRAM<true, true>> fillKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true, true>> shadeRunsKernel(const KernelKey&);
 template FlushKernel<programs::SR_KERNEL_PROGRAM<true, true>> flushKernel(const KernelKey&);
 #endif
-#ifdef SR_KERNEL_RGB_VARIANTS // the program's RGB-terms variant too (Gouraud under coloured lights)
+// The program's variants with its second flag set: Gouraud's RGB terms (under coloured lights),
+// Phong's normal-only programs (no position varyings).
+#if defined(SR_KERNEL_FLAG_VARIANTS) || defined(SR_KERNEL_FLAG_VARIANTS_ONLY)
 template FillKernel<programs::SR_KERNEL_PROGRAM<false, true>> fillKernel(const KernelKey&);
 template FillKernel<programs::SR_KERNEL_PROGRAM<true, true>> fillKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false, true>> shadeRunsKernel(const KernelKey&);

@@ -1,4 +1,4 @@
 // The AVX512 span kernels of the gouraud programs, untextured and textured, with two or six (RGB) terms (see Kernels.inl).
 #define SR_KERNEL_PROGRAM GouraudProgram
-#define SR_KERNEL_RGB_VARIANTS
+#define SR_KERNEL_FLAG_VARIANTS
 #include "Raster/Fill/Kernels/KernelsAvx512.inl"

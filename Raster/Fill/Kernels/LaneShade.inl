@@ -34,22 +34,28 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
             out = encodeLanes(p, applyTerms(kd, d.specular.ks, TermsRgb{{v[kT], v[kT + 1], v[kT + 2]}, {v[kT + 3], v[kT + 4], v[kT + 5]}, mAll()}));
         else out = encodeLanes(p, applyTerms(kd, d.specular.ks, Terms{v[kT], v[kT + 1]}));
     } else {
-        const V3 n = normalizeFast({v[kT + 3], v[kT + 4], v[kT + 5]}, ok);
-        // The direction to the eye feeds the specular term only: without one (black Ks or Ns 0,
-        // as the spider's materials), no lane forms it (and none fails on it).
-        V3 toEye{fzero(), fzero(), fzero()};
-        if (d.specular.on()) {
-            const Vec3 eye = d.view.eye;
-            toEye = normalizeFast({fset(eye.x) - v[kT], fset(eye.y) - v[kT + 1], fset(eye.z) - v[kT + 2]}, ok);
-        }
-        // Coloured, point or spot lights: the out-of-line RGB path, kept off the white-light path's registers.
-        if (SR_UNLIKELY(!d.whiteLights || d.view.shadows)) {
-            const TermsRgb t = lightsRgb(d.view.lighting, d.specular, d.view.shadows, n.x, n.y, n.z, v[kT], v[kT + 1], v[kT + 2], toEye.x,
-                                         toEye.y, toEye.z, ok);
-            ok = t.ok;
-            out = encodeLanes(p, applyTerms(kd, d.specular.ks, t));
+        constexpr int kN = Prog::kN; // the normal's varyings (after the position's, kPositions)
+        const V3 n = normalizeFast({v[kN], v[kN + 1], v[kN + 2]}, ok);
+        if constexpr (!Prog::kPositions) {
+            // White directional lights, no specular term, no shadows (phongReadsPosition).
+            out = encodeLanes(p, applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, V3{fzero(), fzero(), fzero()}, ok)));
         } else {
-            out = encodeLanes(p, applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, toEye, ok)));
+            // The direction to the eye feeds the specular term only: without one (black Ks or Ns 0),
+            // no lane forms it (and none fails on it).
+            V3 toEye{fzero(), fzero(), fzero()};
+            if (d.specular.on()) {
+                const Vec3 eye = d.view.eye;
+                toEye = normalizeFast({fset(eye.x) - v[kT], fset(eye.y) - v[kT + 1], fset(eye.z) - v[kT + 2]}, ok);
+            }
+            // Coloured, point or spot lights: the out-of-line RGB path, kept off the white-light path's registers.
+            if (SR_UNLIKELY(!d.whiteLights || d.view.shadows)) {
+                const TermsRgb t = lightsRgb(d.view.lighting, d.specular, d.view.shadows, n.x, n.y, n.z, v[kT], v[kT + 1], v[kT + 2],
+                                             toEye.x, toEye.y, toEye.z, ok);
+                ok = t.ok;
+                out = encodeLanes(p, applyTerms(kd, d.specular.ks, t));
+            } else {
+                out = encodeLanes(p, applyTerms(kd, d.specular.ks, blinnPhong(d.view.lighting, d.specular, n, toEye, ok)));
+            }
         }
     }
     if (bits(ok) != bits(mAll())) {
