@@ -149,7 +149,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         for (int l = 0; l < lanes; ++l) ctx.stats += chunkStats[l];
         if (state.stopAfter <= PipelineStop::Bin) return; // binning also clipped and culled
         if (waits) {
-            auto draw = std::make_unique<DeferredDrawOf<kVaryings, Program>>(state, indices, program, stages);
+            auto draw = std::make_unique<DeferredDrawOf<kVaryings, Program>>(state, program, stages);
             RenderContext::Deferral& q = ctx.deferral;
             draw->bins = std::exchange(ctx.bins, q.takeSpare(q.spareBins));
             draw->sharedSetups = std::exchange(ctx.sharedSetups, q.takeSpare(q.spareSetups));
@@ -167,8 +167,7 @@ void drawLanes(RenderContext& ctx, const DrawState& state, std::size_t vertexCou
         auto bandJob = [&](int l) {
             Program copy = program;
             for (int k = queue.next(l); k >= 0; k = queue.next(l))
-                fillBinnedBand<kVaryings>(fb, msaa, draw, state, ctx.bandOrder[std::size_t(k)], laneStates[l], indices,
-                                          copy);
+                fillBinnedBand<kVaryings>(fb, msaa, draw, state, ctx.bandOrder[std::size_t(k)], laneStates[l], copy);
             flushFill(copy, fb);
         };
         pool.run(bandJob);

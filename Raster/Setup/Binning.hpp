@@ -19,12 +19,13 @@ namespace detail {
 // the culled ones included; with several lanes that front end is repeated per lane. A binned draw
 // screens each triangle once instead: lane c classifies and culls chunk c of the triangles
 // (screenSnapped, from the positions the vertex stage snapped once per vertex: the decisions
-// setupTriangleCulled would make) and appends each survivor to chunk c's bins of the 32-row bands
-// (LaneBands::kBandRows) its rows meet, marked in the band of its first row, which counts it. Then
-// each lane takes the bands of its own part of the rows, the largest first, then what the other
-// lanes left (bandsByWork, BandQueue), until none is left (fillBinnedBand), and draws its bins
-// chunk by chunk, so in submission order: a band is drawn by one lane, whole, while its rows are
-// in that lane's cache, and a lane that runs slower (or shares its CPU) simply takes fewer.
+// setupTriangleCulled would make) and appends each survivor, with its vertex indices (BinEntry), to
+// chunk c's bins of the 32-row bands (LaneBands::kBandRows) its rows meet, marked in the band of its
+// first row, which counts it. Then each lane takes the bands of its own part of the rows, the
+// largest first, then what the other lanes left (bandsByWork, BandQueue), until none is left
+// (fillBinnedBand), and draws its bins chunk by chunk, so in submission order: a band is drawn by
+// one lane, whole, while its rows are in that lane's cache, and a lane that runs slower (or shares
+// its CPU) simply takes fewer.
 // Every piece of a triangle that crosses a clip plane (clipped here, once), and a triangle whose
 // rows meet RenderContext::sharedSetupBands bands or more, is set up here, once, into the chunk's
 // shared records (RenderContext::sharedSetups), which its bands read; any other triangle is set up
@@ -48,7 +49,7 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
     const bool setUp = state.stopAfter >= PipelineStop::Setup; // else only the partial pipeline's counters
     const int bandsHigh = bandCount(height);
     Clipper clipper = clipperProto;
-    std::vector<std::uint32_t>* bins = ctx.bins.data() + std::size_t(chunk) * std::size_t(bandsHigh);
+    std::vector<BinEntry>* bins = ctx.bins.data() + std::size_t(chunk) * std::size_t(bandsHigh);
     std::vector<RenderContext::SharedSetup>& shared = ctx.sharedSetups[std::size_t(chunk)];
     std::size_t sharedUsed = 0;
     auto nextShared = [&shared, &sharedUsed]() -> RenderContext::SharedSetup& {
@@ -64,9 +65,11 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
     };
     // An entry (triangle or shared record) into the bins of the bands rows [rowBegin, rowEnd)
     // meet, marked in the band of the first row (on the target), which counts it.
-    auto addToBins = [&](std::uint32_t entry, int rowBegin, int rowEnd) {
+    auto addToBins = [&](BinEntry entry, int rowBegin, int rowEnd) {
         const int owner = std::clamp(rowBegin, 0, std::max(height - 1, 0)) / LaneBands::kBandRows;
-        bins[owner].push_back(entry | kBinOwner);
+        BinEntry owned = entry;
+        owned.entry |= kBinOwner;
+        bins[owner].push_back(owned);
         int first = 0, last = 0;
         bandsMet(rowBegin, rowEnd, first, last);
         for (int b = first; b <= last; ++b)
@@ -106,7 +109,7 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
                 record.triangle = tri;
                 int rowBegin = 0, rowEnd = 0;
                 rowsForBands(a, b, c, multisampled, rowBegin, rowEnd);
-                addToBins(std::uint32_t(sharedUsed++) | kBinShared, rowBegin, rowEnd);
+                addToBins({std::uint32_t(sharedUsed++) | kBinShared, {}}, rowBegin, rowEnd);
             }
             break;
         }
@@ -125,7 +128,7 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
             int first = 0, last = 0;
             bandsMet(rowBegin, rowEnd, first, last);
             if (!setUp || last - first + 1 < ctx.sharedSetupBands) { // each band sets it up
-                addToBins(std::uint32_t(tri), rowBegin, rowEnd);
+                addToBins({std::uint32_t(tri), {i0, i1, i2}}, rowBegin, rowEnd);
                 break;
             }
             RenderContext::SharedSetup& record = nextShared();
@@ -134,7 +137,7 @@ void binTriangles(RenderContext& ctx, const DrawState& state, const Clipper& cli
             assert(built == SetupOutcome::Ready); // screenSnapped's decision
             ++stats.setupsBuilt;
             record.triangle = tri;
-            addToBins(std::uint32_t(sharedUsed++) | kBinShared, rowBegin, rowEnd);
+            addToBins({std::uint32_t(sharedUsed++) | kBinShared, {}}, rowBegin, rowEnd);
             break;
         }
         }
@@ -166,7 +169,7 @@ inline void orderBands(RenderContext& ctx, int bandsHigh, int regions) {
 }
 
 // Adds each band's entries in `bins` (chunks x bandsHigh, as RenderContext::bins) to keys[band].
-inline void countBinEntries(std::vector<std::uint64_t>& keys, const std::vector<std::vector<std::uint32_t>>& bins,
+inline void countBinEntries(std::vector<std::uint64_t>& keys, const std::vector<std::vector<BinEntry>>& bins,
                             int chunks, int bandsHigh) {
     for (int c = 0; c < chunks; ++c)
         for (int b = 0; b < bandsHigh; ++b)
@@ -216,11 +219,11 @@ private:
 // setups (one list per chunk) and screen vertices; RenderContext's own for a draw filled at once, a
 // waiting draw's record (RenderContext::DeferredDraw) otherwise.
 struct BinnedDraw {
-    const std::vector<std::uint32_t>* bins = nullptr;
+    const std::vector<BinEntry>* bins = nullptr;
     const std::vector<RenderContext::SharedSetup>* sharedSetups = nullptr;
     const ScreenVertex* vertices = nullptr;
     int chunks = 0, bandsHigh = 0;
-    const std::vector<std::uint32_t>& bin(int chunk, int band) const {
+    const std::vector<BinEntry>& bin(int chunk, int band) const {
         return bins[std::size_t(chunk) * std::size_t(bandsHigh) + std::size_t(band)];
     }
 };
@@ -229,18 +232,19 @@ struct BinnedDraw {
 // every chunk, in chunk order.
 template <int kVaryings, class Program>
 void fillBinnedBand(FrameBuffer& fb, MsaaBuffer* msaa, const BinnedDraw& draw, const DrawState& state, int band,
-                    LaneState& lane, const std::uint32_t* indices, Program& program) {
+                    LaneState& lane, Program& program) {
     LaneBands bands{0, 1, fb.height()};
     bands.onlyBand = band;
     RenderStats sink;
     const ScreenVertex* vertices = draw.vertices;
     for (int chunk = 0; chunk < draw.chunks; ++chunk) {
-        const std::vector<std::uint32_t>& bin = draw.bin(chunk, band);
+        const std::vector<BinEntry>& bin = draw.bin(chunk, band);
         const RenderContext::SharedSetup* shared = draw.sharedSetups[std::size_t(chunk)].data();
         const std::size_t count = bin.size();
         for (std::size_t k = 0; k < count; ++k) {
             if (k + kPrefetchTriangles < count) {
-                const std::uint32_t ahead = bin[k + kPrefetchTriangles];
+                const BinEntry& aheadEntry = bin[k + kPrefetchTriangles];
+                const std::uint32_t ahead = aheadEntry.entry;
                 if (ahead & kBinShared) {
                     const TriangleSetup& s = shared[ahead & kBinIndex].setup;
                     prefetchForRead(&s);
@@ -253,14 +257,13 @@ void fillBinnedBand(FrameBuffer& fb, MsaaBuffer* msaa, const BinnedDraw& draw, c
                     prefetchForRead(&s.ddy[kVaryings + 1]);
                     prefetchForRead(&s.ddxStep[0]);
                 } else {
-                    const std::uint32_t* corners = indices + 3 * std::size_t(ahead & kBinIndex);
-                    for (int j = 0; j < 3; ++j) {
-                        prefetchForRead(vertices + corners[j]);
-                        prefetchForRead(reinterpret_cast<const char*>(vertices + corners[j] + 1) - 1);
+                    for (const std::uint32_t corner : aheadEntry.corners) {
+                        prefetchForRead(vertices + corner);
+                        prefetchForRead(reinterpret_cast<const char*>(vertices + corner + 1) - 1);
                     }
                 }
             }
-            const std::uint32_t entry = bin[k];
+            const std::uint32_t entry = bin[k].entry;
             if (entry & kBinShared) {
                 const RenderContext::SharedSetup& record = shared[entry & kBinIndex];
                 fillSetUpTriangle<kVaryings>(fb, msaa, state, bands, lane, (entry & kBinOwner) ? lane.stats : sink,
@@ -268,7 +271,7 @@ void fillBinnedBand(FrameBuffer& fb, MsaaBuffer* msaa, const BinnedDraw& draw, c
                 continue;
             }
             const std::size_t t = entry & kBinIndex;
-            const std::uint32_t i0 = indices[3 * t], i1 = indices[3 * t + 1], i2 = indices[3 * t + 2];
+            const std::uint32_t i0 = bin[k].corners[0], i1 = bin[k].corners[1], i2 = bin[k].corners[2];
             // (No wireframe here: a wireframe draw runs on one lane.)
             rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t, vertices[i0], vertices[i1], vertices[i2],
                                          program, (entry & kBinOwner) ? LaneRole::Owner : LaneRole::Helper);
@@ -280,8 +283,7 @@ void fillBinnedBand(FrameBuffer& fb, MsaaBuffer* msaa, const BinnedDraw& draw, c
 // the draw's stages while multisampling.
 template <int kVaryings, class Program>
 struct DeferredDrawOf final : RenderContext::DeferredDraw {
-    DeferredDrawOf(const DrawState& s, const std::uint32_t* i, const Program& p, const MsaaStages& m)
-        : state(s), indices(i), program(p), stages(m) {}
+    DeferredDrawOf(const DrawState& s, const Program& p, const MsaaStages& m) : state(s), program(p), stages(m) {}
     void fillBand(RenderContext& ctx, int band, LaneState& laneState) override {
         const BinnedDraw draw{bins.data(), sharedSetups.data(), vertices, chunks, bandCount(ctx.target().height())};
         bool any = false;
@@ -290,12 +292,11 @@ struct DeferredDrawOf final : RenderContext::DeferredDraw {
         // The lane's own copy (per-triangle state), on its stack: lanes never write one cache line.
         Program copy = program;
         laneState.msaaStages = stages;
-        fillBinnedBand<kVaryings>(ctx.target(), ctx.multisampleTarget(), draw, state, band, laneState, indices, copy);
+        fillBinnedBand<kVaryings>(ctx.target(), ctx.multisampleTarget(), draw, state, band, laneState, copy);
         // Its queued colours written before the next draw's triangles reach these pixels.
         flushFill(copy, ctx.target());
     }
     DrawState state;
-    const std::uint32_t* indices;
     Program program;
     MsaaStages stages;
 };

@@ -592,7 +592,7 @@ TEST_CASE("a draw stopped after binning fills the bins and nothing else; unbinne
         std::size_t binned = 0, owned = 0;
         for (const auto& bin : ctx.bins) {
             binned += bin.size();
-            for (std::uint32_t entry : bin) owned += (entry & detail::kBinOwner) != 0;
+            for (const BinEntry& e : bin) owned += (e.entry & detail::kBinOwner) != 0;
         }
         return std::tuple{ctx.stats, binned, owned};
     };
@@ -636,10 +636,11 @@ TEST_CASE("binned draws: each band's bins list the triangles whose rows meet it,
     };
     for (int t = 0; t < 400; ++t) {
         const float cx = centre(rng), cy = centre(rng), r = size(rng) * size(rng) * 1.5f;
-        for (int k = 0; k < 3; ++k) {
+        for (int k = 0; k < 3; ++k)
             positions.push_back({cx + r * (2 * size(rng) - 1), onGrid(cy + r * (2 * size(rng) - 1)), 0.5f, 1.0f});
-            indices.push_back(std::uint32_t(positions.size() - 1));
-        }
+        // Corners 3t+1, 3t+2, 3t (the same triangle and winding): no index equals its position
+        // in the index buffer, so bin entries that named the wrong vertices would show.
+        for (int k = 1; k <= 3; ++k) indices.push_back(std::uint32_t(3 * t + k % 3));
     }
     REQUIRE(detail::bandCount(kHeight) == kBands);
     // The rows whose pixel centres each triangle's y extent [minY, maxY) holds, from its screen
@@ -679,17 +680,21 @@ TEST_CASE("binned draws: each band's bins list the triangles whose rows meet it,
             DrawState state;
             TieProgram program{&positions};
             drawProgram<1>(ctx, state, positions.size(), indices.data(), indices.size(), program);
-            std::size_t sharedEntries = 0, owners = 0;
+            std::size_t sharedEntries = 0, owners = 0, wrongCorners = 0;
             for (int b = 0; b < kBands; ++b) {
                 std::vector<std::size_t> listed; // band b's triangles, chunk by chunk
                 for (int c = 0; c < threads; ++c)
-                    for (std::uint32_t entry : ctx.bins[std::size_t(c * kBands + b)]) {
+                    for (const BinEntry& e : ctx.bins[std::size_t(c * kBands + b)]) {
+                        const std::uint32_t entry = e.entry;
                         owners += (entry & detail::kBinOwner) != 0;
                         if (entry & detail::kBinShared) {
                             ++sharedEntries;
                             listed.push_back(ctx.sharedSetups[std::size_t(c)][entry & detail::kBinIndex].triangle);
                         } else {
-                            listed.push_back(entry & detail::kBinIndex);
+                            const std::size_t t = entry & detail::kBinIndex;
+                            listed.push_back(t);
+                            // A triangle's entry carries its vertex indices (the walk reads no index buffer).
+                            for (int k = 0; k < 3; ++k) wrongCorners += e.corners[k] != indices[3 * t + std::size_t(k)];
                         }
                     }
                 CHECK(std::is_sorted(listed.begin(), listed.end())); // submission order
@@ -709,6 +714,7 @@ TEST_CASE("binned draws: each band's bins list the triangles whose rows meet it,
                 CHECK(listed == expected);
             }
             CHECK(owners == ctx.stats.rasterized);
+            CHECK(wrongCorners == 0);
             // Only triangles meeting 3 bands or more share a record (every one with 1); none is clipped.
             CHECK(ctx.stats.clipped == 0);
             if (shared == 1) CHECK(ctx.stats.setupsBuilt == ctx.stats.rasterized);
@@ -727,7 +733,7 @@ TEST_CASE("bandsByWork: the lanes take the bands with the most bin entries first
     ctx.bins.resize(std::size_t(chunks * bandsHigh));
     for (int c = 0; c < chunks; ++c)
         for (int b = 0; b < bandsHigh; ++b)
-            ctx.bins[std::size_t(c * bandsHigh + b)].assign(sizes[c][b], std::uint32_t(b));
+            ctx.bins[std::size_t(c * bandsHigh + b)].assign(sizes[c][b], BinEntry{std::uint32_t(b), {}});
     detail::bandsByWork(ctx, chunks, bandsHigh);
     CHECK(ctx.bandOrder == std::vector<int>{3, 5, 0, 1, 4, 2});
     // In parts of consecutive bands (one per lane: BandQueue), the same rule within each part.
@@ -742,7 +748,7 @@ TEST_CASE("bandsByWork: the lanes take the bands with the most bin entries first
     // The largest band number a frame can have (kMaxDimension rows) survives the packed key.
     const int most = detail::bandCount(FrameBuffer::kMaxDimension);
     ctx.bins.assign(std::size_t(most), {});
-    ctx.bins[std::size_t(most - 1)].assign(7, 0u);
+    ctx.bins[std::size_t(most - 1)].assign(7, BinEntry{});
     detail::bandsByWork(ctx, 1, most);
     REQUIRE(ctx.bandOrder.size() == std::size_t(most));
     CHECK(ctx.bandOrder.front() == most - 1);
