@@ -263,7 +263,8 @@ void fillBinnedBand(FrameBuffer& fb, MsaaBuffer* msaa, const BinnedDraw& draw, c
                     }
                 }
             }
-            const std::uint32_t entry = bin[k].entry;
+            const BinEntry& binned = bin[k];
+            const std::uint32_t entry = binned.entry;
             if (entry & kBinShared) {
                 const RenderContext::SharedSetup& record = shared[entry & kBinIndex];
                 fillSetUpTriangle<kVaryings>(fb, msaa, state, bands, lane, (entry & kBinOwner) ? lane.stats : sink,
@@ -271,10 +272,11 @@ void fillBinnedBand(FrameBuffer& fb, MsaaBuffer* msaa, const BinnedDraw& draw, c
                 continue;
             }
             const std::size_t t = entry & kBinIndex;
-            const std::uint32_t i0 = bin[k].corners[0], i1 = bin[k].corners[1], i2 = bin[k].corners[2];
+            const std::uint32_t* corners = binned.corners;
             // (No wireframe here: a wireframe draw runs on one lane.)
-            rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t, vertices[i0], vertices[i1], vertices[i2],
-                                         program, (entry & kBinOwner) ? LaneRole::Owner : LaneRole::Helper);
+            rasterizeTriangle<kVaryings>(fb, msaa, state, bands, lane, sink, t, vertices[corners[0]], vertices[corners[1]],
+                                         vertices[corners[2]], program,
+                                         (entry & kBinOwner) ? LaneRole::Owner : LaneRole::Helper);
         }
     }
 }
