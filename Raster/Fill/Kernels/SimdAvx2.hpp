@@ -95,7 +95,7 @@ SR_SIMD_INLINE I gather(const std::uint32_t* base, I index) {
 // first (second) words in lane order.
 SR_SIMD_INLINE void gatherPair(const std::uint32_t* base, I index, I& first, I& second) {
     alignas(32) std::int32_t at[8];
-    _mm256_store_si256(reinterpret_cast<__m256i*>(at), index.v);
+    istore(at, index);
     auto pair = [base](std::int32_t a, std::int32_t b) SR_SIMD_LAMBDA {
         const __m128d low = _mm_castsi128_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(base + a)));
         return _mm_castpd_ps(_mm_loadh_pd(low, reinterpret_cast<const double*>(base + b)));
