@@ -84,14 +84,25 @@ SR_SIMD_INLINE I truncToInt(F a) { return {_mm512_cvttps_epi32(a.v)}; }
 SR_SIMD_INLINE F asFloat(I a) { return {_mm512_castsi512_ps(a.v)}; }
 SR_SIMD_INLINE I asInt(F a) { return {_mm512_castps_si512(a.v)}; }
 SR_SIMD_INLINE I gather(const std::uint32_t* base, I index) { return {_mm512_i32gather_epi32(index.v, base, 4)}; }
-// base[index[i]] and base[index[i] + 1] per lane: two 64-bit gathers of 8 lanes each (half the
-// element loads of two 32-bit gathers), split into the lanes' first and second words.
+// base[index[i]] and base[index[i] + 1] per lane: one 64-bit load per lane (a gather is
+// microcoded on AMD's cores), lanes (4k, 4k + 1) in one vector's 128-bit part k and
+// (4k + 2, 4k + 3) in the other's, so one shuffle per part splits first and second words.
 SR_SIMD_INLINE void gatherPair(const std::uint32_t* base, I index, I& first, I& second) {
-    const __m512i lo = _mm512_i32gather_epi64(_mm512_castsi512_si256(index.v), base, 4);
-    const __m512i hi = _mm512_i32gather_epi64(_mm512_extracti64x4_epi64(index.v, 1), base, 4);
-    const __m512i even = _mm512_setr_epi32(0, 2, 4, 6, 8, 10, 12, 14, 16, 18, 20, 22, 24, 26, 28, 30);
-    first = {_mm512_permutex2var_epi32(lo, even, hi)};
-    second = {_mm512_permutex2var_epi32(lo, _mm512_add_epi32(even, _mm512_set1_epi32(1)), hi)};
+    alignas(64) std::int32_t at[16];
+    istore(at, index);
+    auto pair = [base](std::int32_t a, std::int32_t b) SR_SIMD_LAMBDA {
+        const __m128d low = _mm_castsi128_pd(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(base + a)));
+        return _mm_castpd_ps(_mm_loadh_pd(low, reinterpret_cast<const double*>(base + b)));
+    };
+    auto four = [&pair, &at](int k) SR_SIMD_LAMBDA {
+        const __m256 low = _mm256_insertf128_ps(_mm256_castps128_ps256(pair(at[k], at[k + 1])), pair(at[k + 4], at[k + 5]), 1);
+        const __m256 high = _mm256_insertf128_ps(_mm256_castps128_ps256(pair(at[k + 8], at[k + 9])), pair(at[k + 12], at[k + 13]), 1);
+        return _mm512_insertf32x8(_mm512_castps256_ps512(low), high, 1);
+    };
+    const __m512 lo = four(0);
+    const __m512 hi = four(2);
+    first = {_mm512_castps_si512(_mm512_shuffle_ps(lo, hi, _MM_SHUFFLE(2, 0, 2, 0)))};
+    second = {_mm512_castps_si512(_mm512_shuffle_ps(lo, hi, _MM_SHUFFLE(3, 1, 3, 1)))};
 }
 SR_SIMD_INLINE int firstLane(I a) { return _mm_cvtsi128_si32(_mm512_castsi512_si128(a.v)); }
 SR_SIMD_INLINE int reduceMin(I a) { return _mm512_reduce_min_epi32(a.v); }
