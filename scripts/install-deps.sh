@@ -3,8 +3,10 @@
 # Usage: scripts/install-deps.sh [build|test|demo]...   (default: test, which includes build)
 set -euo pipefail
 
-build_pkgs=(cmake ninja-build g++ catch2 libstb-dev libtinyobjloader-dev libtinygltf-dev nlohmann-json3-dev
-            g++-mingw-w64-x86-64-posix)
+build_pkgs=(cmake ninja-build g++ catch2 libstb-dev libtinyobjloader-dev nlohmann-json3-dev
+            libmeshoptimizer-dev libdraco-dev libwebp-dev   # glTF decoders (cmake/Codecs.cmake)
+            g++-mingw-w64-x86-64-posix
+            dpkg-dev)   # apt-get source / dpkg-source: scripts/build-mingw-deps.sh builds the decoders for MinGW
 wine_pkgs=(wine wine64)
 x11_pkgs=(xvfb xdotool imagemagick x11-utils openbox)
 test_pkgs=(clang libclang-rt-14-dev   # libFuzzer for the fuzz targets
