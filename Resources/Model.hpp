@@ -91,6 +91,10 @@ struct Model {
     std::vector<LineSet> lineSets;     // glTF: line and point primitives (OBJ 'l'/'p' are not read)
     std::vector<Light> lights;         // glTF KHR_lights_punctual: the scene's lights in world space, in node order
     std::vector<std::string> warnings; // one line each, naming the file
+    // glTF KHR_materials_variants: the file's variant names, and the one drawn (-1: the
+    // primitives' own materials).
+    std::vector<std::string> variants;
+    int variant = -1;
     // glTF animations, skins and morph targets (Animation.hpp): null when the file has none. The
     // mesh above is their rest pose.
     std::shared_ptr<const ModelAnimation> animation;
@@ -122,6 +126,7 @@ struct LoadLimits {
 struct LoadOptions {
     std::string textureOverride; // --texture PATH: replaces every material's map (error if unloadable)
     bool loadTextures = true;    // false: textures keep their slots and paths but stay 0x0, no decode
+    std::string variant;         // glTF KHR_materials_variants: the variant to draw (empty: none; unknown: an error)
     LoadLimits limits;
 };
 

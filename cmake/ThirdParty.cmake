@@ -1,19 +1,19 @@
 # Third-party headers come from package managers, never from this repository.
-#  - MSVC: vcpkg (manifest mode, see vcpkg.json): Catch2 3.x, stb, tinyobjloader, tinygltf.
+#  - MSVC: vcpkg (manifest mode, see vcpkg.json): Catch2 3.x, stb, tinyobjloader, nlohmann-json.
 #  - GCC (native and MinGW): Debian's catch2 (2.x), libstb-dev, libtinyobjloader-dev,
-#    libtinygltf-dev with nlohmann-json3-dev (header-only use: we compile its implementation). The MinGW
+#    nlohmann-json3-dev (the JSON of glTF files; header-only). The MinGW
 #    build must not see the host's /usr/include, so the few header folders we use are copied at
 #    configure time into <build>/pkg-include, a folder that holds only them.
 # Result: INTERFACE targets sr::catch2 (headers; SR_CATCH2_V3 defined for 3.x), sr::stb,
-# sr::tinyobjloader, sr::tinygltf.
+# sr::tinyobjloader, sr::json.
 add_library(sr_catch2 INTERFACE)
 add_library(sr::catch2 ALIAS sr_catch2)
 add_library(sr_stb INTERFACE)
 add_library(sr::stb ALIAS sr_stb)
 add_library(sr_tinyobjloader INTERFACE)
 add_library(sr::tinyobjloader ALIAS sr_tinyobjloader)
-add_library(sr_tinygltf INTERFACE)
-add_library(sr::tinygltf ALIAS sr_tinygltf)
+add_library(sr_json INTERFACE)
+add_library(sr::json ALIAS sr_json)
 
 if(MSVC OR DEFINED VCPKG_TOOLCHAIN)
   if(SR_BUILD_TESTS)
@@ -25,10 +25,8 @@ if(MSVC OR DEFINED VCPKG_TOOLCHAIN)
   target_include_directories(sr_stb SYSTEM INTERFACE ${SR_STB_DIR})
   find_package(tinyobjloader CONFIG REQUIRED)
   target_link_libraries(sr_tinyobjloader INTERFACE tinyobjloader::tinyobjloader)
-  find_path(SR_TINYGLTF_DIR tiny_gltf.h REQUIRED)
   find_package(nlohmann_json CONFIG REQUIRED)
-  target_include_directories(sr_tinygltf SYSTEM INTERFACE ${SR_TINYGLTF_DIR})
-  target_link_libraries(sr_tinygltf INTERFACE nlohmann_json::nlohmann_json sr_stb)
+  target_link_libraries(sr_json INTERFACE nlohmann_json::nlohmann_json)
   return()
 endif()
 
@@ -54,6 +52,5 @@ sr_import_header(stb/stb_image_write.h libstb-dev)
 target_include_directories(sr_stb SYSTEM INTERFACE ${SR_PKG_INCLUDE}/stb)
 sr_import_header(tiny_obj_loader.h libtinyobjloader-dev)
 target_include_directories(sr_tinyobjloader SYSTEM INTERFACE ${SR_PKG_INCLUDE})
-sr_import_header(tiny_gltf.h libtinygltf-dev)
 sr_import_header(nlohmann nlohmann-json3-dev)
-target_include_directories(sr_tinygltf SYSTEM INTERFACE ${SR_PKG_INCLUDE})
+target_include_directories(sr_json SYSTEM INTERFACE ${SR_PKG_INCLUDE})

@@ -17,7 +17,8 @@ export WINEDEBUG="${WINEDEBUG:--all}"
 export WINEDLLOVERRIDES="${WINEDLLOVERRIDES:-mscoree,mshtml=}"
 
 echo "demo: building SoftRaster.exe (preset mingw)"
-cmake --preset mingw >/dev/null
+deps=$(scripts/build-mingw-deps.sh)   # the glTF decoders for Windows, cached outside the tree
+cmake --preset mingw -DSR_MINGW_DEPS_PREFIX="$deps" >/dev/null
 cmake --build --preset mingw --target SoftRaster softraster -j "$(nproc 2>/dev/null || echo 2)" >/dev/null
 exe="$root/build/mingw/bin/SoftRaster.exe"
 

@@ -67,7 +67,17 @@ build_and_test() {
     wineserver -w 2>/dev/null || true
   fi
   cfglog="build/logs/$preset-configure.log"
-  if ! cmake --preset "$preset" >"$cfglog" 2>&1; then
+  local extra=()
+  if [[ "$preset" == mingw ]]; then
+    # The glTF decoders for Windows: built once from Debian's sources, cached outside the tree.
+    local deps
+    if ! deps=$(scripts/build-mingw-deps.sh 2>"build/logs/mingw-deps.log"); then
+      tail -5 "build/logs/mingw-deps.log"; result[$preset]="configure FAILED (scripts/build-mingw-deps.sh)"; return
+    fi
+    echo "=== [$preset] glTF decoders: $deps ($(tail -1 build/logs/mingw-deps.log))"
+    extra=(-DSR_MINGW_DEPS_PREFIX="$deps")
+  fi
+  if ! cmake --preset "$preset" "${extra[@]}" >"$cfglog" 2>&1; then
     cat "$cfglog"; echo "=== $(free_mib) MiB free under build/"
     result[$preset]="configure FAILED"; return
   fi

@@ -146,6 +146,7 @@ Action DemoController::keyDown(Key key, bool repeat) {
         break;
     case Action::None:
     case Action::Quit:
+    case Action::CycleVariant:
     case Action::Screenshot: break; // the platform's
     }
     return action;

@@ -13,7 +13,7 @@ enum class Key {
     W, A, S, D, Q, E,          // fly: forward / strafe left / back / strafe right / down / up
     Up, Down, Left, Right,     // turn
     Shift,                     // held: move faster
-    C, M, T, P, N, L, O, H, Z, R, V, G, U, // toggles, reset and camera (see actionForKey)
+    C, M, T, P, N, L, O, H, Z, R, V, G, U, K, // toggles, reset, camera and variant (see actionForKey)
     Space, Comma, Period,      // animation: play / pause, step back, step forward
     F1, F12,
     Count
@@ -42,7 +42,8 @@ enum class Action {
     TogglePlay,       // a glTF file's animation: play <-> pause
     StepBack,         // pause, one step (1/30 s) back
     StepForward,      // pause, one step forward
-    ToggleAutoQuality // --quality auto: keep the budget <-> hold the current setting
+    ToggleAutoQuality, // --quality auto: keep the budget <-> hold the current setting
+    CycleVariant      // glTF KHR_materials_variants: the file's materials -> variant 0 -> 1 -> ... (the platform's: it reloads)
 };
 
 constexpr Action actionForKey(Key key) {
@@ -66,6 +67,7 @@ constexpr Action actionForKey(Key key) {
     case Key::Comma: return Action::StepBack;
     case Key::Period: return Action::StepForward;
     case Key::U: return Action::ToggleAutoQuality;
+    case Key::K: return Action::CycleVariant;
     default: break;
     }
     return Action::None;
@@ -77,7 +79,7 @@ struct KeyHelp {
     const char* what;
 };
 
-inline constexpr std::array<KeyHelp, 23> kKeyHelp{{
+inline constexpr std::array<KeyHelp, 24> kKeyHelp{{
     {"W / S", "fly forward / back"},
     {"A / D", "strafe left / right"},
     {"Q / E", "fly down / up"},
@@ -85,6 +87,7 @@ inline constexpr std::array<KeyHelp, 23> kKeyHelp{{
     {"Shift", "hold to move 4x faster"},
     {"R", "reset the view"},
     {"V", "next camera of the model (glTF), then back to the start"},
+    {"K", "next material variant of the model (glTF), then its own materials"},
     {"C", "cull mode: none -> CW -> CCW"},
     {"M", "shading: unlit -> flat -> gouraud -> phong (-> pbr, glTF)"},
     {"G", "colour: linear light <-> display values"},

@@ -105,7 +105,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
     static const char* const kFlags[] = {"--obj",   "--model",   "--width",   "--height", "--eye",     "--target", "--up",
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--aniso", "--wrap",    "--kd",     "--wireframe", "--persp",
-                                         "--isa",   "--ssaa",   "--msaa",   "--fxaa",   "--quality", "--budget-ms", "--max-error", "--materials", "--camera", "--time", "--animation",
+                                         "--isa",   "--ssaa",   "--msaa",   "--fxaa",   "--quality", "--budget-ms", "--max-error", "--materials", "--camera", "--variant", "--time", "--animation",
                                          "--sky",   "--skybox",  "--outline", "--ibl", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
@@ -237,6 +237,9 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
         const auto v = parseInt(value);
         if (!v || *v < 0 || *v > 65535) return bad("a camera number from 0 (the file's cameras, in node order)");
         o.camera = *v;
+    } else if (flag == "--variant") {
+        if (value.empty()) return bad("the name of one of the file's material variants (KHR_materials_variants)");
+        o.variant = value;
     } else if (flag == "--time") {
         const auto v = parseNumber(value);
         if (!v || !std::isfinite(*v) || *v < 0.0 || *v > 1e9) return bad("seconds from 0 (a finite number)");
@@ -393,6 +396,8 @@ std::string sceneFlagsHelp() {
            "  --up x,y,z            up vector (default 0,1,0)\n"
            "  --camera N            view through the model's camera N (glTF, numbered from 0 in node\n"
            "                        order); --eye, --target, --up, --fov, --near, --far still override\n"
+           "  --variant NAME        draw the glTF file's material variant NAME (KHR_materials_variants;\n"
+           "                        an unknown name is an error listing the file's variants)\n"
            "  --fov DEG             vertical field of view in degrees (default 60)\n"
            "  --near Z --far Z      clip distances, near >= 1e-06 (default: auto-fitted, or 0.1 / 100\n"
            "                        with --eye)\n"

@@ -78,6 +78,7 @@ struct SceneOptions {
     Color kd{0.8f, 0.8f, 0.8f, 1.0f};
     MaterialRule materials = MaterialRule::Mtl; // --materials
     std::optional<int> camera;                  // --camera N: the file's camera N (glTF)
+    std::string variant;                        // --variant NAME: a KHR_materials_variants variant (glTF)
     // --time T: pose a glTF file's animations at T seconds (unset: the rest pose; the demo plays
     // from 0); --animation N: only clip N (unset, or "all": every clip, as viewers play them).
     std::optional<double> time;

@@ -2,6 +2,7 @@
 #include "Platform/App/SceneSetup.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cassert>
 #include <cmath>
 #include <cstdio>
@@ -14,7 +15,7 @@
 #include "Raster/Frame/Msaa.hpp" // msaaFits
 #include "Raster/Geometry/Camera.hpp"
 #include "Resources/DefaultScene.hpp"
-#include "Resources/GltfLoader.hpp"
+#include "Resources/Gltf/GltfLoader.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/Skybox.hpp"
 
@@ -171,9 +172,16 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
     } else {
         LoadOptions loadOptions;
         loadOptions.textureOverride = options.texture;
+        loadOptions.variant = options.variant;
+        if (!options.variant.empty() && !isGltfPath(options.obj))
+            return Result<LoadedScene>::failure(options.obj + ": --variant: only glTF files have material variants");
+        const auto loadStart = std::chrono::steady_clock::now();
         auto model = loadModel(options.obj, loadOptions); // .gltf / .glb or OBJ
         if (!model) return Result<LoadedScene>::failure(model.error());
+        out.loadMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart).count();
         Model& m = model.value();
+        out.loadedTriangles = m.mesh.triangleCount();
+        for (const Image& image : m.textures) out.loadedTexels += std::size_t(image.width) * std::size_t(image.height);
         out.warnings = m.warnings;
         out.physical = isGltfPath(options.obj);
         // Bounding sphere: centre of the AABB of every 'v', radius = farthest vertex from it.
@@ -191,6 +199,8 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         out.description = options.obj + ": " + std::to_string(m.mesh.triangleCount()) + " triangles, " +
                           std::to_string(m.textures.size()) + " textures, normals " +
                           (m.normalsFromFile ? "from the file" : out.physical ? "flat where the file has none" : "computed (area-weighted)");
+        if (m.variant >= 0) out.description += ", material variant '" + m.variants[std::size_t(m.variant)] + "'";
+        out.variants = m.variants;
         if (!m.lineSets.empty()) {
             std::size_t segments = 0, points = 0;
             for (const LineSet& l : m.lineSets) (l.points ? points : segments) += l.points ? l.indices.size() : l.indices.size() / 2;

@@ -202,6 +202,9 @@ int runBench(const std::vector<std::string>& args, Streams io) {
                  "\",\"ms\":" + jsonNumber(p.autoProbe.points[k].ms) + ",\"error\":" + jsonNumber(p.autoProbe.points[k].error) + "}";
         j += "]}";
     }
+    if (!p.scene.builtIn)
+        j += ",\"load_ms\":" + jsonNumber(p.scene.loadMs) + ",\"load\":{\"triangles\":" + std::to_string(p.scene.loadedTriangles) +
+             ",\"texels\":" + std::to_string(p.scene.loadedTexels) + "}";
     j += ",\"hardware_threads\":" + std::to_string(std::thread::hardware_concurrency()) + "}";
 
     // The image (if asked) goes first so that stdout's last line is the JSON.

@@ -144,6 +144,28 @@ int WINAPI wWinMain(HINSTANCE instance, HINSTANCE, PWSTR, int showCommand) {
     win32::enableDpiAwareness(); // before any window exists
     win32::MainWindow window(scene, controller);
     window.setThreads(ThreadPool::threadsWorthStarting(options.scene.threads)); // more would take turns on the CPUs
+    // K: the model's material variants in turn, then its own materials again; each a reload of
+    // the file with --variant set (the geometry, cameras and lights are the same).
+    if (!scene.variants.empty()) {
+        std::size_t shown = 0; // 0: the file's own materials; k: variant k - 1
+        for (std::size_t k = 0; k < scene.variants.size(); ++k)
+            if (scene.variants[k] == options.scene.variant) shown = k + 1;
+        window.setVariantCycler(
+            [&options, &scene, &controller, &window, shown]() mutable -> std::string {
+                const std::size_t next = (shown + 1) % (scene.variants.size() + 1);
+                app::SceneOptions o = options.scene;
+                o.variant = next == 0 ? std::string() : scene.variants[next - 1];
+                Result<app::LoadedScene> reloaded = app::loadScene(o);
+                if (!reloaded) return "variant: " + reloaded.error();
+                if (const auto problem = app::applySceneDefaults(o, reloaded.value())) return "variant: " + *problem;
+                scene = std::move(reloaded.value());
+                controller.setImageLight(scene.ibl.get());
+                shown = next;
+                window.setVariantName(o.variant);
+                return o.variant.empty() ? std::string("the model's own materials") : "material variant " + o.variant;
+            },
+            options.scene.variant);
+    }
     const bool created = options.sizeGiven
                              ? window.create(instance, showCommand, options.scene.width, options.scene.height, false)
                              : window.create(instance, showCommand, kDefaultClientWidth, kDefaultClientHeight, true);

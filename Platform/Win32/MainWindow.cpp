@@ -149,7 +149,9 @@ void MainWindow::updateTitle() {
         status_.clear();
     if (!hwnd_)
         return;
-    const std::string title = app::windowTitle(stats_, context_.threads(), scene_.scene.triangleCount(), controller_.modeSummary(), status_);
+    std::string modes = controller_.modeSummary();
+    if (!variant_.empty()) modes += " | variant " + variant_;
+    const std::string title = app::windowTitle(stats_, context_.threads(), scene_.scene.triangleCount(), modes, status_);
     SetWindowTextW(hwnd_, widen(title).c_str());
 }
 
@@ -171,6 +173,9 @@ void MainWindow::onKeyDown(WPARAM virtualKey, LPARAM flags) {
     switch (controller_.keyDown(translateKey(virtualKey), repeat)) {
     case app::Action::Quit: close(); return;
     case app::Action::Screenshot: screenshot(); return;
+    case app::Action::CycleVariant:
+        if (cycleVariant_) setStatus(cycleVariant_());
+        return;
     case app::Action::None: return;
     default: updateTitle(); return; // a mode changed: show it now, not at the next average
     }
@@ -192,6 +197,7 @@ app::Key MainWindow::translateKey(WPARAM vk) {
     case VK_RIGHT: return Key::Right;
     case VK_SHIFT: return Key::Shift;
     case 'C': return Key::C;
+    case 'K': return Key::K;
     case 'M': return Key::M;
     case 'T': return Key::T;
     case 'P': return Key::P;

@@ -12,6 +12,7 @@
 #include "Raster/Frame/RenderContext.hpp"
 
 #include <chrono>
+#include <functional>
 #include <string>
 
 namespace sr::win32 {
@@ -32,6 +33,13 @@ public:
     // Render threads (--threads; RenderContext::setThreads clamps, 0 or 1 = the UI thread only).
     // The picture is the same for any count.
     void setThreads(int threads) { context_.setThreads(threads); }
+    // K: switches the scene to the model's next material variant (the callback reloads it and
+    // says what it did, for the title's status); `current` names the variant shown, if any.
+    void setVariantCycler(std::function<std::string()> cycle, std::string current) {
+        cycleVariant_ = std::move(cycle);
+        variant_ = std::move(current);
+    }
+    void setVariantName(std::string current) { variant_ = std::move(current); }
 
     // True while there is nothing to draw into (minimised, or a 0 x 0 client area).
     bool idle() const;
@@ -85,6 +93,8 @@ private:
     Clock::time_point lastFrame_{};
     bool haveLastFrame_ = false;
     std::string status_;
+    std::function<std::string()> cycleVariant_;
+    std::string variant_; // the material variant drawn (the title shows it); empty: the file's own materials
     Clock::time_point statusUntil_{};
     int screenshotCounter_ = 0;
     std::wstring helpText_;

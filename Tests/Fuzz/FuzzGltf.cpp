@@ -12,7 +12,7 @@
 
 #include "FuzzModel.hpp"
 #include "Resources/Animation.hpp"
-#include "Resources/GltfLoader.hpp"
+#include "Resources/Gltf/GltfLoader.hpp"
 
 namespace {
 

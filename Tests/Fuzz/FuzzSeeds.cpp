@@ -1,9 +1,11 @@
-// Writes the fuzz seed corpora: tiny OBJ/MTL texts and PNG/BMP/TGA/JPEG/PPM/PGM images made here (no third-party files).
+// Writes the fuzz seed corpora: tiny OBJ/MTL texts, glTF files (plain, meshopt, Draco, WebP) and PNG/BMP/TGA/JPEG/PPM/PGM images made here (no third-party files).
 // Usage: sr_fuzz_seeds DIR   -> DIR/obj/*, DIR/gltf/* and DIR/image/* (the directories are created).
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,11 @@
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include "stb_image_write.h"
+
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
+#include <meshoptimizer.h>
+#include <webp/encode.h>
 
 namespace {
 
@@ -35,6 +42,100 @@ std::vector<unsigned char> pixels(int w, int h, int comp) {
     std::vector<unsigned char> p(std::size_t(w) * std::size_t(h) * std::size_t(comp));
     for (std::size_t i = 0; i < p.size(); ++i) p[i] = static_cast<unsigned char>(i * 37 + 11);
     return p;
+}
+
+std::string base64(const std::string& bytes) {
+    static const char* const kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    for (std::size_t i = 0; i < bytes.size(); i += 3) {
+        unsigned v = unsigned((unsigned char)bytes[i]) << 16;
+        if (i + 1 < bytes.size()) v |= unsigned((unsigned char)bytes[i + 1]) << 8;
+        if (i + 2 < bytes.size()) v |= (unsigned char)bytes[i + 2];
+        out += kAlphabet[(v >> 18) & 63u];
+        out += kAlphabet[(v >> 12) & 63u];
+        out += i + 1 < bytes.size() ? kAlphabet[(v >> 6) & 63u] : '=';
+        out += i + 2 < bytes.size() ? kAlphabet[v & 63u] : '=';
+    }
+    return out;
+}
+
+// The encoded glTF seeds: a meshopt-compressed triangle (vertices, indices, octahedral normals),
+// a Draco-compressed one, and a triangle textured with a lossless WebP, each in a data: URI.
+void encodedSeeds(const std::string& gl) {
+    const float positions[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const unsigned indices[3] = {0, 1, 2};
+    const std::string head = "{\"asset\":{\"version\":\"2.0\"},\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{\"mesh\":0}],";
+    const auto uri = [](const std::string& bytes) { return "data:application/octet-stream;base64," + base64(bytes); };
+    {
+        std::string vtx(meshopt_encodeVertexBufferBound(3, 12), '\0'), idx(meshopt_encodeIndexBufferBound(3, 3), '\0');
+        vtx.resize(meshopt_encodeVertexBuffer(reinterpret_cast<unsigned char*>(&vtx[0]), vtx.size(), positions, 3, 12));
+        idx.resize(meshopt_encodeIndexBuffer(reinterpret_cast<unsigned char*>(&idx[0]), idx.size(), indices, 3));
+        const float normals[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0.6f, 0, 0.8f, 0};
+        signed char oct[12];
+        meshopt_encodeFilterOct(oct, 3, 4, 8, normals);
+        std::string nrm(meshopt_encodeVertexBufferBound(3, 4), '\0');
+        nrm.resize(meshopt_encodeVertexBuffer(reinterpret_cast<unsigned char*>(&nrm[0]), nrm.size(), oct, 3, 4));
+        const std::string data = vtx + idx + nrm;
+        const auto view = [&](std::size_t offset, std::size_t length, int stride, const char* mode, const char* filter) {
+            return "{\"buffer\":1,\"byteLength\":" + std::to_string(stride * 3) + ",\"byteStride\":" + std::to_string(stride) +
+                   ",\"extensions\":{\"EXT_meshopt_compression\":{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) +
+                   ",\"byteLength\":" + std::to_string(length) + ",\"byteStride\":" + std::to_string(stride) +
+                   ",\"count\":3,\"mode\":\"" + mode + "\",\"filter\":\"" + filter + "\"}}}";
+        };
+        put(gl + "meshopt.gltf",
+            head + "\"extensionsUsed\":[\"EXT_meshopt_compression\"],\"extensionsRequired\":[\"EXT_meshopt_compression\"],"
+                   "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"NORMAL\":2},\"indices\":1}]}],"
+                   "\"buffers\":[{\"byteLength\":" + std::to_string(data.size()) + ",\"uri\":\"" + uri(data) + "\"},"
+                   "{\"byteLength\":64,\"extensions\":{\"EXT_meshopt_compression\":{\"fallback\":true}}}],"
+                   "\"bufferViews\":[" + view(0, vtx.size(), 12, "ATTRIBUTES", "NONE") + "," + view(vtx.size(), idx.size(), 4, "TRIANGLES", "NONE") +
+                   "," + view(vtx.size() + idx.size(), nrm.size(), 4, "ATTRIBUTES", "OCTAHEDRAL") + "],"
+                   "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+                   "{\"bufferView\":1,\"componentType\":5125,\"count\":3,\"type\":\"SCALAR\"},"
+                   "{\"bufferView\":2,\"componentType\":5120,\"normalized\":true,\"count\":3,\"type\":\"VEC3\"}]}");
+    }
+    {
+        draco::TriangleSoupMeshBuilder builder;
+        builder.Start(1);
+        const int att = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+        builder.SetAttributeValuesForFace(att, draco::FaceIndex(0), positions, positions + 3, positions + 6);
+        std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+        draco::Encoder encoder;
+        draco::EncoderBuffer out;
+        if (!mesh || !encoder.EncodeMeshToBuffer(*mesh, &out).ok()) {
+            std::fprintf(stderr, "sr_fuzz_seeds: the Draco encoder failed\n");
+            gOk = false;
+            return;
+        }
+        const std::string data(out.data(), out.size());
+        put(gl + "draco.gltf",
+            head + "\"extensionsUsed\":[\"KHR_draco_mesh_compression\"],\"extensionsRequired\":[\"KHR_draco_mesh_compression\"],"
+                   "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0},\"indices\":1,\"extensions\":{\"KHR_draco_mesh_compression\":"
+                   "{\"bufferView\":0,\"attributes\":{\"POSITION\":" + std::to_string(mesh->attribute(att)->unique_id()) + "}}}}]}],"
+                   "\"buffers\":[{\"byteLength\":" + std::to_string(data.size()) + ",\"uri\":\"" + uri(data) + "\"}],"
+                   "\"bufferViews\":[{\"buffer\":0,\"byteLength\":" + std::to_string(data.size()) + "}],"
+                   "\"accessors\":[{\"componentType\":5126,\"count\":" + std::to_string(mesh->num_points()) + ",\"type\":\"VEC3\"},"
+                   "{\"componentType\":5123,\"count\":3,\"type\":\"SCALAR\"}]}");
+    }
+    {
+        const auto rgba = pixels(4, 4, 4);
+        std::uint8_t* webp = nullptr;
+        const std::size_t size = WebPEncodeLosslessRGBA(rgba.data(), 4, 4, 16, &webp);
+        const std::string image(reinterpret_cast<const char*>(webp), size);
+        WebPFree(webp);
+        std::string geometry(reinterpret_cast<const char*>(positions), 36);
+        const float uvs[6] = {0, 0, 1, 0, 0, 1};
+        geometry.append(reinterpret_cast<const char*>(uvs), 24);
+        put(gl + "webp.gltf",
+            head + "\"extensionsUsed\":[\"EXT_texture_webp\"],\"extensionsRequired\":[\"EXT_texture_webp\"],"
+                   "\"meshes\":[{\"primitives\":[{\"attributes\":{\"POSITION\":0,\"TEXCOORD_0\":1},\"material\":0}]}],"
+                   "\"materials\":[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}],"
+                   "\"textures\":[{\"extensions\":{\"EXT_texture_webp\":{\"source\":0}}}],"
+                   "\"images\":[{\"uri\":\"data:image/webp;base64," + base64(image) + "\"}],"
+                   "\"buffers\":[{\"byteLength\":60,\"uri\":\"" + uri(geometry) + "\"}],"
+                   "\"bufferViews\":[{\"buffer\":0,\"byteLength\":36},{\"buffer\":0,\"byteOffset\":36,\"byteLength\":24}],"
+                   "\"accessors\":[{\"bufferView\":0,\"componentType\":5126,\"count\":3,\"type\":\"VEC3\"},"
+                   "{\"bufferView\":1,\"componentType\":5126,\"count\":3,\"type\":\"VEC2\"}]}");
+    }
 }
 
 // Big-endian 32-bit, for the PNG header seed.
@@ -150,6 +251,8 @@ int main(int argc, char** argv) {
         put(gl + "binary.glb", "glTF" + le32(2) + le32(unsigned(12 + 8 + json.size() + 8 + bin.size())) + le32(unsigned(json.size())) +
                                    "JSON" + json + le32(unsigned(bin.size())) + std::string("BIN\0", 4) + bin);
     }
+
+    encodedSeeds(gl);
 
     // --- images ---
     for (int comp : {1, 3, 4}) {

@@ -734,3 +734,43 @@ TEST_CASE("bench's stages: the SSAA, MSAA and FXAA resolve timed on its own, onl
         CHECK(numberOf(two, "binning") >= 0.0);
     }
 }
+
+TEST_CASE("bench reports the model's load: its time, decoded triangles and texels; none for the built-in scene", "[headless][bench]") {
+    const std::string dir = tempDir("bench-load");
+    // Two triangles and a 4x2 texture (8 texels).
+    Image texture;
+    texture.width = 4;
+    texture.height = 2;
+    texture.rgba.assign(4 * 2 * 4, 200);
+    REQUIRE(writeImage(dir + "/t.png", texture).ok());
+    const std::string mtl = "newmtl m\nKd 1 1 1\nmap_Kd t.png\n";
+    const std::string obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nvt 1 1\nusemtl m\nf 1/1 2/2 3/3\nf 2/2 4/4 3/3\n";
+    REQUIRE(writeFileBytes(dir + "/m.mtl", mtl.data(), mtl.size()).ok());
+    REQUIRE(writeFileBytes(dir + "/q.obj", obj.data(), obj.size()).ok());
+    const Run b = run({"bench", "--obj", dir + "/q.obj", "--width", "32", "--height", "32", "--frames", "1", "--warmup", "0", "--quiet"});
+    REQUIRE(b.rc == kExitOk);
+    REQUIRE(hasKey(b.out, "load_ms"));
+    CHECK(numberOf(b.out, "load_ms") > 0.0);
+    CHECK(numberOf(b.out, "texels") == 8.0);
+    CHECK(b.out.find("\"load\":{\"triangles\":2,") != std::string::npos);
+    const Run builtIn = run({"bench", "--width", "32", "--height", "32", "--frames", "1", "--warmup", "0", "--quiet"});
+    REQUIRE(builtIn.rc == kExitOk);
+    CHECK(!hasKey(builtIn.out, "load_ms"));
+}
+
+TEST_CASE("--variant: an unknown name fails listing none for a file without variants; OBJ files have none", "[headless][variants]") {
+    const std::string dir = tempDir("variant");
+    const std::string gltf = "{\"asset\":{\"version\":\"2.0\"}}";
+    REQUIRE(writeFileBytes(dir + "/plain.gltf", gltf.data(), gltf.size()).ok());
+    const Run g = run({"render", "--model", dir + "/plain.gltf", "--variant", "gold", "--width", "16", "--height", "16",
+                       "--out", dir + "/v.png", "--quiet"});
+    CHECK(g.rc == kExitFailure);
+    CHECK(g.err.find("no material variant 'gold' (the file has none)") != std::string::npos);
+    const std::string obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    REQUIRE(writeFileBytes(dir + "/t.obj", obj.data(), obj.size()).ok());
+    const Run o = run({"render", "--obj", dir + "/t.obj", "--variant", "gold", "--width", "16", "--height", "16", "--out", dir + "/o.png",
+                       "--quiet"});
+    CHECK(o.rc == kExitFailure);
+    CHECK(o.err.find("only glTF files have material variants") != std::string::npos);
+    CHECK(run({"render", "--variant=", "--quiet"}).rc == kExitUsage);
+}

@@ -102,7 +102,7 @@ TEST_CASE("shading, filter, perspective and anti-aliasing cycle through every mo
     CHECK(c.modeSummary() == "cull none | unlit | bilinear | affine | ssaa 1");
 }
 
-TEST_CASE("wireframe, depth view and help toggle; Quit and Screenshot are left to the platform", "[platform]") {
+TEST_CASE("wireframe, depth view and help toggle; Quit, Screenshot and the variant key are left to the platform", "[platform]") {
     DemoController c = makeController();
     c.keyDown(Key::L);
     CHECK(c.settings().wireframe);
@@ -119,6 +119,10 @@ TEST_CASE("wireframe, depth view and help toggle; Quit and Screenshot are left t
     CHECK(c.modeSummary() == "cull none | phong | bilinear | exact | ssaa 1 | help");
     CHECK(c.keyDown(Key::Escape) == Action::Quit);
     CHECK(c.keyDown(Key::F12) == Action::Screenshot);
+    // K (the next material variant) reloads the model: the platform's, the settings unchanged.
+    const std::string before = c.modeSummary();
+    CHECK(c.keyDown(Key::K) == Action::CycleVariant);
+    CHECK(c.modeSummary() == before);
     CHECK(c.keyDown(Key::Unknown) == Action::None);
     CHECK(c.keyDown(Key::W) == Action::None);
 }

@@ -7,7 +7,7 @@
 
 #include "Math/Conventions.hpp"
 #include "Resources/Animation.hpp"
-#include "Resources/GltfLoader.hpp"
+#include "Resources/Gltf/GltfLoader.hpp"
 
 #include "GltfTestUtil.hpp"
 #include "ObjTestUtil.hpp"

@@ -60,6 +60,19 @@ public:
         accessors_.back().insert(accessors_.back().size() - 1, ",\"normalized\":true");
         return a;
     }
+    // Raw bytes as a buffer view of their own (4-byte aligned); returns the view's index.
+    int view(const void* bytes, std::size_t size) {
+        while (data_.size() % 4) data_.push_back(0);
+        const std::size_t offset = data_.size();
+        data_.resize(offset + size);
+        std::memcpy(data_.data() + offset, bytes, size);
+        views_.push_back("{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) + ",\"byteLength\":" + std::to_string(size) + "}");
+        return int(views_.size()) - 1;
+    }
+    // Replaces a buffer view's JSON (a compressed view's extension).
+    void setView(int index, const std::string& json) { views_[std::size_t(index)] = json; }
+    // The byte offset in the buffer where the next view() would start.
+    std::size_t nextOffset() const { return (data_.size() + 3) & ~std::size_t(3); }
     // Raw accessor JSON (for broken ones).
     int rawAccessor(const std::string& json) {
         accessors_.push_back(json);

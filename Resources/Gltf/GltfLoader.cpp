@@ -1,0 +1,246 @@
+// GltfLoader: the load of one glTF file, step by step: the document, its required extensions, the scene's node walk (meshes, instances, cameras, lights), animation, materials and textures, draw ranges and bounds.
+#include "Resources/Gltf/GltfLoader.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include "Resources/FileIO.hpp"
+#include "Resources/Gltf/Import.hpp"
+#include "Resources/ObjLoader.hpp"
+
+namespace sr {
+
+namespace {
+
+using R = Result<Model>;
+
+// The extensions a file may require: those read here, and the image formats whose textures
+// fall back to another image (Textures.cpp).
+const std::set<std::string>& supportedExtensions() {
+    static const std::set<std::string> kSupported = {
+        "KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_lights_punctual", "KHR_mesh_quantization",
+        "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp",
+        "EXT_mesh_gpu_instancing", "KHR_texture_basisu", "EXT_texture_avif"};
+    return kSupported;
+}
+
+// The material a primitive is drawn with under KHR_materials_variants' variant `variant` (-1:
+// none): the mapping that lists the variant, else the primitive's own; -2: a malformed mapping.
+int variantMaterial(const gltf::Primitive& prim, int variant) {
+    if (variant < 0) return prim.material;
+    const auto ext = prim.extensions.find("KHR_materials_variants");
+    if (ext == prim.extensions.end()) return prim.material;
+    const auto mappings = ext->find("mappings");
+    if (mappings == ext->end() || !mappings->is_array()) return -2;
+    for (const gltf::Json& m : *mappings) {
+        const auto material = m.find("material"), variants = m.find("variants");
+        if (!m.is_object() || material == m.end() || !material->is_number_integer() || variants == m.end() || !variants->is_array())
+            return -2;
+        for (const gltf::Json& v : *variants)
+            if (v.is_number_integer() && v.get<long long>() == variant) return material->get<int>();
+    }
+    return prim.material;
+}
+
+gltf::Primitive withMaterial(gltf::Primitive prim, int material) {
+    prim.material = material;
+    return prim;
+}
+
+} // namespace
+
+bool isGltfPath(const std::string& path) {
+    const std::string ext = lowerExtension(path);
+    return ext == ".gltf" || ext == ".glb";
+}
+
+Result<Model> loadModel(const std::string& utf8Path, const LoadOptions& options) {
+    return isGltfPath(utf8Path) ? loadGltf(utf8Path, options) : loadObj(utf8Path, options);
+}
+
+Result<Model> loadGltf(const std::string& path, const LoadOptions& options) {
+    auto bytes = readFileBytes(path, options.limits.maxFileBytes);
+    if (!bytes) return R::failure(bytes.error());
+    return loadGltfFromMemory(bytes.value().data(), bytes.value().size(), path, options);
+}
+
+Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& path,
+                                 const LoadOptions& options) {
+    using namespace gltfimport;
+    const LoadLimits& limits = options.limits;
+    if (size > limits.maxFileBytes)
+        return R::failure(path + ": " + std::to_string(size) + " bytes, above the limit of " + std::to_string(limits.maxFileBytes));
+    const std::string dir = parentDirectory(path);
+    auto parsed = gltf::parseDocument(data, size, dir, limits);
+    if (!parsed) return R::failure(path + ": " + parsed.error());
+    const gltf::Document& g = parsed.value();
+    for (const std::string& ext : g.extensionsRequired)
+        if (!supportedExtensions().count(ext))
+            return R::failure(path + ": requires the extension " + ext + ", which SoftRaster does not support");
+    const int sceneIndex = g.defaultScene >= 0 ? g.defaultScene : 0;
+    if ((g.defaultScene >= 0 || !g.scenes.empty()) && std::size_t(sceneIndex) >= g.scenes.size())
+        return R::failure(path + ": scene " + std::to_string(sceneIndex) + " does not exist");
+    if (g.nodes.size() > limits.maxNodes)
+        return R::failure(path + ": " + std::to_string(g.nodes.size()) + " nodes, above the limit of " + std::to_string(limits.maxNodes));
+    if (g.materials.size() > limits.maxMaterials)
+        return R::failure(path + ": " + std::to_string(g.materials.size()) + " materials, above the limit of " +
+                          std::to_string(limits.maxMaterials));
+
+    // KHR_materials_variants: the variant asked for, by name.
+    int variant = -1;
+    if (!options.variant.empty()) {
+        const auto found = std::find(g.variants.begin(), g.variants.end(), options.variant);
+        if (found == g.variants.end()) {
+            std::string names;
+            for (const std::string& v : g.variants) names += (names.empty() ? "" : ", ") + v;
+            return R::failure(path + ": no material variant '" + options.variant + "' (" +
+                              (names.empty() ? std::string("the file has none") : "its variants: " + names) + ")");
+        }
+        variant = int(found - g.variants.begin());
+    }
+
+    gltf::Accessors accessors(g);
+    Builder b;
+    b.path = path;
+    b.doc = &g;
+    b.accessors = &accessors;
+    b.trianglesOf.resize(g.materials.size() + 2); // [material + 1]; the last slot: the override stand-in
+    bool morphs = false;
+    for (const gltf::Mesh& gm : g.meshes)
+        for (const gltf::Primitive& prim : gm.primitives) morphs |= !prim.targets.empty();
+    if (!g.animations.empty() || !g.skins.empty() || morphs) {
+        b.animation = std::make_shared<ModelAnimation>();
+        b.animation->nodes.resize(g.nodes.size());
+    }
+    // Depth-first over the scene's node trees; a node met twice makes the graph not a tree.
+    std::vector<std::uint8_t> seen(g.nodes.size(), 0);
+    struct Item {
+        int node;
+        Mat4d parent;
+        std::size_t depth;
+    };
+    Mat4d identity;
+    for (int i = 0; i < 4; ++i) identity.m[i][i] = 1.0;
+    std::vector<Item> stack;
+    if (!g.scenes.empty()) {
+        const auto& roots = g.scenes[std::size_t(sceneIndex)].nodes;
+        for (auto it = roots.rbegin(); it != roots.rend(); ++it) stack.push_back({*it, identity, 1});
+    }
+    while (!stack.empty()) {
+        const Item item = stack.back();
+        stack.pop_back();
+        if (item.node < 0 || std::size_t(item.node) >= g.nodes.size())
+            return R::failure(path + ": node " + std::to_string(item.node) + " does not exist");
+        if (seen[std::size_t(item.node)])
+            return R::failure(path + ": node " + std::to_string(item.node) +
+                              " is reached twice (the node graph must be a tree: recursive or shared nodes)");
+        seen[std::size_t(item.node)] = 1;
+        if (item.depth > limits.maxNodeDepth)
+            return R::failure(path + ": the node hierarchy is deeper than " + std::to_string(limits.maxNodeDepth) + " levels");
+        const gltf::Node& node = g.nodes[std::size_t(item.node)];
+        const Mat4d world = item.parent * localMatrix(node);
+        if (!finite(world)) return R::failure(path + ": node " + std::to_string(item.node) + " has a transform that is not finite");
+        b.node = &node;
+        b.nodeIndex = item.node;
+        if (node.mesh >= 0) {
+            if (std::size_t(node.mesh) >= g.meshes.size())
+                return R::failure(path + ": node " + std::to_string(item.node) + ": mesh " + std::to_string(node.mesh) + " does not exist");
+            const auto instances = instanceMatrices(b, node, item.node);
+            if (!instances) return R::failure(path + ": " + instances.error());
+            if (!instances.value().empty() && b.animation)
+                return R::failure(path + ": node " + std::to_string(item.node) +
+                                  ": EXT_mesh_gpu_instancing in an animated file is not supported");
+            const std::size_t copies = std::max<std::size_t>(instances.value().size(), 1);
+            const gltf::Mesh& gm = g.meshes[std::size_t(node.mesh)];
+            for (std::size_t k = 0; k < copies; ++k) {
+                const Mat4d placed = instances.value().empty() ? world : world * instances.value()[k];
+                for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
+                    const std::string what = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p);
+                    const int material = variantMaterial(gm.primitives[p], variant);
+                    if (material < -1) return R::failure(path + ": " + what + ": KHR_materials_variants: a mapping is malformed");
+                    const Status s = material == gm.primitives[p].material
+                                         ? addPrimitive(b, gm.primitives[p], placed, what, limits)
+                                         : addPrimitive(b, withMaterial(gm.primitives[p], material), placed, what, limits);
+                    if (!s) return R::failure(path + ": " + s.error());
+                }
+            }
+        }
+        if (node.camera >= 0) {
+            if (std::size_t(node.camera) >= g.cameras.size())
+                return R::failure(path + ": node " + std::to_string(item.node) + ": camera " + std::to_string(node.camera) + " does not exist");
+            const Status s = addCamera(b, g.cameras[std::size_t(node.camera)], world, node.camera);
+            if (!s) return R::failure(path + ": " + s.error());
+        }
+        const Result<int> light = nodeLight(node, g.lights.size());
+        if (!light) return R::failure(path + ": node " + std::to_string(item.node) + ": " + light.error());
+        if (light.value() >= 0) {
+            if (b.model.lights.size() >= limits.maxLights)
+                return R::failure(path + ": more than " + std::to_string(limits.maxLights) + " lights in the scene");
+            const Status s = addLight(b, g.lights[std::size_t(light.value())], world, light.value());
+            if (!s) return R::failure(path + ": " + s.error());
+        }
+        for (auto it = node.children.rbegin(); it != node.children.rend(); ++it) {
+            stack.push_back({*it, world, item.depth + 1});
+            if (b.animation && *it >= 0 && std::size_t(*it) < g.nodes.size()) b.animation->nodes[std::size_t(*it)].parent = item.node;
+        }
+    }
+    if (b.animation) {
+        const Status s = addAnimation(*b.animation, g, accessors, b.model.warnings, path, limits);
+        if (!s) return R::failure(path + ": " + s.error());
+        b.animation->markMovingBlocks();
+    }
+    Model& model = b.model;
+    model.variants = g.variants;
+    model.variant = variant;
+    model.normalsFromFile = b.anyFileNormal && !b.anyComputedNormal;
+
+    // Materials and their textures.
+    for (std::size_t i = 0; i < g.materials.size(); ++i) {
+        model.materials.push_back(materialFrom(g.materials[i]));
+        std::string problem;
+        materialUvTransform(g.materials[i], &problem);
+        if (!problem.empty()) model.warnings.push_back(path + ": material " + std::to_string(i) + ": " + problem);
+    }
+    const Status textures = addTextures(b, options, dir);
+    if (!textures) return R::failure(textures.error());
+
+    // One range per material in order of first use.
+    for (const int key : b.firstUse) {
+        std::vector<std::uint32_t>& list = b.trianglesOf[std::size_t(key)];
+        DrawRange r;
+        r.firstIndex = std::uint32_t(model.mesh.indices.size());
+        r.indexCount = std::uint32_t(list.size());
+        r.material = key - 1;
+        r.texture = model.hasUvs && r.material >= 0 ? model.materials[std::size_t(r.material)].texture : -1;
+        model.mesh.indices.insert(model.mesh.indices.end(), list.begin(), list.end());
+        model.ranges.push_back(r);
+    }
+    // An animated file's rest pose: skins bound by their joints' rest transforms and the default
+    // morph weights (the specification's pose without a clip); the bounds are the rest pose's.
+    if (b.animation) {
+        b.animation->pose(0.0, -1, model.mesh, true);
+        model.animation = std::move(b.animation);
+    }
+    // Nothing to draw: a valid file all the same (every viewer shows an empty frame).
+    if (b.triangles == 0 && model.lineSets.empty()) {
+        model.warnings.push_back(path + ": " +
+                                 (g.scenes.empty() ? std::string("the file defines no scene: nothing to draw")
+                                                   : "scene " + std::to_string(sceneIndex) + " has nothing to draw"));
+        model.boundsMin = Vec3(-1.0f, -1.0f, -1.0f);
+        model.boundsMax = Vec3(1.0f, 1.0f, 1.0f);
+        return R(std::move(model));
+    }
+    // Bounds of the drawn vertices (world space), triangles', lines' and points'.
+    model.boundsMin = model.boundsMax = !model.mesh.positions.empty() ? model.mesh.positions.front() : model.lineSets.front().positions.front();
+    const auto grow = [&](const std::vector<Vec3>& positions) {
+        for (const Vec3& p : positions) {
+            model.boundsMin = Vec3(std::min(model.boundsMin.x, p.x), std::min(model.boundsMin.y, p.y), std::min(model.boundsMin.z, p.z));
+            model.boundsMax = Vec3(std::max(model.boundsMax.x, p.x), std::max(model.boundsMax.y, p.y), std::max(model.boundsMax.z, p.z));
+        }
+    };
+    grow(model.mesh.positions);
+    for (const LineSet& l : model.lineSets) grow(l.positions);
+    return R(std::move(model));
+}
+
+} // namespace sr

@@ -1,0 +1,97 @@
+// gltfimport: the steps that turn a gltf::Document into a Model (nodes, primitives, materials, textures, animation), and the state they share while walking the scene.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "Math/DoubleMath.hpp"
+#include "Resources/Animation.hpp"
+#include "Resources/Gltf/Accessors.hpp"
+#include "Resources/Gltf/Document.hpp"
+#include "Resources/Model.hpp"
+
+namespace sr::gltfimport {
+
+using gltf::readFloat;
+using gltf::readIndex;
+using gltf::readIndexComponent;
+using gltf::View;
+
+// Everything gathered while walking the scene: vertices in world space, triangles per material.
+struct Builder {
+    std::string path; // the file, for warnings
+    const gltf::Document* doc = nullptr;
+    gltf::Accessors* accessors = nullptr;
+    Model model;
+    // A file with animations, skins or morph targets: what moves (null otherwise: nothing kept).
+    std::shared_ptr<ModelAnimation> animation;
+    const gltf::Node* node = nullptr; // the node whose primitives are being added
+    int nodeIndex = -1;
+    std::vector<std::vector<std::uint32_t>> trianglesOf; // [material + 1] -> indices
+    std::vector<int> firstUse;                           // materials (+1) in order of first use
+    std::size_t lineElements = 0, lineVertices = 0; // in model.lineSets, for the limits
+    std::size_t triangles = 0; // in trianglesOf (the mesh's indices are filled at the end)
+    bool anyComputedNormal = false, anyFileNormal = false;
+};
+
+// Nodes.cpp: the node's local transform (glTF: matrix, column-major, or T * R * S).
+Mat4d localMatrix(const gltf::Node& n);
+// T * R * S from a translation, a unit quaternion (x, y, z, w) and a scale.
+Mat4d trsMatrix(const double t[3], const double q[4], const double s[3]);
+bool finite(const Mat4d& m);
+// A camera node: eye = the node's origin, forward = its -Z, up = its +Y (glTF "Cameras").
+Status addCamera(Builder& b, const gltf::Camera& c, const Mat4d& world, int index);
+// A KHR_lights_punctual light placed by a node.
+Status addLight(Builder& b, const gltf::Light& l, const Mat4d& world, int index);
+// The KHR_lights_punctual light a node places (-1: none); a malformed reference is an error.
+Result<int> nodeLight(const gltf::Node& node, std::size_t lightCount);
+// EXT_mesh_gpu_instancing: the node's instance transforms (TRANSLATION, ROTATION, SCALE
+// accessors, one element per instance), each to be applied before the node's world transform;
+// empty when the node is not instanced.
+Result<std::vector<Mat4d>> instanceMatrices(Builder& b, const gltf::Node& node, int nodeIndex);
+
+// Materials.cpp: the metallic-roughness material and its Blinn-Phong mapping (GltfLoader.hpp).
+Material materialFrom(const gltf::Material& gm);
+// A glTF sampler as SoftRaster's wrap mode and filter (see Materials.cpp).
+struct SamplerModes {
+    WrapMode wrap = WrapMode::Repeat;
+    std::optional<TextureFilter> filter;
+    std::string problem, note;
+};
+SamplerModes samplerModes(const gltf::Sampler& s);
+// KHR_texture_transform of one texture reference, as the 2x3 matrix uv' = M (u, v, 1) in glTF's
+// uv space (v down the image): translation x rotation x scale, the extension's order. `found`:
+// the reference carries the extension.
+struct UvTransform {
+    double m[2][3] = {{1, 0, 0}, {0, 1, 0}};
+    bool found = false;
+    bool operator==(const UvTransform& o) const;
+};
+UvTransform uvTransformOf(const gltf::Json& extensions);
+UvTransform materialUvTransform(const gltf::Material& gm, std::string* problem);
+
+// Tangents.cpp: per-vertex tangents of vertices [base, end) from their triangles.
+void addTangents(Mesh& mesh, std::uint32_t base, const std::vector<std::uint32_t>& tris);
+
+// Primitives.cpp: one primitive of a node, its triangles (or lines and points) in world space.
+Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world, const std::string& what, const LoadLimits& limits);
+
+// AnimatedBlocks.cpp: a primitive of an animated file: its object-space vertices (vertex i
+// reads accessor element source[i], or i when `source` is empty), morph targets and skin
+// attributes, for ModelAnimation::pose.
+Status addAnimatedBlock(Builder& b, const gltf::Primitive& prim, const View& pos, const std::optional<View>& normals,
+                        bool keepTangents, std::uint32_t first, std::size_t vertices, const std::vector<std::uint32_t>& source,
+                        bool mirrored, const std::string& what, const LoadLimits& limits);
+
+// AnimationClips.cpp: the nodes' rest transforms and weights, the skins and the clips.
+Status addAnimation(ModelAnimation& a, const gltf::Document& g, gltf::Accessors& accessors, std::vector<std::string>& warnings,
+                    const std::string& path, const LoadLimits& limits);
+
+// Textures.cpp: the materials' texture slots and their decoded images (one slot per image),
+// the samplers of the base colour textures; errors are one line naming the file.
+Status addTextures(Builder& b, const LoadOptions& options, const std::string& dir);
+
+} // namespace sr::gltfimport

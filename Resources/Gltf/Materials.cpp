@@ -1,0 +1,141 @@
+// gltfimport materials: metallic-roughness as the renderer's Material, samplers as wrap modes and filters, KHR_texture_transform.
+#include <algorithm>
+#include <cmath>
+
+#include "Resources/Gltf/Import.hpp"
+
+namespace sr::gltfimport {
+
+// The metallic-roughness to Blinn-Phong mapping of GltfLoader.hpp.
+Material materialFrom(const gltf::Material& gm) {
+    const auto& pbr = gm.pbrMetallicRoughness;
+    Material m;
+    m.name = gm.name;
+    m.fromFile = true;
+    const double metal = std::clamp(pbr.metallicFactor, 0.0, 1.0), rough = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
+    double base[3] = {1, 1, 1};
+    for (std::size_t c = 0; c < 3 && c < pbr.baseColorFactor.size(); ++c) base[c] = std::clamp(pbr.baseColorFactor[c], 0.0, 1.0);
+    m.kd = Color{float(base[0] * (1 - metal)), float(base[1] * (1 - metal)), float(base[2] * (1 - metal)), 1.0f};
+    m.ks = Color{float(0.04 * (1 - metal) + base[0] * metal), float(0.04 * (1 - metal) + base[1] * metal),
+                 float(0.04 * (1 - metal) + base[2] * metal), 1.0f};
+    const double alpha = rough * rough;
+    const double n = alpha > 0.0 ? 2.0 / (alpha * alpha) - 2.0 : 1024.0;
+    m.shininess = float(std::clamp(std::round(n), 1.0, 1024.0));
+    PbrFactors f;
+    f.baseColor = Color{float(base[0]), float(base[1]), float(base[2]), 1.0f};
+    f.metallic = float(metal);
+    f.roughness = float(rough);
+    double emissive[3] = {0, 0, 0};
+    for (std::size_t c = 0; c < 3 && c < gm.emissiveFactor.size(); ++c) emissive[c] = std::clamp(gm.emissiveFactor[c], 0.0, 1.0);
+    double strength = 1.0;
+    if (const auto ext = gm.extensions.find("KHR_materials_emissive_strength"); ext != gm.extensions.end()) {
+        const auto v = ext->find("emissiveStrength");
+        if (v != ext->end() && v->is_number()) strength = std::max(v->get<double>(), 0.0);
+    }
+    f.emissive = Vec3{float(emissive[0] * strength), float(emissive[1] * strength), float(emissive[2] * strength)};
+    f.normalScale = std::isfinite(gm.normalTexture.scale) ? float(gm.normalTexture.scale) : 1.0f;
+    f.occlusionStrength = float(std::clamp(gm.occlusionTexture.strength, 0.0, 1.0));
+    // Alpha modes. With the factor's alpha alone (untextured, or a texture without alpha): BLEND
+    // blends with it, MASK keeps the surface when it reaches alphaCutoff and drops it otherwise,
+    // OPAQUE ignores it. With a base colour texture, texelAlpha holds the per-fragment rule (the
+    // factor times the texel's alpha), used when the texture has alpha.
+    const double a = pbr.baseColorFactor.size() > 3 ? std::clamp(pbr.baseColorFactor[3], 0.0, 1.0) : 1.0;
+    m.doubleSided = gm.doubleSided;
+    if (gm.alphaMode == "BLEND") {
+        m.alpha = float(a);
+        m.texelAlpha = {AlphaMode::Blend, float(a), 0.5f};
+    } else if (gm.alphaMode == "MASK") {
+        m.alpha = a >= gm.alphaCutoff ? 1.0f : 0.0f;
+        m.texelAlpha = {AlphaMode::Mask, float(a), float(gm.alphaCutoff)};
+    }
+    f.baseColor.a = float(a);
+    m.pbr = f;
+    return m;
+}
+
+// A glTF sampler as SoftRaster's one wrap mode and one filter per draw. Wrap: REPEAT (the
+// default), CLAMP_TO_EDGE, MIRRORED_REPEAT; when wrapS and wrapT differ, wrapS serves both (a
+// note says so). Filter, from minFilter: NEAREST -> nearest, LINEAR -> bilinear, any *_MIPMAP_*
+// -> trilinear; without a minFilter, a NEAREST magFilter -> nearest, else unset (the settings').
+SamplerModes samplerModes(const gltf::Sampler& s) {
+    SamplerModes out;
+    const auto wrapOf = [&](int gl, const char* axis) -> WrapMode {
+        switch (gl) {
+        case 10497: return WrapMode::Repeat;
+        case 33071: return WrapMode::Clamp;
+        case 33648: return WrapMode::Mirror;
+        default: out.problem = std::string(axis) + " " + std::to_string(gl) + " is not a glTF wrap mode"; return WrapMode::Repeat;
+        }
+    };
+    out.wrap = wrapOf(s.wrapS, "wrapS");
+    const WrapMode t = wrapOf(s.wrapT, "wrapT");
+    if (out.problem.empty() && t != out.wrap)
+        out.note = std::string("wrapS (") + wrapName(out.wrap) + ") and wrapT (" + wrapName(t) + ") differ: " + wrapName(out.wrap) +
+                   " is used for both";
+    switch (s.minFilter) {
+    case -1: break;
+    case 9728: out.filter = TextureFilter::Nearest; break;
+    case 9729: out.filter = TextureFilter::Bilinear; break;
+    case 9984: case 9985: case 9986: case 9987: out.filter = TextureFilter::Trilinear; break;
+    default: out.problem = "minFilter " + std::to_string(s.minFilter) + " is not a glTF filter"; break;
+    }
+    if (s.magFilter != -1 && s.magFilter != 9728 && s.magFilter != 9729)
+        out.problem = "magFilter " + std::to_string(s.magFilter) + " is not a glTF filter";
+    if (s.minFilter == -1 && s.magFilter == 9728) out.filter = TextureFilter::Nearest;
+    return out;
+}
+
+bool UvTransform::operator==(const UvTransform& o) const {
+    for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 3; ++c)
+            if (m[r][c] != o.m[r][c]) return false;
+    return true;
+}
+
+UvTransform uvTransformOf(const gltf::Json& extensions) {
+    UvTransform t;
+    const auto ext = extensions.find("KHR_texture_transform");
+    if (ext == extensions.end() || !ext->is_object()) return t;
+    t.found = true;
+    const gltf::Json& v = *ext;
+    const auto number = [&](const gltf::Json& x, double fallback) {
+        return x.is_number() && std::isfinite(x.get<double>()) ? x.get<double>() : fallback;
+    };
+    double offset[2] = {0, 0}, scale[2] = {1, 1}, rotation = 0;
+    const auto pair = [&](const char* key) { return v.contains(key) && v[key].is_array() && v[key].size() == 2; };
+    for (std::size_t k = 0; k < 2; ++k) {
+        if (pair("offset")) offset[k] = number(v["offset"][k], 0.0);
+        if (pair("scale")) scale[k] = number(v["scale"][k], 1.0);
+    }
+    if (v.contains("rotation")) rotation = number(v["rotation"], 0.0);
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    // T R S with R = [[c, s], [-s, c]] (the extension's rotation matrix).
+    t.m[0][0] = c * scale[0];
+    t.m[0][1] = s * scale[1];
+    t.m[0][2] = offset[0];
+    t.m[1][0] = -s * scale[0];
+    t.m[1][1] = c * scale[1];
+    t.m[1][2] = offset[1];
+    return t;
+}
+
+// The transform a material's uvs get: its base colour texture's (else that of its first other
+// map that has one). One per material, baked into the vertices of its primitives (every vertex
+// of a glTF primitive is its own: no other material reads it); a map with another transform is
+// named in a warning.
+UvTransform materialUvTransform(const gltf::Material& gm, std::string* problem) {
+    const gltf::Json* maps[] = {&gm.pbrMetallicRoughness.baseColorTexture.extensions,
+                                            &gm.pbrMetallicRoughness.metallicRoughnessTexture.extensions,
+                                            &gm.emissiveTexture.extensions, &gm.normalTexture.extensions,
+                                            &gm.occlusionTexture.extensions};
+    UvTransform chosen;
+    for (const gltf::Json* e : maps) {
+        const UvTransform t = uvTransformOf(*e);
+        if (!t.found) continue;
+        if (!chosen.found) chosen = t;
+        else if (!(t == chosen) && problem) *problem = "its maps have different KHR_texture_transforms: the first one is used for all";
+    }
+    return chosen;
+}
+
+} // namespace sr::gltfimport
