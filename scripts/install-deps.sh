@@ -11,6 +11,7 @@ wine_pkgs=(wine wine64)
 x11_pkgs=(xvfb xdotool imagemagick x11-utils openbox)
 test_pkgs=(clang libclang-rt-14-dev   # libFuzzer for the fuzz targets
            assimp-utils assimp-testmodels   # glTF test files and an independent loader to check ours
+           gltfpack                         # glTF as pipelines make it: quantized, meshopt, instanced
            glmark2-data)                    # the bunny (bunny.obj), a real model the loader tests read
 
 want=()

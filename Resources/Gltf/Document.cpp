@@ -275,7 +275,9 @@ Status splitGlb(const unsigned char* data, std::size_t size, std::string& json, 
     };
     if (size < 20) return Status::failure("a GLB shorter than its header");
     if (u32(4) != 2) return Status::failure("GLB version " + std::to_string(u32(4)) + " (only 2 is glTF 2.0)");
+    // The header's length, never past the bytes there are (nor short of the header itself).
     const std::size_t total = std::min<std::size_t>(u32(8), size);
+    if (total < 20) return Status::failure("a GLB whose header gives a length of " + std::to_string(u32(8)) + " bytes");
     const std::size_t jsonLength = u32(12);
     if (u32(16) != 0x4E4F534Au || jsonLength > total - 20) return Status::failure("the GLB's first chunk is not a whole JSON chunk");
     json.assign(reinterpret_cast<const char*>(data + 20), jsonLength);

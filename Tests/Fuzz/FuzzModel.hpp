@@ -39,13 +39,15 @@ inline void writeTinyImage(const std::string& path) {
 }
 
 // Every loaded model: one normal per vertex, uvs for all or none, triangles (or line / point
-// sets) with indices in range, ranges covering the indices once in order, material and texture
+// sets; neither only with the warning that says so: a valid glTF file may draw nothing) with indices in range, ranges covering the indices once in order, material and texture
 // references that exist, textures of the size they claim.
 inline void checkModel(const Model& m) {
     const std::size_t nv = m.mesh.positions.size();
     assert(m.mesh.normals.size() == nv);
     assert(!m.hasUvs || m.mesh.uvs.size() == nv);
-    assert(m.mesh.indices.size() % 3 == 0 && (!m.mesh.indices.empty() || !m.lineSets.empty()));
+    assert(m.mesh.indices.size() % 3 == 0);
+    assert(!m.mesh.indices.empty() || !m.lineSets.empty() ||
+           (!m.warnings.empty() && m.warnings.back().find("nothing to draw") != std::string::npos));
     for (std::uint32_t i : m.mesh.indices) assert(i < nv);
     for (const LineSet& l : m.lineSets) {
         assert(!l.indices.empty() && (l.points || l.indices.size() % 2 == 0));

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "Resources/Gltf/GltfLoader.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/ObjLoader.hpp"
 
@@ -153,4 +154,14 @@ TEST_CASE("fuzz: a vertex-weight value that tinyobjloader would compute as NaN i
     const std::string good = "v 0 0 0\nv 1 0 0\nv 0 1 0\nvw 1 2e1 0.5 0e-999 5e-1\nf 1 2 3\n";
     const auto ok = loadObjFromMemory(reinterpret_cast<const unsigned char*>(good.data()), good.size(), "w.obj");
     CHECK(ok.ok());
+}
+
+TEST_CASE("fuzz: a GLB whose header gives a length shorter than the header is refused (the JSON chunk's bound underflowed)",
+          "[resources][gltf][fuzz]") {
+    // "glTF", version 2, total length 4 (the file has 60 bytes), a JSON chunk of 40 bytes.
+    const auto le32 = [](std::uint32_t v) { return std::string{char(v & 255), char((v >> 8) & 255), char((v >> 16) & 255), char(v >> 24)}; };
+    const std::string glb = "glTF" + le32(2) + le32(4) + le32(40) + "JSON" + std::string(40, ' ');
+    const auto r = loadGltfFromMemory(reinterpret_cast<const unsigned char*>(glb.data()), glb.size(), "fuzz.glb");
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error() == "fuzz.glb: a GLB whose header gives a length of 4 bytes");
 }

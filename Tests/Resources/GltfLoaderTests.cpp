@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <cstdio>
@@ -850,9 +851,47 @@ TEST_CASE("glTF files of assimp-testmodels: each loads or fails in one line; the
     }
 }
 
+// The share of `encoded`'s triangles that are also `plain`'s, each compared as the sorted set of
+// its corners rounded to a grid 64 quantization steps wide (Draco and gltfpack reorder
+// triangles and rotate their corners; quantization moves corners by up to a step, which now and
+// then puts one in the next cell: nearly all, not all, agree when the decode is right, and
+// almost none when it is not). `plain`'s degenerate triangles (two corners at one position) are
+// left out: both encoders drop them.
+static double sharedTriangles(const Mesh& encoded, const Mesh& plain, float step) {
+    const auto keys = [&](const Mesh& m, bool solidOnly) {
+        std::vector<std::array<long long, 9>> out;
+        for (std::size_t t = 0; t < m.triangleCount(); ++t) {
+            std::array<Vec3, 3> v;
+            for (std::size_t k = 0; k < 3; ++k) v[k] = m.positions[m.indices[3 * t + k]];
+            if (solidOnly && (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])) continue;
+            std::array<std::array<long long, 3>, 3> c;
+            for (std::size_t k = 0; k < 3; ++k)
+                c[k] = {std::llround(v[k].x / (64 * step)), std::llround(v[k].y / (64 * step)), std::llround(v[k].z / (64 * step))};
+            std::sort(c.begin(), c.end());
+            out.push_back({c[0][0], c[0][1], c[0][2], c[1][0], c[1][1], c[1][2], c[2][0], c[2][1], c[2][2]});
+        }
+        std::sort(out.begin(), out.end());
+        return out;
+    };
+    const auto ke = keys(encoded, false), kp = keys(plain, true);
+    std::vector<std::array<long long, 9>> common;
+    std::set_intersection(ke.begin(), ke.end(), kp.begin(), kp.end(), std::back_inserter(common));
+    INFO("step " << step << ", triangles " << ke.size() << " and " << kp.size() << " (not degenerate), the same " << common.size());
+    // gltfpack keeps a few triangles whose corners are distinct vertices at one position (it
+    // drops repeated indices, Draco repeated positions): the counts agree within 0.1%.
+    CHECK(std::labs(long(ke.size()) - long(kp.size())) <= long(kp.size()) / 1000);
+    return ke.empty() ? 0.0 : double(common.size()) / double(ke.size());
+}
+
+// The largest side of a model's bounds over 2^bits: the step of positions quantized to `bits`
+// over the model (Draco's and gltfpack's default: 14 bits), doubled for the rounding of both.
+static float quantizationStep(const Model& m, int bits) {
+    const Vec3 lo = m.boundsMin, hi = m.boundsMax;
+    return std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}) / float(1 << bits) * 2.0f;
+}
+
 // A Draco file as a pipeline wrote it (assimp-testmodels' 2CylinderEngine, KHR_draco_mesh_compression)
-// against the same model uncompressed: the same triangles (Draco reorders them; compared as
-// sorted sets of their corners), positions within the quantization step.
+// against the same model uncompressed: the same triangles, positions within the quantization step.
 TEST_CASE("glTF Draco: 2CylinderEngine decodes to the uncompressed model's triangles", "[resources][gltf][draco][assimp]") {
     LoadOptions options;
     options.loadTextures = false;
@@ -861,56 +900,38 @@ TEST_CASE("glTF Draco: 2CylinderEngine decodes to the uncompressed model's trian
     INFO((draco.ok() ? std::string() : draco.error()));
     REQUIRE(draco.ok());
     REQUIRE(plain.ok());
-    const Mesh& d = draco.value().mesh;
-    const Mesh& p = plain.value().mesh;
-    // Draco's encoder drops degenerate triangles (two corners at one position): the
-    // uncompressed model's others are what it holds (all of its own, some of which its
-    // quantization then makes degenerate).
-    const auto solid = [](const Mesh& m) {
-        std::vector<std::size_t> out;
-        for (std::size_t t = 0; t < m.triangleCount(); ++t) {
-            const Vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]], c = m.positions[m.indices[3 * t + 2]];
-            if (!(a == b) && !(b == c) && !(a == c)) out.push_back(t);
-        }
-        return out;
-    };
-    std::vector<std::size_t> ds(d.triangleCount());
-    for (std::size_t t = 0; t < ds.size(); ++t) ds[t] = t;
-    const std::vector<std::size_t> ps = solid(p);
-    REQUIRE(ds.size() == ps.size());
-    REQUIRE(ds.size() > 10000);
-    // The bounds' extent sets the step: Draco's default 14-bit positions (gltf-pipeline's, which
-    // made the file) over the largest side, and the node transforms scale it alike.
-    const Vec3 lo = plain.value().boundsMin, hi = plain.value().boundsMax;
-    const float extent = std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z});
-    const float step = extent / float(1 << 14) * 2.0f;
-    // Corners quantised to the step, each triangle's three sorted: the multisets must match.
-    const auto keys = [&](const Mesh& m, const std::vector<std::size_t>& triangles) {
-        std::vector<std::array<long long, 9>> out;
-        for (std::size_t t : triangles) {
-            std::array<std::array<long long, 3>, 3> c;
-            for (int k = 0; k < 3; ++k) {
-                const Vec3 v = m.positions[m.indices[3 * t + std::size_t(k)]];
-                c[std::size_t(k)] = {std::llround(v.x / (64 * step)), std::llround(v.y / (64 * step)), std::llround(v.z / (64 * step))};
-            }
-            std::sort(c.begin(), c.end());
-            out.push_back({c[0][0], c[0][1], c[0][2], c[1][0], c[1][1], c[1][2], c[2][0], c[2][1], c[2][2]});
-        }
-        std::sort(out.begin(), out.end());
-        return out;
-    };
-    const auto kd = keys(d, ds), kp = keys(p, ps);
-    std::vector<std::array<long long, 9>> common;
-    std::set_intersection(kd.begin(), kd.end(), kp.begin(), kp.end(), std::back_inserter(common));
-    const std::size_t same = common.size();
-    INFO("step " << step << ", triangles " << kd.size() << ", the same " << same);
-    // Rounding to a grid 64 steps wide puts a corner on the other side of a cell edge now and
-    // then: nearly all, not all, keys agree.
-    CHECK(double(same) / double(kd.size()) > 0.95);
-    // And every drawn position lies within the bounds of the uncompressed model, grown by a step.
-    for (const Vec3& v : d.positions) {
-        CHECK(v.x >= lo.x - step);
-        CHECK(v.x <= hi.x + step);
+    REQUIRE(draco.value().mesh.triangleCount() > 10000);
+    CHECK(sharedTriangles(draco.value().mesh, plain.value().mesh, quantizationStep(plain.value(), 14)) > 0.95);
+}
+
+// The same model through gltfpack (Debian's, the pipeline most web glTF comes out of):
+// quantized (KHR_mesh_quantization), then also meshopt-compressed (EXT_meshopt_compression), then
+// also instanced (EXT_mesh_gpu_instancing): each the uncompressed model's triangles.
+TEST_CASE("glTF gltfpack: quantized, meshopt and instanced files decode to the uncompressed model's triangles",
+          "[resources][gltf][meshopt][quantization][instancing][assimp]") {
+    if (std::system("command -v gltfpack >/dev/null 2>&1") != 0) FAIL("gltfpack not found: scripts/install-deps.sh test installs it");
+    const std::string dir = freshDir("gltf-gltfpack");
+    const std::string source = kAssimpGltf + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+    LoadOptions options;
+    options.loadTextures = false;
+    auto plain = loadGltf(source, options);
+    REQUIRE(plain.ok());
+    for (const char* flags : {"", "-c", "-c -mi"}) {
+        const std::string out = dir + "/packed" + std::to_string(std::strlen(flags)) + ".glb";
+        INFO("gltfpack " << flags);
+        REQUIRE(std::system(("gltfpack -i '" + source + "' -o '" + out + "' " + flags + " >/dev/null 2>&1").c_str()) == 0);
+        const std::string json = [&] {
+            auto bytes = readFileBytes(out);
+            return bytes ? std::string(bytes.value().begin(), bytes.value().end()) : std::string();
+        }();
+        CHECK(contains(json, "KHR_mesh_quantization"));
+        CHECK(contains(json, "EXT_meshopt_compression") == (flags[0] != 0));
+        CHECK(contains(json, "EXT_mesh_gpu_instancing") == (std::strlen(flags) > 3));
+        auto packed = loadGltf(out, options);
+        INFO((packed.ok() ? std::string() : packed.error()));
+        REQUIRE(packed.ok());
+        REQUIRE(packed.value().mesh.triangleCount() > 10000);
+        CHECK(sharedTriangles(packed.value().mesh, plain.value().mesh, quantizationStep(plain.value(), 14)) > 0.95);
     }
 }
 
