@@ -15,6 +15,10 @@ add_library(sr_draco INTERFACE)
 add_library(sr::draco ALIAS sr_draco)
 add_library(sr_webp INTERFACE)
 add_library(sr::webp ALIAS sr_webp)
+# EXT_texture_avif: Debian's libavif-dev in the Linux build (SR_HAVE_AVIF=1); the Windows builds
+# have none (its AV1 decoders are not built here): AVIF textures use their fallback image there.
+add_library(sr_avif INTERFACE)
+add_library(sr::avif ALIAS sr_avif)
 
 if(MSVC OR DEFINED VCPKG_TOOLCHAIN)
   find_package(meshoptimizer CONFIG REQUIRED)
@@ -23,6 +27,7 @@ if(MSVC OR DEFINED VCPKG_TOOLCHAIN)
   target_link_libraries(sr_draco INTERFACE draco::draco)
   find_package(WebP CONFIG REQUIRED)
   target_link_libraries(sr_webp INTERFACE WebP::webp) # decoding, and the encoder the tests make files with
+  target_compile_definitions(sr_avif INTERFACE SR_HAVE_AVIF=0)
   return()
 endif()
 
@@ -56,6 +61,7 @@ if(MINGW OR (CMAKE_CROSSCOMPILING AND WIN32))
   endforeach()
   get_filename_component(_sr_versions "${SR_MINGW_DEPS_PREFIX}" NAME)
   message(STATUS "MinGW decoders (static): ${_sr_versions}")
+  target_compile_definitions(sr_avif INTERFACE SR_HAVE_AVIF=0)
   return()
 endif()
 
@@ -80,3 +86,10 @@ if(NOT SR_WEBP_INCLUDE_DIR OR NOT SR_WEBP_LIBRARY)
 endif()
 target_include_directories(sr_webp SYSTEM INTERFACE ${SR_WEBP_INCLUDE_DIR})
 target_link_libraries(sr_webp INTERFACE ${SR_WEBP_LIBRARY})
+
+find_package(libavif CONFIG QUIET)
+if(NOT TARGET avif)
+  message(FATAL_ERROR "libavif not found: install Debian's 'libavif-dev' (scripts/install-deps.sh does)")
+endif()
+target_link_libraries(sr_avif INTERFACE avif)
+target_compile_definitions(sr_avif INTERFACE SR_HAVE_AVIF=1)

@@ -4,7 +4,7 @@
 set -euo pipefail
 
 build_pkgs=(cmake ninja-build g++ catch2 libstb-dev libtinyobjloader-dev nlohmann-json3-dev
-            libmeshoptimizer-dev libdraco-dev libwebp-dev   # glTF decoders (cmake/Codecs.cmake)
+            libmeshoptimizer-dev libdraco-dev libwebp-dev libavif-dev   # glTF decoders (cmake/Codecs.cmake)
             g++-mingw-w64-x86-64-posix
             dpkg-dev)   # apt-get source / dpkg-source: scripts/build-mingw-deps.sh builds the decoders for MinGW
 wine_pkgs=(wine wine64)

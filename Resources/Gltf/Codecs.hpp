@@ -1,4 +1,4 @@
-// gltf codecs: the encodings a glTF file may use, each one small unit around its maintained library (meshoptimizer, Draco, libwebp).
+// gltf codecs: the encodings a glTF file may use, each one small unit around its maintained library (meshoptimizer, Draco, libwebp, libavif).
 #pragma once
 
 #include <cstddef>
@@ -30,5 +30,12 @@ bool isWebp(const unsigned char* data, std::size_t size);
 // A WebP image (lossy or lossless, with or without alpha) as RGBA8, top row first, within the
 // image limits of Image.hpp. Errors name `name`.
 Result<sr::Image> decodeWebp(const unsigned char* data, std::size_t size, const std::string& name);
+
+// Avif.cpp: true when the bytes are an AVIF file (ISO-BMFF, brand avif or avis); whether this
+// build decodes AVIF (the Linux build, with Debian's libavif: SR_HAVE_AVIF); an AVIF image as
+// RGBA8, top row first, within the image limits (a build without libavif: an error saying so).
+bool isAvif(const unsigned char* data, std::size_t size);
+bool avifSupported();
+Result<sr::Image> decodeAvif(const unsigned char* data, std::size_t size, const std::string& name);
 
 } // namespace sr::gltf

@@ -17,8 +17,9 @@ namespace sr {
 //    substitutions, accessors without a buffer view (zeros), normalised or plain integers;
 //  - encodings, decoded once at load (Codecs.hpp): KHR_mesh_quantization (byte and short
 //    positions, normals, tangents, uvs), EXT_meshopt_compression and KHR_meshopt_compression
-//    (libmeshoptimizer), KHR_draco_mesh_compression (Draco), EXT_texture_webp (libwebp);
-//    KHR_texture_basisu and EXT_texture_avif images fall back to the texture's own source;
+//    (libmeshoptimizer), KHR_draco_mesh_compression (Draco), EXT_texture_webp (libwebp),
+//    EXT_texture_avif (libavif, Linux build); KHR_texture_basisu images (and AVIF ones in a
+//    build without libavif) fall back to the texture's own source;
 //  - nodes: the hierarchy's TRS or matrix transforms, nested, applied to POSITION (in double,
 //    rounded once to float); NORMAL by the inverse transpose, renormalised; a node whose
 //    transform mirrors (negative determinant) has its triangles' winding reversed, so front

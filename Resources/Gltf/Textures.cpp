@@ -10,15 +10,19 @@ namespace sr::gltfimport {
 
 namespace {
 
-// The image a texture shows: EXT_texture_webp's source (decoded here); for an image format we
-// cannot decode (KHR_texture_basisu, EXT_texture_avif, any other extension naming a source), the
-// texture's own `source` as its fallback; with no fallback, an error naming the texture and the
-// extension. -1: the texture names no image.
+// The image a texture shows: EXT_texture_webp's source, or EXT_texture_avif's where this build
+// decodes AVIF (decoded here); for an image format we cannot decode (KHR_texture_basisu,
+// EXT_texture_avif without libavif, any other extension naming a source), the texture's own
+// `source` as its fallback; with no fallback, an error naming the texture and the extension.
+// -1: the texture names no image.
 Result<int> textureImage(const gltf::Document& g, int textureIndex) {
     const gltf::Texture& t = g.textures[std::size_t(textureIndex)];
-    const auto webp = t.extensions.find("EXT_texture_webp");
-    if (webp != t.extensions.end() && webp->contains("source") && (*webp)["source"].is_number_integer())
-        return Result<int>((*webp)["source"].get<int>());
+    for (const char* name : {"EXT_texture_webp", "EXT_texture_avif"}) {
+        const auto ext = t.extensions.find(name);
+        if (std::string(name) == "EXT_texture_avif" && !gltf::avifSupported()) continue;
+        if (ext != t.extensions.end() && ext->contains("source") && (*ext)["source"].is_number_integer())
+            return Result<int>((*ext)["source"].get<int>());
+    }
     if (t.source >= 0) return Result<int>(t.source);
     for (auto it = t.extensions.begin(); it != t.extensions.end(); ++it)
         if (it.value().is_object() && it.value().contains("source"))
@@ -27,9 +31,10 @@ Result<int> textureImage(const gltf::Document& g, int textureIndex) {
     return Result<int>(-1);
 }
 
-// PNG, JPEG (stb_image, hardened) or WebP (libwebp), by the bytes' signature.
+// PNG, JPEG (stb_image, hardened), WebP (libwebp) or AVIF (libavif), by the bytes' signature.
 Result<Image> decodeAny(const unsigned char* data, std::size_t size, const std::string& name) {
     if (gltf::isWebp(data, size)) return gltf::decodeWebp(data, size, name);
+    if (gltf::isAvif(data, size)) return gltf::decodeAvif(data, size, name);
     return decodeImage(data, size, name);
 }
 

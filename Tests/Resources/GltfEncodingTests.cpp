@@ -1,7 +1,9 @@
 // glTF accessors and encodings against hand-computed values: sparse and bufferView-less accessors, normalised and quantized integers, integers written as floats, meshopt, Draco, WebP, GPU instancing, texture fallbacks, and files with nothing to draw.
 #include "TestFramework.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -12,6 +14,9 @@
 #include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <meshoptimizer.h>
 #include <webp/encode.h>
+#endif
+#if SR_HAVE_AVIF
+#include <avif/avif.h>
 #endif
 
 #include "GltfTestUtil.hpp"
@@ -410,6 +415,59 @@ TEST_CASE("EXT_texture_webp: a lossless WebP texture decodes to the PNG's bytes;
 }
 
 #endif // SR_CODEC_ENCODERS
+
+#if SR_HAVE_AVIF
+TEST_CASE("EXT_texture_avif: an AVIF texture decodes to its image, within the codec's loss; the PNG fallback is not read",
+          "[resources][gltf][avif]") {
+    const std::string dir = freshDir("gltf-avif");
+    const Image ramp = rampImage(16, 8);
+    // 8-bit 4:4:4 at the best quality the encoder has.
+    avifImage* image = avifImageCreate(16, 8, 8, AVIF_PIXEL_FORMAT_YUV444);
+    avifRGBImage rgb;
+    avifRGBImageSetDefaults(&rgb, image);
+    rgb.format = AVIF_RGB_FORMAT_RGBA;
+    rgb.pixels = const_cast<std::uint8_t*>(ramp.rgba.data());
+    rgb.rowBytes = 16 * 4;
+    REQUIRE(avifImageRGBToYUV(image, &rgb) == AVIF_RESULT_OK);
+    avifEncoder* encoder = avifEncoderCreate();
+    encoder->minQuantizer = encoder->maxQuantizer = AVIF_QUANTIZER_BEST_QUALITY;
+    avifRWData out = AVIF_DATA_EMPTY;
+    REQUIRE(avifEncoderWrite(encoder, image, &out) == AVIF_RESULT_OK);
+    REQUIRE(writeFileBytes(dir + "/ramp.avif", out.data, out.size).ok());
+    avifRWDataFree(&out);
+    avifEncoderDestroy(encoder);
+    avifImageDestroy(image);
+
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    a.meshes = "[{\"primitives\":[" + primitive("\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" + std::to_string(uv), -1, ",\"material\":0") + "]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    a.materials = "[{\"pbrMetallicRoughness\":{\"baseColorTexture\":{\"index\":0}}}]";
+    // The fallback names a file that does not exist: reading it would be a warning.
+    a.extra = ",\"textures\":[{\"source\":1,\"extensions\":{\"EXT_texture_avif\":{\"source\":0}}}],"
+              "\"images\":[{\"uri\":\"ramp.avif\"},{\"uri\":\"missing.png\"}],\"extensionsUsed\":[\"EXT_texture_avif\"]";
+    auto r = loadText(dir, "avif.gltf", a.embedded());
+    INFO((r ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    CHECK(r.value().warnings.empty());
+    REQUIRE(r.value().textures.size() == 1);
+    const Image& t = r.value().textures[0];
+    REQUIRE(t.width == 16);
+    REQUIRE(t.height == 8);
+    int worst = 0;
+    for (std::size_t i = 0; i < t.rgba.size(); ++i) worst = std::max(worst, std::abs(int(t.rgba[i]) - int(ramp.rgba[i])));
+    CHECK(worst <= 6);
+    // A truncated AVIF: the checkerboard and a warning naming the file.
+    auto bytes = readFileBytes(dir + "/ramp.avif");
+    REQUIRE(bytes.ok());
+    REQUIRE(writeFileBytes(dir + "/ramp.avif", bytes.value().data(), bytes.value().size() / 2).ok());
+    auto c = loadText(dir, "truncated.gltf", a.embedded());
+    REQUIRE(c.ok());
+    REQUIRE(c.value().warnings.size() == 1);
+    CHECK(contains(c.value().warnings[0], "ramp.avif"));
+}
+#endif
 
 TEST_CASE("EXT_mesh_gpu_instancing: each instance's T R S placed before the node's transform", "[resources][gltf][instancing]") {
     const std::string dir = freshDir("gltf-instancing");
