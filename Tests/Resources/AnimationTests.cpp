@@ -263,3 +263,35 @@ TEST_CASE("animated files with bad data are one-line errors naming the file and 
         CHECK(contains(errorOf("weights.gltf", a.embedded()), "no morph targets"));
     }
 }
+
+TEST_CASE("an animation sampler's output as a sparse accessor over zeros drives the weights as the dense one would",
+          "[resources][animation][sparse]") {
+    const std::string dir = freshDir("gltf-sparse-output");
+    Asset a;
+    const int pos = a.floats({1, 0, 0, 2, 0, 0, 1, 1, 0}, "VEC3");
+    const int delta = a.floats({0, 4, 0, 0, 4, 0, 0, 4, 0}, "VEC3");
+    const int input = a.floats({0, 1, 2}, "SCALAR");
+    // The output (0, 1, 0): no buffer view (zeros), key 1 set to 1 by the sparse substitution.
+    const std::vector<std::uint8_t> index{1};
+    const std::vector<float> value{1.0f};
+    const int iv = a.view(index.data(), 1);
+    const int vv = a.view(value.data(), 4);
+    const int output = a.rawAccessor("{\"componentType\":5126,\"count\":3,\"type\":\"SCALAR\",\"sparse\":{\"count\":1,\"indices\":{\"bufferView\":" +
+                                     std::to_string(iv) + ",\"componentType\":5121},\"values\":{\"bufferView\":" + std::to_string(vv) + "}}}");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"targets\":[{\"POSITION\":" +
+               std::to_string(delta) + "}]}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    a.extra = ",\"animations\":[{\"samplers\":[{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(output) +
+              "}],\"channels\":[{\"sampler\":0,\"target\":{\"node\":0,\"path\":\"weights\"}}]}]";
+    auto r = loadGltf(writeText(dir, "sparse-output.gltf", a.embedded()));
+    INFO((r ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    Model m = std::move(r).value();
+    REQUIRE(m.animation);
+    m.animation->pose(0.5, -1, m.mesh); // weight 0.5
+    checkVec(m.mesh.positions[0], 1, 2, 0);
+    m.animation->pose(1.0, -1, m.mesh); // weight 1
+    checkVec(m.mesh.positions[0], 1, 4, 0);
+    m.animation->pose(2.0, -1, m.mesh); // weight 0
+    checkVec(m.mesh.positions[0], 1, 0, 0);
+}
