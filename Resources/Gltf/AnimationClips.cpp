@@ -6,6 +6,27 @@
 
 namespace sr::gltfimport {
 
+namespace {
+
+// A KHR_animation_pointer JSON pointer to a node's transform or weights ("/nodes/3/rotation"):
+// its node and core path; false for any other target (materials, lights, cameras, ...).
+bool nodePointer(const std::string& pointer, int& node, std::string& path) {
+    static const std::string kPrefix = "/nodes/";
+    if (pointer.compare(0, kPrefix.size(), kPrefix) != 0) return false;
+    std::size_t i = kPrefix.size();
+    long long index = 0;
+    const std::size_t digits = i;
+    while (i < pointer.size() && pointer[i] >= '0' && pointer[i] <= '9' && index < 2147483647) index = index * 10 + (pointer[i++] - '0');
+    if (i == digits || i >= pointer.size() || pointer[i] != '/' || index > 2147483647) return false;
+    const std::string rest = pointer.substr(i + 1);
+    if (rest != "translation" && rest != "rotation" && rest != "scale" && rest != "weights") return false;
+    node = int(index);
+    path = rest;
+    return true;
+}
+
+} // namespace
+
 // The nodes' rest transforms and weights, the skins and the clips of an animated file, checked:
 // key times finite and strictly increasing, values finite, counts as the specification says.
 Status addAnimation(ModelAnimation& a, const gltf::Document& g, gltf::Accessors& accessors, std::vector<std::string>& warnings,
@@ -75,24 +96,31 @@ Status addAnimation(ModelAnimation& a, const gltf::Document& g, gltf::Accessors&
         for (std::size_t c = 0; c < ga.channels.size(); ++c) {
             const gltf::AnimationChannel& gc = ga.channels[c];
             const std::string name = what + " channel " + std::to_string(c);
-            if (gc.target_node < 0) continue; // no target: ignored (glTF: an extension may define one)
-            if (std::size_t(gc.target_node) >= g.nodes.size())
-                return Status::failure(name + ": node " + std::to_string(gc.target_node) + " does not exist");
+            int targetNode = gc.target_node;
+            std::string targetPath = gc.target_path;
+            if (targetPath == "pointer" && !nodePointer(gc.pointer, targetNode, targetPath)) {
+                warnings.push_back(path + ": " + name + ": KHR_animation_pointer '" + gc.pointer +
+                                   "' is not animated (node translations, rotations, scales and weights are)");
+                continue;
+            }
+            if (targetNode < 0) continue; // no target: ignored (glTF: an extension may define one)
+            if (std::size_t(targetNode) >= g.nodes.size())
+                return Status::failure(name + ": node " + std::to_string(targetNode) + " does not exist");
             if (gc.sampler < 0 || std::size_t(gc.sampler) >= ga.samplers.size())
                 return Status::failure(name + ": sampler " + std::to_string(gc.sampler) + " does not exist");
             AnimationChannel ch;
-            ch.node = gc.target_node;
+            ch.node = targetNode;
             ch.sampler = gc.sampler;
             int n = 0;
-            if (gc.target_path == "translation") ch.path = AnimationPath::Translation, n = 3;
-            else if (gc.target_path == "rotation") ch.path = AnimationPath::Rotation, n = 4;
-            else if (gc.target_path == "scale") ch.path = AnimationPath::Scale, n = 3;
-            else if (gc.target_path == "weights") ch.path = AnimationPath::Weights, n = int(targetsOf(gc.target_node));
+            if (targetPath == "translation") ch.path = AnimationPath::Translation, n = 3;
+            else if (targetPath == "rotation") ch.path = AnimationPath::Rotation, n = 4;
+            else if (targetPath == "scale") ch.path = AnimationPath::Scale, n = 3;
+            else if (targetPath == "weights") ch.path = AnimationPath::Weights, n = int(targetsOf(targetNode));
             else {
-                warnings.push_back(path + ": " + name + ": path '" + gc.target_path + "' is not animated");
+                warnings.push_back(path + ": " + name + ": path '" + targetPath + "' is not animated");
                 continue;
             }
-            if (n == 0) return Status::failure(name + ": animates the weights of node " + std::to_string(gc.target_node) + ", whose mesh has no morph targets");
+            if (n == 0) return Status::failure(name + ": animates the weights of node " + std::to_string(targetNode) + ", whose mesh has no morph targets");
             int& have = components[std::size_t(gc.sampler)];
             if (have != 0 && have != n) return Status::failure(name + ": sampler " + std::to_string(gc.sampler) + " drives targets of different sizes");
             have = n;

@@ -476,6 +476,8 @@ Result<Document> parseDocument(const unsigned char* data, std::size_t size, cons
             const Json target = objectOr(c, "target");
             ch.target_node = intOr(target, "node", -1);
             ch.target_path = stringOr(target, "path");
+            const Json targetExtensions = objectOr(target, "extensions");
+            ch.pointer = stringOr(objectOr(targetExtensions, "KHR_animation_pointer"), "pointer");
             a.channels.push_back(ch);
         }
         for (const Json& s : arrayOf(o, "samplers")) {

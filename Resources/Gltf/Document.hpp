@@ -122,6 +122,7 @@ struct AnimationChannel {
     int sampler = -1;
     int target_node = -1;
     std::string target_path;
+    std::string pointer; // path "pointer": KHR_animation_pointer's JSON pointer (RFC 6901)
 };
 
 struct AnimationSampler {

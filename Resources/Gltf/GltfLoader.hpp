@@ -35,7 +35,8 @@ namespace sr {
 //    values of OBJ faces without one;
 //  - one draw range per material, in order of first use (node order, depth first; primitives in
 //    order);
-//  - animations, skins and morph targets (Resources/Animation.hpp) into Model::animation, the
+//  - animations (KHR_animation_pointer's node targets too; its others: a warning), skins and
+//    morph targets (Resources/Animation.hpp) into Model::animation, the
 //    mesh then holding the rest pose (skins bound by their joints' rest transforms, the default
 //    morph weights); null for a file without any.
 // A valid file with nothing to draw (no scenes, or a scene without triangles, lines or points)

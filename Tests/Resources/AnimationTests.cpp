@@ -295,3 +295,36 @@ TEST_CASE("an animation sampler's output as a sparse accessor over zeros drives 
     m.animation->pose(2.0, -1, m.mesh); // weight 0
     checkVec(m.mesh.positions[0], 1, 0, 0);
 }
+
+TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as the core path does; other targets are named in a warning",
+          "[resources][animation][pointer]") {
+    const std::string dir = freshDir("gltf-pointer");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int input = a.floats({0, 1}, "SCALAR");
+    const int moves = a.floats({0, 0, 0, 2, 0, 0}, "VEC3");
+    const int colours = a.floats({1, 0, 0, 1, 0, 0, 1, 1}, "VEC4");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"material\":0}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    a.materials = "[{}]";
+    const auto pointerChannel = [](int sampler, const std::string& pointer) {
+        return "{\"sampler\":" + std::to_string(sampler) + ",\"target\":{\"path\":\"pointer\",\"extensions\":{\"KHR_animation_pointer\":{\"pointer\":\"" +
+               pointer + "\"}}}}";
+    };
+    a.extra = ",\"extensionsUsed\":[\"KHR_animation_pointer\"],\"extensionsRequired\":[\"KHR_animation_pointer\"],"
+              "\"animations\":[{\"samplers\":[{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(moves) +
+              "},{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(colours) + "}],\"channels\":[" +
+              pointerChannel(0, "/nodes/0/translation") + "," + pointerChannel(1, "/materials/0/pbrMetallicRoughness/baseColorFactor") + "]}]";
+    auto r = loadGltf(writeText(dir, "pointer.gltf", a.embedded()));
+    INFO((r ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    Model m = std::move(r).value();
+    REQUIRE(m.animation);
+    REQUIRE(m.warnings.size() == 1);
+    CHECK(m.warnings[0].find("KHR_animation_pointer '/materials/0/pbrMetallicRoughness/baseColorFactor' is not animated") != std::string::npos);
+    m.animation->pose(0.5, -1, m.mesh);
+    checkVec(m.mesh.positions[0], 1, 0, 0);
+    checkVec(m.mesh.positions[1], 2, 0, 0);
+    m.animation->pose(0.25, -1, m.mesh);
+    checkVec(m.mesh.positions[2], 0.5, 1, 0);
+}
