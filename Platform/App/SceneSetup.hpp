@@ -37,8 +37,8 @@ struct LoadedScene {
     // The model file's load (parse, decode, textures): wall time, and the decoded triangles and
     // texels (RGBA texels of every texture); zero for the built-in scene.
     double loadMs = 0.0;
-    std::vector<std::string> variants; // glTF KHR_materials_variants: the file's variant names
     std::size_t loadedTriangles = 0, loadedTexels = 0;
+    std::vector<std::string> variants; // glTF KHR_materials_variants: the file's variant names
     // A glTF scene: its materials are metallic-roughness (pbr), its colours linear and its
     // lights in physical units (Lighting::physical); the default light then has intensity pi.
     bool physical = false;

@@ -1,4 +1,4 @@
-// gltfimport textures: which image each texture shows (EXT_texture_webp, or a fallback for images we cannot decode), one slot per image, decoded once (PNG, JPEG, WebP) within the limits.
+// gltfimport textures: which image each texture shows (EXT_texture_webp, EXT_texture_avif, or a fallback for images we cannot decode), one slot per image, decoded once (PNG, JPEG, WebP, AVIF) within the limits.
 #include <algorithm>
 #include <map>
 
