@@ -90,8 +90,7 @@ Result<const std::vector<unsigned char>*> Accessors::bufferViewBytes(int index, 
     if (bv.buffer < 0 || std::size_t(bv.buffer) >= doc_.buffers.size())
         return R::failure(name + ": buffer " + std::to_string(bv.buffer) + " does not exist");
     const Buffer& buffer = doc_.buffers[std::size_t(bv.buffer)];
-    if (buffer.data.empty() && bv.byteLength > 0)
-        return R::failure(name + " reads " + buffer.source);
+    if (buffer.data.empty() && bv.byteLength > 0) return R::failure(name + " reads " + buffer.source);
     // Sizes are checked in a way that cannot overflow: every term is bounded first.
     if (bv.byteOffset > buffer.data.size() || bv.byteLength > buffer.data.size() - bv.byteOffset)
         return R::failure(name + " lies outside its buffer (" + std::to_string(buffer.data.size()) + " bytes)");

@@ -50,8 +50,12 @@ std::string decodeUri(const std::string& uri) {
 Result<std::vector<unsigned char>> decodeDataUri(const std::string& uri) {
     using R = Result<std::vector<unsigned char>>;
     const std::size_t comma = uri.find(',');
-    if (comma == std::string::npos || uri.compare(comma - std::min<std::size_t>(comma, 7), 7, ";base64") != 0)
-        return R::failure("a data: URI that is not base64");
+    if (comma == std::string::npos) return R::failure("a data: URI without a comma before its data");
+    // Without ";base64" the data is the URI's own characters, percent-decoded (RFC 2397).
+    if (comma < 7 || uri.compare(comma - 7, 7, ";base64") != 0) {
+        const std::string bytes = decodeUri(uri.substr(comma + 1));
+        return R(std::vector<unsigned char>(bytes.begin(), bytes.end()));
+    }
     std::vector<unsigned char> out;
     out.reserve((uri.size() - comma) / 4 * 3);
     std::uint32_t acc = 0;
@@ -368,11 +372,16 @@ Result<Document> parseDocument(const unsigned char* data, std::size_t size, cons
             b.data = std::move(bytes).value();
             b.source = name + " (a data: URI)";
         } else if (!uri.empty()) {
+            // A file that cannot be read (missing, or a URI we do not fetch, http: say) is an
+            // error only when something reads the buffer: it is named then.
             const std::string file = dir + "/" + decodeUri(uri);
             auto bytes = readFileBytes(file, limits.maxFileBytes);
-            if (!bytes) return R::failure(bytes.error());
-            b.data = std::move(bytes).value();
-            b.source = file;
+            if (bytes) {
+                b.data = std::move(bytes).value();
+                b.source = file;
+            } else {
+                b.source = bytes.error();
+            }
         } else if (binary && index == 0 && bin) {
             if (b.byteLength > binSize) return R::failure(name + ": byteLength " + std::to_string(b.byteLength) +
                                                           " is more than the GLB's BIN chunk (" + std::to_string(binSize) + " bytes)");

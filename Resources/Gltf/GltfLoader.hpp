@@ -44,7 +44,8 @@ namespace sr {
 // Errors (one line, "PATH: problem", exit 1 at the command line): JSON that is not glTF,
 // properties of the wrong type, accessors or buffer views out of their buffers, compressed
 // streams that do not decode or disagree with their accessors, indices out of range, a missing
-// .bin, node graphs that are not trees (recursive or shared nodes), a hierarchy deeper than
+// .bin that an accessor reads (one nothing reads, or a URI not fetched, http:, is left
+// alone), node graphs that are not trees (recursive or shared nodes), a hierarchy deeper than
 // limits.maxNodeDepth, positions that are not finite, animation data against the specification
 // (key times not finite or not increasing, values not finite, outputs of the wrong count or
 // type, joint indices beyond their skin, singular inverse bind matrices), a required extension

@@ -22,6 +22,7 @@
 #include "GltfTestUtil.hpp"
 #include "ObjTestUtil.hpp"
 #include "Resources/FileIO.hpp"
+#include "Resources/Gltf/Document.hpp"
 #include "Resources/Gltf/GltfLoader.hpp"
 
 using namespace sr;
@@ -191,6 +192,21 @@ TEST_CASE("glTF buffers: a data: URI inside a GLB, an unused buffer without a ur
     INFO((r ? std::string() : r.error()));
     REQUIRE(r.ok());
     checkVec(r.value().mesh.positions[1], 1, 0, 0);
+    // Buffers nothing reads: a data: URI that is not base64 (RFC 2397: the characters,
+    // percent-decoded) and a URI we do not fetch: the file loads.
+    std::string unread = json;
+    const std::string unused = "{\"byteLength\":64}";
+    unread.replace(unread.find(unused), unused.size(),
+                   "{\"byteLength\":3,\"uri\":\"data:application/gltf-buffer,a%20b\"},{\"byteLength\":8,\"uri\":\"http://example.com/b.bin\"}");
+    auto u = loadText(dir, "unread.gltf", unread);
+    INFO((u ? std::string() : u.error()));
+    CHECK(u.ok());
+    auto text = gltf::decodeDataUri("data:application/gltf-buffer,a%20b");
+    REQUIRE(text.ok());
+    CHECK(text.value() == std::vector<unsigned char>{'a', ' ', 'b'});
+    auto b64 = gltf::decodeDataUri("data:application/octet-stream;base64,AAEC/w==");
+    REQUIRE(b64.ok());
+    CHECK(b64.value() == std::vector<unsigned char>{0, 1, 2, 255});
     // A view into the uri-less buffer: an error naming it.
     std::string reads = json;
     reads.replace(reads.find("\"buffer\":0"), 10, "\"buffer\":1");
