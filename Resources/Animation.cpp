@@ -15,21 +15,6 @@ void normalizeQuaternion(double* q) {
         q[0] = q[1] = q[2] = 0.0, q[3] = 1.0;
 }
 
-// The local transform T R S of a node (GltfLoader's localMatrix: the same operations).
-Mat4d trsMatrix(const std::array<double, 3>& t, const std::array<double, 4>& q, const std::array<double, 3>& s) {
-    Mat4d m;
-    const double x = q[0], y = q[1], z = q[2], w = q[3];
-    const double rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                              {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                              {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) m.m[r][c] = rot[r][c] * s[std::size_t(c)];
-        m.m[r][3] = t[std::size_t(r)];
-    }
-    m.m[3][3] = 1.0;
-    return m;
-}
-
 Vec3d transformPoint(const Mat4d& m, Vec3d p) {
     return {m.m[0][0] * p.x + m.m[0][1] * p.y + m.m[0][2] * p.z + m.m[0][3],
             m.m[1][0] * p.x + m.m[1][1] * p.y + m.m[1][2] * p.z + m.m[1][3],
@@ -60,6 +45,20 @@ Vec3 transformNormal(const Mat4d& m, Vec3d n) {
 Vec3 toFloat(Vec3d v) { return {float(v.x), float(v.y), float(v.z)}; }
 
 } // namespace
+
+Mat4d trsMatrix(const std::array<double, 3>& t, const std::array<double, 4>& q, const std::array<double, 3>& s) {
+    Mat4d m;
+    const double x = q[0], y = q[1], z = q[2], w = q[3];
+    const double rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                              {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                              {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) m.m[r][c] = rot[r][c] * s[std::size_t(c)];
+        m.m[r][3] = t[std::size_t(r)];
+    }
+    m.m[3][3] = 1.0;
+    return m;
+}
 
 void AnimationSampler::evaluate(double t, double* out) const {
     const std::size_t keys = times.size();

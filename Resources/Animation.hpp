@@ -13,6 +13,10 @@
 
 namespace sr {
 
+// A node's local transform T R S (glTF "Transformations"): a translation, a unit quaternion
+// (x, y, z, w) and a scale, as a matrix (the loader's rest transforms and the animated ones alike).
+Mat4d trsMatrix(const std::array<double, 3>& t, const std::array<double, 4>& q, const std::array<double, 3>& s);
+
 // A keyframe sampler (glTF "animation.sampler"): key times (strictly increasing, finite) and
 // `components` values per key (three elements per key for CUBICSPLINE: in-tangent, value,
 // out-tangent, as the specification stores them).

@@ -39,8 +39,6 @@ struct Builder {
 
 // Nodes.cpp: the node's local transform (glTF: matrix, column-major, or T * R * S).
 Mat4d localMatrix(const gltf::Node& n);
-// T * R * S from a translation, a unit quaternion (x, y, z, w) and a scale.
-Mat4d trsMatrix(const double t[3], const double q[4], const double s[3]);
 bool finite(const Mat4d& m);
 // A camera node: eye = the node's origin, forward = its -Z, up = its +Y (glTF "Cameras").
 Status addCamera(Builder& b, const gltf::Camera& c, const Mat4d& world, int index);

@@ -1,5 +1,6 @@
 // gltfimport nodes: local transforms, GPU instancing, and what a node places besides meshes (cameras, KHR_lights_punctual lights).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -15,25 +16,12 @@ Mat4d localMatrix(const gltf::Node& n) {
             for (int r = 0; r < 4; ++r) m.m[r][c] = n.matrix[std::size_t(c * 4 + r)];
         return m;
     }
-    double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
-    if (n.translation.size() == 3) std::copy(n.translation.begin(), n.translation.end(), t);
-    if (n.rotation.size() == 4) std::copy(n.rotation.begin(), n.rotation.end(), q);
-    if (n.scale.size() == 3) std::copy(n.scale.begin(), n.scale.end(), s);
+    std::array<double, 3> t{0, 0, 0}, s{1, 1, 1};
+    std::array<double, 4> q{0, 0, 0, 1};
+    if (n.translation.size() == 3) std::copy(n.translation.begin(), n.translation.end(), t.begin());
+    if (n.rotation.size() == 4) std::copy(n.rotation.begin(), n.rotation.end(), q.begin());
+    if (n.scale.size() == 3) std::copy(n.scale.begin(), n.scale.end(), s.begin());
     return trsMatrix(t, q, s);
-}
-
-Mat4d trsMatrix(const double t[3], const double q[4], const double s[3]) {
-    Mat4d m;
-    const double x = q[0], y = q[1], z = q[2], w = q[3];
-    const double rot[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                              {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                              {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-    for (int r = 0; r < 3; ++r) {
-        for (int c = 0; c < 3; ++c) m.m[r][c] = rot[r][c] * s[c];
-        m.m[r][3] = t[r];
-    }
-    m.m[3][3] = 1.0;
-    return m;
 }
 
 bool finite(const Mat4d& m) {
@@ -164,17 +152,18 @@ Result<std::vector<Mat4d>> instanceMatrices(Builder& b, const gltf::Node& node, 
     std::vector<Mat4d> out;
     out.reserve(count);
     for (std::size_t i = 0; i < count; ++i) {
-        double t[3] = {0, 0, 0}, q[4] = {0, 0, 0, 1}, s[3] = {1, 1, 1};
+        std::array<double, 3> t{0, 0, 0}, s{1, 1, 1};
+        std::array<double, 4> q{0, 0, 0, 1};
         for (int c = 0; c < 3; ++c) {
-            if (views[0]) t[c] = readFloat(*views[0], i, c);
-            if (views[2]) s[c] = readFloat(*views[2], i, c);
+            if (views[0]) t[std::size_t(c)] = readFloat(*views[0], i, c);
+            if (views[2]) s[std::size_t(c)] = readFloat(*views[2], i, c);
         }
         if (views[1]) {
             double l = 0.0;
             for (int c = 0; c < 4; ++c) l += double(readFloat(*views[1], i, c)) * readFloat(*views[1], i, c);
             l = std::sqrt(l);
             if (!(l > 0.0) || !std::isfinite(l)) return R::failure(what + " ROTATION: instance " + std::to_string(i) + " is not a rotation");
-            for (int c = 0; c < 4; ++c) q[c] = readFloat(*views[1], i, c) / l;
+            for (int c = 0; c < 4; ++c) q[std::size_t(c)] = readFloat(*views[1], i, c) / l;
         }
         const Mat4d m = trsMatrix(t, q, s);
         if (!finite(m)) return R::failure(what + ": instance " + std::to_string(i) + " has a transform that is not finite");
