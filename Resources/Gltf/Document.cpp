@@ -84,9 +84,10 @@ namespace {
 
 // Types of the glTF 2.0 core properties (the specification's JSON schema, by property name:
 // the core schema gives each name one type, "scale" aside: a node's array or a normal
-// texture's number, and "indices": a primitive's accessor or a sparse accessor's object). A
+// texture's number; "indices": a primitive's accessor or a sparse accessor's object; "nodes":
+// the asset's node objects or a scene's node indices). A
 // property of the wrong type makes the file invalid: refused, naming the property.
-enum class Kind { String, Uint, Number, Bool, Array, Object, NumberOrNumbers, Numbers, Uints };
+enum class Kind { String, Uint, Number, Bool, Object, NumberOrNumbers, Numbers, Uints, Objects, Strings };
 
 const std::map<std::string, Kind>& schemaKinds() {
     static const std::map<std::string, Kind> kinds = {
@@ -105,11 +106,12 @@ const std::map<std::string, Kind>& schemaKinds() {
         {"matrix", Kind::Numbers}, {"rotation", Kind::Numbers}, {"translation", Kind::Numbers},
         {"weights", Kind::Numbers}, {"baseColorFactor", Kind::Numbers}, {"emissiveFactor", Kind::Numbers},
         {"max", Kind::Numbers}, {"min", Kind::Numbers}, {"children", Kind::Uints}, {"joints", Kind::Uints},
-        {"primitives", Kind::Array}, {"accessors", Kind::Array}, {"buffers", Kind::Array}, {"bufferViews", Kind::Array},
-        {"meshes", Kind::Array}, {"materials", Kind::Array}, {"textures", Kind::Array}, {"images", Kind::Array},
-        {"samplers", Kind::Array}, {"scenes", Kind::Array}, {"nodes", Kind::Array}, {"cameras", Kind::Array},
-        {"skins", Kind::Array}, {"animations", Kind::Array}, {"extensionsUsed", Kind::Array},
-        {"extensionsRequired", Kind::Array}, {"targets", Kind::Array}, {"attributes", Kind::Object},
+        {"primitives", Kind::Objects}, {"accessors", Kind::Objects}, {"buffers", Kind::Objects},
+        {"bufferViews", Kind::Objects}, {"meshes", Kind::Objects}, {"materials", Kind::Objects},
+        {"textures", Kind::Objects}, {"images", Kind::Objects}, {"samplers", Kind::Objects}, {"scenes", Kind::Objects},
+        {"nodes", Kind::Objects}, {"cameras", Kind::Objects}, {"skins", Kind::Objects}, {"animations", Kind::Objects},
+        {"channels", Kind::Objects}, {"targets", Kind::Objects}, {"extensionsUsed", Kind::Strings},
+        {"extensionsRequired", Kind::Strings}, {"attributes", Kind::Object},
         {"pbrMetallicRoughness", Kind::Object}, {"normalTexture", Kind::Object}, {"occlusionTexture", Kind::Object},
         {"emissiveTexture", Kind::Object}, {"baseColorTexture", Kind::Object}, {"metallicRoughnessTexture", Kind::Object},
         {"asset", Kind::Object}, {"perspective", Kind::Object}, {"orthographic", Kind::Object}, {"sparse", Kind::Object},
@@ -140,11 +142,12 @@ bool hasKind(const Json& v, Kind k) {
     case Kind::Uint: return isUint(v);
     case Kind::Number: return v.is_number();
     case Kind::Bool: return v.is_boolean();
-    case Kind::Array: return v.is_array();
     case Kind::Object: return v.is_object();
     case Kind::NumberOrNumbers: return v.is_number() || all([](const Json& e) { return e.is_number(); });
     case Kind::Numbers: return all([](const Json& e) { return e.is_number(); });
     case Kind::Uints: return all([](const Json& e) { return isUint(e); });
+    case Kind::Objects: return all([](const Json& e) { return e.is_object(); });
+    case Kind::Strings: return all([](const Json& e) { return e.is_string(); });
     }
     return false;
 }
@@ -155,11 +158,12 @@ const char* kindName(Kind k) {
     case Kind::Uint: return "an unsigned integer";
     case Kind::Number: return "a number";
     case Kind::Bool: return "true or false";
-    case Kind::Array: return "an array";
     case Kind::Object: return "an object";
     case Kind::NumberOrNumbers: return "a number or an array of numbers";
     case Kind::Numbers: return "an array of numbers";
     case Kind::Uints: return "an array of unsigned integers";
+    case Kind::Objects: return "an array of objects";
+    case Kind::Strings: return "an array of strings";
     }
     return "?";
 }
@@ -181,8 +185,10 @@ std::string schemaProblem(const Json& v, const std::string& path, const std::str
             if (key == "extras" || (depth == 0 && !kTopLevel.count(key))) continue;
             const auto kind = schemaKinds().find(key);
             const bool sparsePart = parentKey == "sparse" && (key == "indices" || key == "values");
+            const bool sceneNodes = parentKey == "scenes" && key == "nodes";
             if (sparsePart && !it.value().is_object()) return at + ": expected an object";
-            if (!sparsePart && kind != schemaKinds().end() && !hasKind(it.value(), kind->second))
+            if (sceneNodes && !hasKind(it.value(), Kind::Uints)) return at + ": expected " + kindName(Kind::Uints);
+            if (!sparsePart && !sceneNodes && kind != schemaKinds().end() && !hasKind(it.value(), kind->second))
                 return at + ": expected " + kindName(kind->second);
             if (key == "extensions") {
                 for (auto e = it.value().begin(); e != it.value().end(); ++e)
@@ -217,6 +223,10 @@ std::size_t sizeOr(const Json& o, const char* key, std::size_t fallback) {
 double numberOr(const Json& o, const char* key, double fallback) {
     const auto it = o.find(key);
     return it != o.end() && it->is_number() ? it->get<double>() : fallback;
+}
+bool boolOr(const Json& o, const char* key, bool fallback) {
+    const auto it = o.find(key);
+    return it != o.end() && it->is_boolean() ? it->get<bool>() : fallback;
 }
 std::string stringOr(const Json& o, const char* key, const std::string& fallback = {}) {
     const auto it = o.find(key);
@@ -334,7 +344,7 @@ Result<Document> parseDocument(const unsigned char* data, std::size_t size, cons
         a.bufferView = intOr(o, "bufferView", -1);
         a.byteOffset = sizeOr(o, "byteOffset", 0);
         a.componentType = intOr(o, "componentType", 0);
-        a.normalized = o.value("normalized", false);
+        a.normalized = boolOr(o, "normalized", false);
         a.count = sizeOr(o, "count", 0);
         a.type = stringOr(o, "type");
         const Json sparse = objectOr(o, "sparse");
@@ -435,7 +445,7 @@ Result<Document> parseDocument(const unsigned char* data, std::size_t size, cons
         m.emissiveFactor = numbers(o, "emissiveFactor", {0, 0, 0});
         m.alphaMode = stringOr(o, "alphaMode", "OPAQUE");
         m.alphaCutoff = numberOr(o, "alphaCutoff", 0.5);
-        m.doubleSided = o.value("doubleSided", false);
+        m.doubleSided = boolOr(o, "doubleSided", false);
         m.extensions = objectOr(o, "extensions");
         d.materials.push_back(std::move(m));
     }
