@@ -51,21 +51,23 @@ inline float splatAs(float, float c) { return c; }
 
 // f(l, v) N.L for one light direction: the reflected radiance per unit of the light's
 // irradiance at normal incidence (lux for a directional light), per channel; N, L, V unit.
-inline Vec3 brdfCosine(const PbrSurface& s, Vec3 n, Vec3 l, Vec3 v) {
+// multiScatter: brdfMultiScatter's k at this N.V and roughness (0: single scattering alone).
+inline Vec3 brdfCosine(const PbrSurface& s, Vec3 n, Vec3 l, Vec3 v, float multiScatter = 0.0f) {
     const Vec3 h = normalize(l + v);
     const Vec3 nxh = cross(n, h);
     const float base[3] = {s.baseColor.x, s.baseColor.y, s.baseColor.z};
     float out[3];
-    brdfCosineTerms(dot(n, l), dot(n, v), dot(n, h), dot(nxh, nxh), dot(v, h), s.roughness, s.metallic, base, out);
+    brdfCosineTerms(dot(n, l), dot(n, v), dot(n, h), dot(nxh, nxh), dot(v, h), s.roughness, s.metallic, base, multiScatter, out);
     return {out[0], out[1], out[2]};
 }
 
 // The radiance leaving world point p toward the eye (unit v) under every light of `lighting`
 // (KHR_lights_punctual units: a directional light's colour x intensity is lux, a point or spot
 // light's is candela, falling off as lightAt says), with no ambient term: the specification has
-// none. `visible(i, p, n, l)` is the lit fraction of light i (shadow maps), as in lightTerms.
+// none. `visible(i, p, n, l)` is the lit fraction of light i (shadow maps), as in lightTerms;
+// multiScatter as in brdfCosine.
 template <class Visibility = AllVisible>
-inline Vec3 pbrRadiance(const Lighting& lighting, const PbrSurface& s, Vec3 n, Vec3 p, Vec3 v,
+inline Vec3 pbrRadiance(const Lighting& lighting, const PbrSurface& s, Vec3 n, Vec3 p, Vec3 v, float multiScatter = 0.0f,
                         const Visibility& visible = {}) {
     Vec3 sum{0.0f, 0.0f, 0.0f};
     for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
@@ -77,7 +79,7 @@ inline Vec3 pbrRadiance(const Lighting& lighting, const PbrSurface& s, Vec3 n, V
             const float seen = visible(i, p, n, l);
             if (seen < 1.0f) a = a * seen;
         }
-        const Vec3 f = brdfCosine(s, n, l, v);
+        const Vec3 f = brdfCosine(s, n, l, v, multiScatter);
         sum.x += f.x * light.colour.r * a;
         sum.y += f.y * light.colour.g * a;
         sum.z += f.z * light.colour.b * a;

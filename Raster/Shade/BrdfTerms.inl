@@ -12,7 +12,9 @@
 //   V      = 0.5 / (N.L sqrt((N.V)^2 (1 - alpha^2) + alpha^2) + N.V sqrt((N.L)^2 (1 - alpha^2) + alpha^2))
 //                                                                          (Smith, height-correlated)
 //   F      = F0 + (1 - F0) (1 - V.H)^5, F0 = mix(0.04, baseColor, metallic) (Schlick)
-//   f N.L  = ((1 - F) c_diff / pi + F D V) N.L, c_diff = baseColor (1 - metallic)
+//   f N.L  = ((1 - F) c_diff / pi + F D V (1 + F0 k)) N.L, c_diff = baseColor (1 - metallic)
+// k = 1 / E_ss - 1 is the multiple-scattering compensation (brdfMultiScatter, IblTerms.inl; per
+// pixel, as it depends on N.V and roughness only); k = 0 is appendix B's single scattering exactly.
 // V is the specification's G / (4 N.L N.V). D's denominator is written |N x H|^2 + (N.H)^2 alpha^2
 // (equal for unit N and H): in float, alpha^2 - 1 keeps only a few bits of a small alpha^2, which
 // near the peak is all that is left (0.7% off at roughness 0.05); sin2NH = |N x H|^2 keeps them.
@@ -35,7 +37,7 @@ inline R brdfMetallic(R metallic) {
 
 template <class R>
 inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRaw, R roughnessIn, R metallicIn,
-                            const R base[3], R out[3]) {
+                            const R base[3], R multiScatter, R out[3]) {
     const R zero = splatAs(nDotL, 0.0f), one = splatAs(nDotL, 1.0f);
     const R nDotV = maxOf(nDotVRaw, splatAs(nDotL, 1e-4f));
     const R nDotH = maxOf(nDotHRaw, zero), vDotH = maxOf(vDotHRaw, zero);
@@ -62,6 +64,6 @@ inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRa
         const R f0 = dielectricF0 + (base[c] - dielectricF0) * metallic;
         const R f = f0 + (one - f0) * fw;
         const R diffuse = (one - f) * (base[c] * (one - metallic)) / pi;
-        out[c] = selectOf(lit, (diffuse + f * specular) * nDotL, zero);
+        out[c] = selectOf(lit, (diffuse + f * specular * (one + f0 * multiScatter)) * nDotL, zero);
     }
 }

@@ -11,6 +11,18 @@
 
 namespace sr {
 
+// The directional albedo of the GGX lobe (height-correlated Smith visibility, Schlick's F) by N.V
+// (columns, 0 to 1) and perceptual roughness (rows, 0 to 1, clamped to kMinRoughness), as the
+// split sum's scale a and bias b of F0 (the albedo is F0 a + b) and their sum E_ss = a + b, the
+// albedo of a white metal: what single scattering keeps of the light (the rest is the energy
+// that multiple scattering would return; brdfMultiScatter). Importance-sampled (4096 Hammersley
+// GGX samples a cell), made once per process.
+struct BrdfAlbedoTable {
+    static constexpr int kSize = 32;
+    std::array<float, std::size_t(kSize) * std::size_t(kSize)> a{}, b{}, ess{};
+};
+const BrdfAlbedoTable& brdfAlbedoTable();
+
 // The light a sky sends onto a surface, prepared once when the sky is loaded (Karis, "Real
 // Shading in Unreal Engine 4", 2013: the split-sum approximation; Ramamoorthi and Hanrahan,
 // "An Efficient Representation for Irradiance Environment Maps", 2001):
@@ -48,13 +60,13 @@ public:
     static constexpr int kSide = 64;
     static constexpr int kStride = kSide + 2;
     static constexpr int kLevelTexels = kStride * kStride;
-    static constexpr int kLut = 32; // the split sum's table: kLut x kLut, row = roughness, column = N.V
+    static constexpr int kLut = BrdfAlbedoTable::kSize; // the split sum's table (brdfAlbedoTable)
 
     // What the per-pixel lookups read (IblTerms.inl).
     struct Tables {
         float sh[9][3];             // E / pi per coefficient and channel
         const float* radiance[3];   // per channel: kLevels levels of kLevelTexels, row-major
-        const float* lutA;          // kLut x kLut each
+        const float* lutA;          // brdfAlbedoTable's a and b
         const float* lutB;
     };
     const Tables& tables() const { return tables_; }
@@ -65,7 +77,6 @@ public:
 
 private:
     std::array<std::vector<float>, 3> radiance_; // per channel, kLevels x kLevelTexels
-    std::vector<float> lutA_, lutB_;
     Tables tables_{};
 };
 

@@ -84,10 +84,10 @@ inline void iblDiffuse(const ImageLight::Tables& t, R x, R y, R z, R out[3]) {
     }
 }
 
-// ImageLight::brdfScaleBias: the table's bilinear value at (N.V, roughness), each clamped into
-// [0, 1] (NaN 0).
+// The bilinear value of a brdfAlbedoTable table at (N.V, roughness), each clamped into [0, 1]
+// (NaN 0).
 template <class R>
-inline void iblScaleBias(const ImageLight::Tables& t, R nDotV, R roughness, R& a, R& b) {
+inline R albedoBilinear(const float* table, R nDotV, R roughness) {
     const R one = splatAs(nDotV, 1.0f), last = splatAs(nDotV, float(ImageLight::kLut - 1));
     const R secondLast = splatAs(nDotV, float(ImageLight::kLut - 2)), row = splatAs(nDotV, float(ImageLight::kLut));
     const R fx = iblClamp(nDotV, 0.0f, 1.0f) * last, fy = iblClamp(roughness, 0.0f, 1.0f) * last;
@@ -95,18 +95,34 @@ inline void iblScaleBias(const ImageLight::Tables& t, R nDotV, R roughness, R& a
     const R wx = fx - x0, wy = fy - y0;
     const R i00 = y0 * row + x0;
     const R i10 = i00 + one, i01 = i00 + row, i11 = i01 + one;
-    auto bilinear = [&](const float* p) {
-        const R top = gatherOf(p, i00) * (one - wx) + gatherOf(p, i10) * wx;
-        const R bottom = gatherOf(p, i01) * (one - wx) + gatherOf(p, i11) * wx;
-        return top * (one - wy) + bottom * wy;
-    };
-    a = bilinear(t.lutA);
-    b = bilinear(t.lutB);
+    const R top = gatherOf(table, i00) * (one - wx) + gatherOf(table, i10) * wx;
+    const R bottom = gatherOf(table, i01) * (one - wx) + gatherOf(table, i11) * wx;
+    return top * (one - wy) + bottom * wy;
+}
+
+// ImageLight::brdfScaleBias: the split sum's a and b at (N.V, roughness).
+template <class R>
+inline void iblScaleBias(const ImageLight::Tables& t, R nDotV, R roughness, R& a, R& b) {
+    a = albedoBilinear(t.lutA, nDotV, roughness);
+    b = albedoBilinear(t.lutB, nDotV, roughness);
+}
+
+// The energy that single scattering loses, as the factor k = 1 / E_ss - 1 on F0 (Turquin,
+// "Practical multiple scattering compensation for microfacet models", 2019): the specular lobe
+// times 1 + F0 k returns what a white metal receives. E_ss at the BRDF's N.V (clamped to 1e-4)
+// and roughness (brdfRoughness) from brdfAlbedoTable's E_ss (`ess`); 0 where E_ss is not above 0.
+template <class R>
+inline R brdfMultiScatter(const float* ess, R nDotV, R roughnessIn) {
+    const R e = albedoBilinear(ess, maxOf(nDotV, splatAs(nDotV, 1e-4f)), brdfRoughness(roughnessIn));
+    const R zero = splatAs(nDotV, 0.0f), one = splatAs(nDotV, 1.0f);
+    return selectOf(e > zero, one / e - one, zero);
 }
 
 // The light a sky sends toward v from a surface with unit normal n (programs::imageLight):
 // Lambert's c_diff x E(n) / pi plus the prefiltered radiance along R = 2 (N.V) N - V times
-// F0 a + b, with the BRDF's roughness and metallic (brdfRoughness, brdfMetallic).
+// F0 a + b, with the BRDF's roughness and metallic (brdfRoughness, brdfMetallic), the specular
+// part compensated for multiple scattering as the direct light's is (brdfMultiScatter's 1 + F0 k,
+// with E_ss = a + b here): a white metal returns the uniform sky it sits in.
 template <class R>
 inline void iblRadiance(const ImageLight::Tables& t, const R base[3], R metallicIn, R roughnessIn, R nx, R ny, R nz, R vx,
                         R vy, R vz, R out[3]) {
@@ -119,8 +135,10 @@ inline void iblRadiance(const ImageLight::Tables& t, const R base[3], R metallic
     iblScaleBias(t, nDotV, roughness, a, b);
     iblDiffuse(t, nx, ny, nz, e);
     iblSpecular(t, nx * twice - vx, ny * twice - vy, nz * twice - vz, roughness, spec);
+    const R ess = a + b, zero = splatAs(nx, 0.0f);
+    const R k = selectOf(ess > zero, one / ess - one, zero);
     for (int c = 0; c < 3; ++c) {
         const R f0 = f0Dielectric + (base[c] - f0Dielectric) * metallic;
-        out[c] = base[c] * (one - metallic) * e[c] + spec[c] * (f0 * a + b);
+        out[c] = base[c] * (one - metallic) * e[c] + spec[c] * (f0 * a + b) * (one + f0 * k);
     }
 }

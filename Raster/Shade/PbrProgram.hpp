@@ -41,7 +41,8 @@ inline Vec3 imageLight(const ImageLight& light, const PbrSurface& s, Vec3 n, Vec
 }
 
 // Phong's interpolation (world position and normal, perspective-correct), lit per pixel by the
-// glTF BRDF (pbrRadiance) plus the emissive term. With kMaps: the uv in varyings 0-1 and the
+// glTF BRDF (pbrRadiance, compensated for multiple scattering: brdfMultiScatter) plus the
+// emissive term. With kMaps: the uv in varyings 0-1 and the
 // material's maps sampled at it (each with its own level of detail); with kTangents also the
 // tangent (xyzw) for the normal map. Colour maps (base colour, emissive) are decoded from sRGB
 // in linear mode; the others are data and read as stored. Double-sided surfaces seen from
@@ -113,11 +114,13 @@ struct PbrProgram {
                 n = perturbNormal(n, t, sampleMap(*m.normalMap, false, f), k.normalScale);
             }
         }
-        Vec3 r = d->view.shadows ? pbrRadiance(d->view.lighting, s, n, p, v,
+        const float multiScatter =
+            d->view.lighting.lights.empty() ? 0.0f : ibl::brdfMultiScatter(brdfAlbedoTable().ess.data(), dot(n, v), s.roughness);
+        Vec3 r = d->view.shadows ? pbrRadiance(d->view.lighting, s, n, p, v, multiScatter,
                                                [sh = d->view.shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) {
                                                    return sh->visibility(light, q, normal, l);
                                                })
-                                 : pbrRadiance(d->view.lighting, s, n, p, v);
+                                 : pbrRadiance(d->view.lighting, s, n, p, v, multiScatter);
         if (d->view.ibl) {
             float occlusion = 1.0f;
             if constexpr (kMaps) {

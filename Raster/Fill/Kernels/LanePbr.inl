@@ -26,12 +26,14 @@ SR_SIMD_NOINLINE Rgb imageLightLanes(const ImageLight::Tables& t, F baseR, F bas
 
 // The radiance at the lanes' points (px, py, pz) with unit normals n and view vectors v:
 // pbrRadiance's loop over the lights (lightAt's direction and factor as lightsRgb computes
-// them, the shadow maps' lit fraction, brdfCosineTerms), the same operations in the same
-// order. Lanes whose light or half vector is off normalize's fast path lose `ok`.
+// them, the shadow maps' lit fraction, brdfCosineTerms with brdfMultiScatter's k), the same
+// operations in the same order. Lanes whose light or half vector is off normalize's fast path lose `ok`.
 SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* shadows, F baseR, F baseG, F baseB, F metallic,
                                F roughness, F nx, F ny, F nz, F px, F py, F pz, F vx, F vy, F vz, M& ok) {
+    if (lighting.lights.empty()) return {fzero(), fzero(), fzero()};
     const V3 n{nx, ny, nz}, p{px, py, pz}, v{vx, vy, vz};
     const F base[3] = {baseR, baseG, baseB};
+    const F multiScatter = brdfMultiScatter(brdfAlbedoTable().ess.data(), dot3(n, v), roughness);
     Rgb sum{fzero(), fzero(), fzero()};
     for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
         const Light& light = lighting.lights[i];
@@ -67,7 +69,7 @@ SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* sha
         ok = (lit & hOk) | andNot(ok, lit);
         const V3 nxh{n.y * h.z - n.z * h.y, n.z * h.x - n.x * h.z, n.x * h.y - n.y * h.x}; // cross(n, h)
         F f[3];
-        brdfCosineTerms(ndl, dot3(n, v), dot3(n, h), dot3(nxh, nxh), dot3(v, h), roughness, metallic, base, f);
+        brdfCosineTerms(ndl, dot3(n, v), dot3(n, h), dot3(nxh, nxh), dot3(v, h), roughness, metallic, base, multiScatter, f);
         sum.r = select(lit, sum.r + f[0] * fset(light.colour.r) * a, sum.r);
         sum.g = select(lit, sum.g + f[1] * fset(light.colour.g) * a, sum.g);
         sum.b = select(lit, sum.b + f[2] * fset(light.colour.b) * a, sum.b);
