@@ -42,7 +42,7 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
         if (range.texture >= 0) return true;
         if (range.material < 0 || !model.hasUvs) return false;
         const Material& m = model.materials[std::size_t(range.material)];
-        return m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 || m.normalTexture >= 0;
+        return m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 || m.normalTexture >= 0 || m.occlusionTexture >= 0;
     };
     std::vector<std::uint32_t> remap(src.vertexCount(), kNoVertex);
     std::vector<std::uint32_t> firstIndex(model.ranges.size(), 0);

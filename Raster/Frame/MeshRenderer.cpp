@@ -101,15 +101,18 @@ struct DrawInputs final : RenderContext::Kept {
 };
 
 // A glTF material under ShadingMode::Pbr: the maps it has (with uvs), the tangents its normal
-// map needs (without them the map is not applied).
+// map needs (without them the map is not applied). The occlusion map scales the sky's light
+// only: without --ibl nothing reads it.
 void drawPbr(RenderContext& ctx, DrawInputs& in, std::size_t indexCount) {
     const DrawContext& base = *in.draw;
     const SurfaceMaterial& material = in.material;
     const Mesh& mesh = base.mesh;
-    const Texture* anyMap = material.texture      ? material.texture
+    const Texture* occlusion = base.view.ibl ? material.occlusion : nullptr;
+    const Texture* anyMap = material.texture             ? material.texture
                             : material.metallicRoughness ? material.metallicRoughness
-                            : material.emissive   ? material.emissive
-                                                  : material.normalMap;
+                            : material.emissive          ? material.emissive
+                            : material.normalMap         ? material.normalMap
+                                                         : occlusion;
     const bool maps = anyMap != nullptr && mesh.hasUvs();
     DrawContext& d = in.pbrDraw.emplace(base);
     d.texture = maps ? anyMap : nullptr; // the uv varyings' rebase (drawStateFor)

@@ -710,6 +710,17 @@ TEST_CASE("image-based light: a sky bright above lights an upward normal, not a 
     const Image occluded = renderPbr(sc, sc.settings);
     sc.scene.draws[3].pbr->occlusionStrength = 0.0f;
     const Image unoccluded = renderPbr(sc, sc.settings);
+    // The occlusion map alone (no base colour texture): still sampled.
+    sc.scene.draws[3].texture = -1;
+    sc.scene.draws[3].pbr->occlusionStrength = 1.0f;
+    const Image occlusionOnly = renderPbr(sc, sc.settings);
+    sc.scene.draws[3].pbr->occlusionStrength = 0.0f;
+    const Image occlusionOnlyOff = renderPbr(sc, sc.settings);
+    long occlusionOnlyDiffering = 0;
+    for (int y = 0; y < kH; ++y)
+        for (int x = 0; x < kW; ++x) occlusionOnlyDiffering += occlusionOnly.texel(x, y)[1] < occlusionOnlyOff.texel(x, y)[1];
+    CHECK(occlusionOnlyDiffering > kW * kH / 10);
+    sc.scene.draws[3].texture = 0;
     sc.view.ibl = nullptr;
     const Image noSky = renderPbr(sc, sc.settings);
     long litSum = 0, occludedSum = 0, differing = 0, noSkySum = 0;

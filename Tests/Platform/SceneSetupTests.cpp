@@ -279,4 +279,27 @@ TEST_CASE("an animated scene's picking, shadows and sorting read the posed meshe
     CHECK(plain.value().meshOrigins.empty());
     CHECK(plain.value().posedModel.positions.empty());
 }
+
+TEST_CASE("a glTF material whose only map is occlusion keeps its uvs and its map", "[platform][gltf]") {
+    gltftest::Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    a.nodes = R"([{"mesh":0}])";
+    a.meshes = R"([{"primitives":[{"attributes":{"POSITION":)" + std::to_string(pos) + R"(,"TEXCOORD_0":)" + std::to_string(uv) +
+               R"(},"material":0}]}])";
+    a.materials = R"([{"occlusionTexture":{"index":0}}])";
+    const std::string ppm = "P6\n1 1\n255\n\x40\x40\x40";
+    a.extra = R"(,"textures":[{"source":0}],"images":[{"uri":"data:image/x-portable-pixmap;base64,)" +
+              gltftest::base64(std::vector<unsigned char>(ppm.begin(), ppm.end())) + R"("}])";
+    SceneOptions o;
+    o.obj = objtest::writeText(objtest::freshDir("occlusion-only"), "occlusion.gltf", a.embedded());
+    auto loaded = loadScene(o);
+    REQUIRE(loaded.ok());
+    const Scene& scene = loaded.value().scene;
+    REQUIRE(scene.draws.size() == 1);
+    const SceneDraw& d = scene.draws[0];
+    REQUIRE(d.occlusionTexture >= 0);
+    CHECK(scene.textures[std::size_t(d.occlusionTexture)].width() == 1);
+    CHECK(scene.meshes[std::size_t(d.mesh)].hasUvs());
+}
 #endif
