@@ -138,6 +138,13 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& f
     ShadingMode mode = settings.shading;
     if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong || mode == ShadingMode::Pbr))
         mode = ShadingMode::Flat;
+    // A glTF material drawn unlit (KHR_materials_unlit under any shading, or --shading unlit) is
+    // its base colour: the factor, times the texture (not the Blinn-Phong mapping's kd, which is
+    // black for a metal).
+    const bool baseColourOnly = material.pbr != nullptr && (material.pbr->unlit || mode == ShadingMode::Unlit);
+    if (baseColourOnly) mode = ShadingMode::Unlit;
+    const Color baseColour = material.pbr ? Color{material.pbr->baseColor.r, material.pbr->baseColor.g, material.pbr->baseColor.b, 1.0f}
+                                          : material.kd;
     const bool pbr = mode == ShadingMode::Pbr && material.pbr != nullptr;
     // The Blinn-Phong models see physical lights divided by pi (Lighting::physical): the frame's
     // copy of the view with those lights, or one made here.
@@ -152,7 +159,7 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& f
         }
     }
     DrawContext& d = in.draw.emplace(DrawContext{*v, settings, mesh, indices, textured ? material.texture : nullptr,
-                                                 textured ? material.tint : material.kd, material.specular,
+                                                 baseColourOnly ? baseColour : textured ? material.tint : material.kd, material.specular,
                                                  material.alpha, v->lighting.whiteDirectional(), material.doubleSided,
                                                  activeTexelAlpha(material, mesh)});
     d.linear = settings.colour == ColorMode::Linear;

@@ -20,6 +20,7 @@ struct PbrFactors {
     Vec3 emissive{0.0f, 0.0f, 0.0f}; // emissiveFactor x KHR_materials_emissive_strength
     float normalScale = 1.0f;        // normalTexture.scale
     float occlusionStrength = 1.0f;  // occlusionTexture.strength
+    bool unlit = false;              // KHR_materials_unlit: the base colour as it is, no light (MeshRenderer)
 };
 
 // A surface point as the BRDF sees it: linear base colour, metallic and perceptual roughness,

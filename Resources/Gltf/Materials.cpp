@@ -35,6 +35,7 @@ Material materialFrom(const gltf::Material& gm) {
     f.emissive = Vec3{float(emissive[0] * strength), float(emissive[1] * strength), float(emissive[2] * strength)};
     f.normalScale = std::isfinite(gm.normalTexture.scale) ? float(gm.normalTexture.scale) : 1.0f;
     f.occlusionStrength = float(std::clamp(gm.occlusionTexture.strength, 0.0, 1.0));
+    f.unlit = gm.extensions.contains("KHR_materials_unlit");
     // Alpha modes. With the factor's alpha alone (untextured, or a texture without alpha): BLEND
     // blends with it, MASK keeps the surface when it reaches alphaCutoff and drops it otherwise,
     // OPAQUE ignores it. With a base colour texture, texelAlpha holds the per-fragment rule (the

@@ -516,6 +516,42 @@ TEST_CASE("a pbr scene in linear light against its stored image (the scalar refe
     CHECK(beyond <= 10);
 }
 
+TEST_CASE("unlit glTF materials: KHR_materials_unlit and --shading unlit draw the exact base colour, in linear and gamma",
+          "[render][pbr][unlit]") {
+    // The metal sphere (draw 1): base colour (1, 0.78, 0.34), metallic 1. Its pixels, drawn
+    // unlit, all hold the base colour encoded (linear: sRGB-encoded; gamma: as it is); lit, its
+    // shading varies and its Blinn-Phong kd is black.
+    const auto count = [](const Image& img, const std::uint8_t want[3]) {
+        int n = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x) {
+                const std::uint8_t* t = img.texel(x, y);
+                n += t[0] == want[0] && t[1] == want[1] && t[2] == want[2];
+            }
+        return n;
+    };
+    for (const ColorMode colour : {ColorMode::Linear, ColorMode::Gamma}) {
+        const double base[3] = {1.0, 0.78, 0.34};
+        std::uint8_t want[3];
+        for (int c = 0; c < 3; ++c)
+            want[c] = std::uint8_t(std::lround(255.0 * (colour == ColorMode::Linear ? encodeD(double(float(base[c]))) : double(float(base[c])))));
+        INFO((colour == ColorMode::Linear ? "linear" : "gamma") << ": want " << int(want[0]) << " " << int(want[1]) << " " << int(want[2]));
+        PbrScene s = makePbrScene();
+        s.settings.colour = colour;
+        const int lit = count(renderPbr(s, s.settings), want);
+        s.scene.draws[1].pbr->unlit = true;
+        const int extension = count(renderPbr(s, s.settings), want);
+        s.scene.draws[1].pbr->unlit = false;
+        RenderSettings unlitMode = s.settings;
+        unlitMode.shading = ShadingMode::Unlit;
+        const int shading = count(renderPbr(s, unlitMode), want);
+        INFO("pixels of the base colour: lit " << lit << ", KHR_materials_unlit " << extension << ", --shading unlit " << shading);
+        CHECK(extension > 900); // the sphere's whole disc (996 pixels at 160 x 120)
+        CHECK(shading == extension);
+        CHECK(lit < extension / 20);
+    }
+}
+
 TEST_CASE("pbr scene: emissive adds exactly its value; gamma and linear differ as the curve says", "[render][pbr]") {
     PbrScene s = makePbrScene();
     // Emission alone: no lights. The emissive sphere's pixels are the encoded emissive colour,

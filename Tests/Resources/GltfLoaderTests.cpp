@@ -324,6 +324,7 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     checkVec(k.pbr->emissive, 4.0f, 2.0f, 0.0f); // emissiveFactor x emissiveStrength
     CHECK(k.pbr->normalScale == 0.5f);
     CHECK(k.pbr->occlusionStrength == 0.25f);
+    CHECK_FALSE(k.pbr->unlit);
     // Five distinct images: five slots, each map in its own.
     const std::set<int> slots{k.texture, k.metallicRoughnessTexture, k.emissiveTexture, k.normalTexture, k.occlusionTexture};
     CHECK(slots.size() == 5);
@@ -1041,3 +1042,21 @@ TEST_CASE("glTF-Asset-Generator's Mesh_PrimitiveMode set: every mode equals assi
     }
 }
 #endif
+
+TEST_CASE("glTF: KHR_materials_unlit (required or not) marks the material unlit", "[resources][gltf][pbr]") {
+    const std::string dir = freshDir("gltf-unlit");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"material\":0},"
+               "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"material\":1}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    a.materials = "[{\"extensions\":{\"KHR_materials_unlit\":{}}},{\"name\":\"lit\"}]";
+    a.extra = ",\"extensionsUsed\":[\"KHR_materials_unlit\"],\"extensionsRequired\":[\"KHR_materials_unlit\"]";
+    auto r = load(dir, "unlit.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    REQUIRE(r.value().materials.size() == 2);
+    REQUIRE(r.value().materials[0].pbr.has_value());
+    CHECK(r.value().materials[0].pbr->unlit);
+    CHECK_FALSE(r.value().materials[1].pbr->unlit);
+}
