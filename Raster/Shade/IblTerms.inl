@@ -118,11 +118,13 @@ inline R brdfMultiScatter(const float* ess, R nDotV, R roughnessIn) {
     return selectOf(e > zero, one / e - one, zero);
 }
 
-// The light a sky sends toward v from a surface with unit normal n (programs::imageLight):
-// Lambert's c_diff x E(n) / pi plus the prefiltered radiance along R = 2 (N.V) N - V times
-// F0 a + b, with the BRDF's roughness and metallic (brdfRoughness, brdfMetallic), the specular
-// part compensated for multiple scattering as the direct light's is (brdfMultiScatter's 1 + F0 k,
-// with E_ss = a + b here): a white metal returns the uniform sky it sits in.
+// The light a sky sends toward v from a surface with unit normal n (programs::imageLight): the
+// prefiltered radiance along R = 2 (N.V) N - V times the lobe's albedo S = (F0 a + b) (1 + F0 k)
+// (the split sum, compensated for multiple scattering as the direct light is: brdfMultiScatter's
+// k, with E_ss = a + b here), plus Lambert's c_diff x E(n) / pi times 1 - S, the light the lobe
+// did not reflect (per channel; the direct light's (1 - F) integrated over the sky), with the
+// BRDF's roughness and metallic (brdfRoughness, brdfMetallic). A white metal, and a white
+// dielectric, return the uniform sky they sit in.
 template <class R>
 inline void iblRadiance(const ImageLight::Tables& t, const R base[3], R metallicIn, R roughnessIn, R nx, R ny, R nz, R vx,
                         R vy, R vz, R out[3]) {
@@ -139,6 +141,7 @@ inline void iblRadiance(const ImageLight::Tables& t, const R base[3], R metallic
     const R k = selectOf(ess > zero, one / ess - one, zero);
     for (int c = 0; c < 3; ++c) {
         const R f0 = f0Dielectric + (base[c] - f0Dielectric) * metallic;
-        out[c] = base[c] * (one - metallic) * e[c] + spec[c] * (f0 * a + b) * (one + f0 * k);
+        const R albedo = (f0 * a + b) * (one + f0 * k);
+        out[c] = base[c] * (one - metallic) * e[c] * (one - albedo) + spec[c] * albedo;
     }
 }

@@ -216,6 +216,18 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
         model.mesh.indices.insert(model.mesh.indices.end(), list.begin(), list.end());
         model.ranges.push_back(r);
     }
+    // Primitives without a material get the specification's default one (every property at its
+    // default: white, metallic 1, roughness 1, opaque, single-sided), not an OBJ face's grey.
+    int defaultMaterial = -1;
+    for (DrawRange& r : model.ranges) {
+        if (r.material >= 0 || !options.textureOverride.empty()) continue;
+        if (defaultMaterial < 0) {
+            model.materials.push_back(materialFrom(gltf::Material{}));
+            model.materials.back().name = "(the glTF default material)";
+            defaultMaterial = int(model.materials.size()) - 1;
+        }
+        r.material = defaultMaterial;
+    }
     // An animated file's rest pose: skins bound by their joints' rest transforms and the default
     // morph weights (the specification's pose without a clip); the bounds are the rest pose's.
     if (b.animation) {

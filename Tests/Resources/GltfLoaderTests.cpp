@@ -85,7 +85,7 @@ TEST_CASE("glTF nodes: nested TRS and matrix transforms place the vertices in wo
     checkVec(m.boundsMin, 8, 0, 10);
     checkVec(m.boundsMax, 10, 2, 10);
     REQUIRE(m.ranges.size() == 1);
-    CHECK(m.ranges[0].material == -1);
+    CHECK(m.ranges[0].material == 0); // the glTF default material, appended
     CHECK(m.ranges[0].indexCount == 3);
 }
 
@@ -226,7 +226,7 @@ TEST_CASE("glTF materials: metallic-roughness mapped to Blinn-Phong; one range p
     auto r = load(dir, "materials.gltf", a.embedded());
     REQUIRE(r.ok());
     const Model& m = r.value();
-    REQUIRE(m.materials.size() == 3);
+    REQUIRE(m.materials.size() == 4); // the file's three, then the default for the primitive without one
     // paint: kd = base (metal 0), ks = 0.04, shininess 2 / 0.5^4 - 2 = 30.
     CHECK(m.materials[0].name == "paint");
     CHECK(m.materials[0].kd.r == 0.8f);
@@ -251,9 +251,10 @@ TEST_CASE("glTF materials: metallic-roughness mapped to Blinn-Phong; one range p
     CHECK_FALSE(m.materials[0].doubleSided);
     CHECK(m.materials[1].doubleSided);
     CHECK_FALSE(m.materials[2].doubleSided);
-    // First use: gold (mesh 0), none, paint, default (mesh 1), and gold again joins its range.
+    // First use: gold (mesh 0), none (the default material, appended: 3), paint, "default"
+    // (mesh 1), and gold again joins its range.
     REQUIRE(m.ranges.size() == 4);
-    const int order[] = {1, -1, 0, 2};
+    const int order[] = {1, 3, 0, 2};
     for (std::size_t i = 0; i < 4; ++i) CHECK(m.ranges[i].material == order[i]);
     CHECK(m.ranges[0].indexCount == 6);
     CHECK(m.ranges[3].firstIndex + m.ranges[3].indexCount == m.mesh.indices.size());
@@ -1059,4 +1060,28 @@ TEST_CASE("glTF: KHR_materials_unlit (required or not) marks the material unlit"
     REQUIRE(r.value().materials[0].pbr.has_value());
     CHECK(r.value().materials[0].pbr->unlit);
     CHECK_FALSE(r.value().materials[1].pbr->unlit);
+}
+
+TEST_CASE("glTF: a primitive without a material gets the specification's default material", "[resources][gltf][pbr]") {
+    const std::string dir = freshDir("gltf-default-material");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    auto r = load(dir, "nomaterial.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.ranges.size() == 1);
+    REQUIRE(m.ranges[0].material >= 0);
+    const Material& k = m.materials[std::size_t(m.ranges[0].material)];
+    REQUIRE(k.pbr.has_value());
+    CHECK(k.pbr->baseColor.r == 1.0f);
+    CHECK(k.pbr->baseColor.g == 1.0f);
+    CHECK(k.pbr->baseColor.b == 1.0f);
+    CHECK(k.pbr->metallic == 1.0f);
+    CHECK(k.pbr->roughness == 1.0f);
+    CHECK_FALSE(k.doubleSided);
+    CHECK(k.alpha == 1.0f);
+    CHECK(k.texture == -1);
 }
