@@ -4,7 +4,7 @@
 # for the default (pbr, linear) and the former model (phong on display values).
 # With IBL=1 both light the models from the same cube-map sky too (scripts/make-sky.py, with
 # three.js's mirrored lookup undone), and the PSNR is over all pixels, the sky included; the
-# second column is then pbr without --ibl.
+# second column is then pbr with --no-ibl.
 # Usage: scripts/compare-threejs.sh [OUT_DIR] [MODEL...]   (a development aid: not in the test command)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -21,7 +21,7 @@ ours=() three=() second=(--shading phong --color gamma) key=psnr_both_nonblack
 heading=("pbr+linear dB" "phong+gamma dB")
 if [[ ${IBL:-0} == 1 ]]; then
   python3 scripts/make-sky.py "$out/sky" && python3 scripts/make-sky.py "$out/sky-three" --three
-  ours=(--skybox "$out/sky" --ibl) three=(--skybox "$out/sky-three" --ibl) second=(--skybox "$out/sky") key=psnr_all
+  ours=(--skybox "$out/sky" --ibl) three=(--skybox "$out/sky-three" --ibl) second=(--skybox "$out/sky" --no-ibl) key=psnr_all
   heading=("pbr+ibl dB" "pbr, no ibl dB")
 fi
 printf '%-22s %14s %14s\n' model "${heading[@]}"

@@ -129,6 +129,7 @@ Action DemoController::keyDown(Key key, bool repeat) {
     case Action::ResetView: resetView(); break;
     case Action::CycleCamera: cycleCamera(); break;
     case Action::ToggleHelp: help_ = !help_; break;
+    case Action::ToggleSkyLight: ibl_ = ibl_ ? nullptr : sceneIbl_; break;
     case Action::ToggleAutoQuality:
         if (!autoSettings_.empty())
             autoOn_ = !autoOn_;
@@ -269,6 +270,8 @@ std::string DemoController::modeSummary() const {
         s += " | wireframe";
     if (settings_.shadows.on)
         s += " | shadows";
+    if (sceneIbl_)
+        s += ibl_ ? " | sky light" : " | sky light off";
     if (settings_.outline.pickCentre)
         s += aa.multisampled() ? " | outline (not with msaa)" : " | outline";
     if (depthView_)

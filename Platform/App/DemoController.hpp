@@ -78,7 +78,8 @@ public:
     // The lights' units (LoadedScene::physical: a glTF scene's).
     void setPhysicalLights(bool physical) { physical_ = physical; }
     // The sky's light (LoadedScene::ibl), or null.
-    void setImageLight(const ImageLight* ibl) { ibl_ = ibl; }
+    void setImageLight(const ImageLight* ibl) { ibl_ = sceneIbl_ = ibl; }
+    bool skyLightOn() const { return ibl_ != nullptr; }
     int cameraIndex() const { return cameraIndex_; }
     // A glTF file's animation (LoadedScene::animation): played from `start` seconds at real time,
     // looping over `duration` (the longest clip; 0: a pose that does not move), clip `clip` alone
@@ -121,7 +122,8 @@ private:
     Vec3 toLight_;
     std::vector<Light> lights_;
     bool physical_ = false;
-    const ImageLight* ibl_ = nullptr;
+    const ImageLight* ibl_ = nullptr;      // what the frame is lit by (null: the lights alone)
+    const ImageLight* sceneIbl_ = nullptr; // the scene's (ToggleSkyLight flips ibl_ between it and null)
     MotionTuning tuning_;
     bool depthView_ = false;
     bool help_ = false;

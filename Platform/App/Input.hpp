@@ -13,7 +13,7 @@ enum class Key {
     W, A, S, D, Q, E,          // fly: forward / strafe left / back / strafe right / down / up
     Up, Down, Left, Right,     // turn
     Shift,                     // held: move faster
-    C, M, T, P, N, L, O, H, Z, R, V, G, U, K, // toggles, reset, camera and variant (see actionForKey)
+    C, M, T, P, N, L, O, H, Z, R, V, G, U, K, I, // toggles, reset, camera and variant (see actionForKey)
     Space, Comma, Period,      // animation: play / pause, step back, step forward
     F1, F12,
     Count
@@ -43,7 +43,8 @@ enum class Action {
     StepBack,         // pause, one step (1/30 s) back
     StepForward,      // pause, one step forward
     ToggleAutoQuality, // --quality auto: keep the budget <-> hold the current setting
-    CycleVariant      // glTF KHR_materials_variants: the file's materials -> variant 0 -> 1 -> ... (the platform's: it reloads)
+    CycleVariant,     // glTF KHR_materials_variants: the file's materials -> variant 0 -> 1 -> ... (the platform's: it reloads)
+    ToggleSkyLight    // a pbr scene in front of a sky: lit by the sky too <-> by its lights alone
 };
 
 constexpr Action actionForKey(Key key) {
@@ -68,6 +69,7 @@ constexpr Action actionForKey(Key key) {
     case Key::Period: return Action::StepForward;
     case Key::U: return Action::ToggleAutoQuality;
     case Key::K: return Action::CycleVariant;
+    case Key::I: return Action::ToggleSkyLight;
     default: break;
     }
     return Action::None;
@@ -79,7 +81,7 @@ struct KeyHelp {
     const char* what;
 };
 
-inline constexpr std::array<KeyHelp, 24> kKeyHelp{{
+inline constexpr std::array<KeyHelp, 25> kKeyHelp{{
     {"W / S", "fly forward / back"},
     {"A / D", "strafe left / right"},
     {"Q / E", "fly down / up"},
@@ -97,6 +99,7 @@ inline constexpr std::array<KeyHelp, 24> kKeyHelp{{
     {"L", "wireframe overlay on / off"},
     {"O", "outline of the object at the screen centre on / off"},
     {"H", "shadows on / off"},
+    {"I", "light from the sky (glTF, pbr) on / off"},
     {"Z", "depth view (near = white) on / off"},
     {"Space", "animation (glTF): play / pause"},
     {", / .", "animation: pause and step 1/30 s back / forward"},

@@ -106,12 +106,12 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
                                          "--fov",   "--near",    "--far",    "--light",   "--shading", "--texture",
                                          "--cull",  "--threads", "--filter", "--aniso", "--wrap",    "--kd",     "--wireframe", "--persp",
                                          "--isa",   "--ssaa",   "--msaa",   "--fxaa",   "--quality", "--budget-ms", "--max-error", "--materials", "--camera", "--variant", "--time", "--animation",
-                                         "--sky",   "--skybox",  "--outline", "--ibl", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
+                                         "--sky",   "--skybox",  "--outline", "--ibl", "--no-ibl", "--color", "--tonemap", "--exposure", "--shadows", "--no-shadows", "--shadow-size", "--shadow-pcf", "--shadow-bias"};
     bool known = false;
     for (const char* f : kFlags) known |= flag == f;
     if (!known) return FlagResult::NotMine;
 
-    if (flag == "--wireframe" || flag == "--outline" || flag == "--ibl" || flag == "--shadows" || flag == "--no-shadows" ||
+    if (flag == "--wireframe" || flag == "--outline" || flag == "--ibl" || flag == "--no-ibl" || flag == "--shadows" || flag == "--no-shadows" ||
         flag == "--fxaa") {
         if (inlineValue) {
             error = flag + " takes no value";
@@ -128,7 +128,7 @@ FlagResult parseSceneFlag(const std::vector<std::string>& args, std::size_t& i, 
             o.explicitFxaa = true;
         } else if (flag == "--wireframe") o.wireframe = true;
         else if (flag == "--outline") o.outline = true;
-        else if (flag == "--ibl") o.ibl = true;
+        else if (flag == "--ibl" || flag == "--no-ibl") o.ibl = flag == "--ibl";
         else o.shadows.on = flag == "--shadows";
         return FlagResult::Consumed;
     }
@@ -368,7 +368,7 @@ std::optional<std::string> validateSceneOptions(const SceneOptions& o) {
         return "--aniso " + std::to_string(o.aniso) + " takes trilinear taps: not with --filter " + filterName(o.filter);
     if (o.aniso > 1 && o.perspective == PerspectiveMode::Affine)
         return "--aniso " + std::to_string(o.aniso) + " follows each pixel's footprint: not with --persp affine";
-    if (o.ibl && o.sky == Sky::Kind::None) return "--ibl lights the model from the sky: it needs --sky gradient or --skybox DIR";
+    if (o.ibl.value_or(false) && o.sky == Sky::Kind::None) return "--ibl lights the model from the sky: it needs --sky gradient or --skybox DIR";
     if ((o.budgetMs || o.maxError) && !o.autoQuality) return "--budget-ms and --max-error choose for --quality auto: give it too";
     if (o.budgetMs && o.maxError) return "--budget-ms and --max-error are two ways to choose: give one";
     const AntiAliasing aa = o.antiAliasing;
@@ -409,8 +409,9 @@ std::string sceneFlagsHelp() {
            "                        values (default for OBJ and the built-in scene)\n"
            "  --tonemap T           none (default: clamp) | aces | neutral (Khronos PBR Neutral); linear only\n"
            "  --exposure EV         scale the linear colour by 2^EV before tone mapping (default 0)\n"
-           "  --ibl                 light glTF (pbr) surfaces from the sky too: diffuse irradiance and\n"
-           "                        prefiltered specular, made once when the sky loads; needs a sky\n"
+           "  --ibl, --no-ibl       light glTF (pbr) surfaces from the sky too (diffuse irradiance and\n"
+           "                        prefiltered specular, made once when the sky loads), or not;\n"
+           "                        default: on when a glTF scene is drawn pbr in front of a sky\n"
            "  --time T              pose a glTF file's animations (node channels, morph targets, skins)\n"
            "                        at T seconds (default: the rest pose; each clip loops)\n"
            "  --animation N|all     only animation N (numbered from 0), or all of them (default)\n"

@@ -105,7 +105,10 @@ struct SceneOptions {
     // --color linear|gamma (unset: the scene's own convention, applySceneDefaults), --tonemap,
     // --exposure EV (linear only: Raster/Shade/ColorSpace.hpp).
     std::optional<ColorMode> colour;
-    bool ibl = false; // --ibl: the sky lights pbr surfaces (Raster/Shade/Ibl.hpp)
+    // --ibl / --no-ibl: the sky lights pbr surfaces (Raster/Shade/Ibl.hpp), or not; unset: it does
+    // when a glTF scene is drawn pbr in front of a sky (as glTF viewers light a model by its
+    // environment), and not otherwise (loadScene).
+    std::optional<bool> ibl;
     ToneMap toneMap = ToneMap::None;
     float exposure = 0.0f;
 };

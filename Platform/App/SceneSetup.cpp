@@ -238,7 +238,10 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         if (!cube) return Result<LoadedScene>::failure(cube.error());
         out.scene.sky.cube = std::make_shared<const CubeMap>(std::move(cube.value()));
     }
-    if (options.ibl && out.scene.sky.on()) out.ibl = std::make_shared<const ImageLight>(out.scene.sky);
+    // The sky's light: asked for, or by default wherever a glTF scene is drawn pbr in front of a sky
+    // (what a glTF viewer shows); nothing is made for a scene that would not read it.
+    const bool pbrDrawn = out.physical && (!options.explicitShading || options.shading == ShadingMode::Pbr);
+    if (options.ibl.value_or(pbrDrawn) && out.scene.sky.on()) out.ibl = std::make_shared<const ImageLight>(out.scene.sky);
     if (options.camera && std::size_t(*options.camera) >= out.cameras.size())
         return Result<LoadedScene>::failure((options.obj.empty() ? std::string("the built-in scene") : options.obj) +
                                             ": --camera " + std::to_string(*options.camera) + ": it has " +

@@ -198,6 +198,7 @@ app::Key MainWindow::translateKey(WPARAM vk) {
     case VK_SHIFT: return Key::Shift;
     case 'C': return Key::C;
     case 'K': return Key::K;
+    case 'I': return Key::I;
     case 'M': return Key::M;
     case 'T': return Key::T;
     case 'P': return Key::P;

@@ -9,6 +9,7 @@
 #include "Platform/App/DemoController.hpp"
 #include "Platform/App/DepthView.hpp"
 #include "Platform/App/FrameStats.hpp"
+#include "Raster/Shade/Ibl.hpp"
 
 using namespace sr;
 using namespace sr::app;
@@ -310,3 +311,29 @@ TEST_CASE("--quality auto in the demo: the probe's setting applied, followed as 
     c.keyUp(Key::N);
     CHECK_FALSE(c.autoQuality());
 }
+
+TEST_CASE("I toggles the light from the sky of a scene that has one; the title says which", "[platform][pbr][ibl]") {
+    DemoController c = makeController();
+    // No sky light: the key changes nothing, the title does not mention it.
+    CHECK(c.keyDown(Key::I) == Action::ToggleSkyLight);
+    c.keyUp(Key::I);
+    CHECK_FALSE(c.skyLightOn());
+    CHECK(c.frameView(64, 48).ibl == nullptr);
+    CHECK(c.modeSummary().find("sky light") == std::string::npos);
+    // A scene lit by its sky: on at the start, off with I, on again.
+    Sky sky;
+    sky.kind = Sky::Kind::Gradient;
+    const ImageLight ibl(sky);
+    c.setImageLight(&ibl);
+    CHECK(c.frameView(64, 48).ibl == &ibl);
+    CHECK(c.modeSummary().find(" | sky light") != std::string::npos);
+    CHECK(c.modeSummary().find("sky light off") == std::string::npos);
+    c.keyDown(Key::I);
+    c.keyUp(Key::I);
+    CHECK_FALSE(c.skyLightOn());
+    CHECK(c.frameView(64, 48).ibl == nullptr);
+    CHECK(c.modeSummary().find(" | sky light off") != std::string::npos);
+    c.keyDown(Key::I);
+    CHECK(c.frameView(64, 48).ibl == &ibl);
+}
+

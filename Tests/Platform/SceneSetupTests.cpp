@@ -302,4 +302,46 @@ TEST_CASE("a glTF material whose only map is occlusion keeps its uvs and its map
     CHECK(scene.textures[std::size_t(d.occlusionTexture)].width() == 1);
     CHECK(scene.meshes[std::size_t(d.mesh)].hasUvs());
 }
+
+TEST_CASE("a glTF scene drawn pbr in front of a sky is lit by it unless --no-ibl; other scenes only with --ibl", "[platform][ibl]") {
+    // The flags.
+    std::vector<std::string> args{"--no-ibl", "--ibl"};
+    std::size_t i = 0;
+    SceneOptions parsed;
+    std::string error;
+    CHECK_FALSE(parsed.ibl.has_value());
+    CHECK(parseSceneFlag(args, i, parsed, error) == FlagResult::Consumed);
+    CHECK(parsed.ibl == false);
+    ++i;
+    CHECK(parseSceneFlag(args, i, parsed, error) == FlagResult::Consumed);
+    CHECK(parsed.ibl == true);
+    parsed.sky = Sky::Kind::None;
+    CHECK(validateSceneOptions(parsed).has_value()); // --ibl needs a sky
+    parsed.ibl = false;
+    CHECK_FALSE(validateSceneOptions(parsed).has_value()); // --no-ibl does not
+
+    const auto iblOf = [](SceneOptions o) {
+        auto loaded = loadScene(o);
+        REQUIRE(loaded.ok());
+        return loaded.value().ibl != nullptr;
+    };
+    SceneOptions gltf;
+    gltf.obj = "/usr/share/assimp/models/glTF2/BoxTextured-glTF/BoxTextured.gltf";
+    CHECK_FALSE(iblOf(gltf)); // no sky
+    gltf.sky = Sky::Kind::Gradient;
+    CHECK(iblOf(gltf));
+    SceneOptions off = gltf;
+    off.ibl = false;
+    CHECK_FALSE(iblOf(off));
+    SceneOptions phong = gltf;
+    phong.shading = ShadingMode::Phong;
+    phong.explicitShading = true;
+    CHECK_FALSE(iblOf(phong)); // nothing would read it
+    SceneOptions builtIn;
+    builtIn.sky = Sky::Kind::Gradient;
+    CHECK_FALSE(iblOf(builtIn));
+    builtIn.ibl = true;
+    CHECK(iblOf(builtIn));
+}
 #endif
+
