@@ -78,7 +78,11 @@ public:
     // The lights' units (LoadedScene::physical: a glTF scene's).
     void setPhysicalLights(bool physical) { physical_ = physical; }
     // The sky's light (LoadedScene::ibl), or null.
-    void setImageLight(const ImageLight* ibl) { ibl_ = sceneIbl_ = ibl; }
+    // The scene's sky light (a reload's too: turned off with I, it stays off).
+    void setImageLight(const ImageLight* ibl) {
+        ibl_ = sceneIbl_ && !ibl_ ? nullptr : ibl;
+        sceneIbl_ = ibl;
+    }
     bool skyLightOn() const { return ibl_ != nullptr; }
     int cameraIndex() const { return cameraIndex_; }
     // A glTF file's animation (LoadedScene::animation): played from `start` seconds at real time,

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The demo cycles a glTF file's material variants (KHR_materials_variants) with K under Xvfb +
 # Wine: the title names the variant shown and the picture changes colour; a second K goes back to
-# the file's own materials; Esc exits with code 0. The model, written here: a red quad whose
+# the file's own materials; I turns the light from the demo's sky off (the title says so, the
+# picture darkens) and on again; Esc exits with code 0. The model, written here: a red quad whose
 # variant "gold" makes it blue.
 # Usage: demo_variants.sh <path/to/SoftRaster.exe> [artifacts dir (default build/artifacts)]
 set -euo pipefail
@@ -65,6 +66,20 @@ unnamed() { last=$(title); [[ "$last" != *"| variant "* ]]; }
 poll "the variant gone from the title after a second K" unnamed
 back() { local f; f=$(shot back) || return 1; last="$(differing "$own" "$f") pixels differ"; [[ "$last" == "0 pixels differ" ]]; }
 poll "the file's own materials again" back
+
+[[ "$(title)" == *"| sky light"* ]] || fail "the glTF scene is not lit by the sky at the start: '$(title)'"
+press i
+skyOff() { last=$(title); [[ "$last" == *"sky light off"* ]]; }
+poll "'sky light off' in the title after I" skyOff
+m=0
+darker() { m=$((m + 1)); local f; f=$(shot "no-sky-$m") || return 1; last="$(differing "$own" "$f") pixels differ"; [[ "$last" =~ ^[0-9]{4,}\  ]]; }
+poll "the quad to change without the sky's light" darker
+log "sky light off: $last"
+press i
+skyOn() { last=$(title); [[ "$last" == *"| sky light"* && "$last" != *"sky light off"* ]]; }
+poll "'sky light' in the title after a second I" skyOn
+lit() { local f; f=$(shot sky-again) || return 1; last="$(differing "$own" "$f") pixels differ"; [[ "$last" == "0 pixels differ" ]]; }
+poll "the sky's light again" lit
 
 press Escape
 wait_exit Escape

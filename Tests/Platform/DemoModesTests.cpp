@@ -333,7 +333,11 @@ TEST_CASE("I toggles the light from the sky of a scene that has one; the title s
     CHECK_FALSE(c.skyLightOn());
     CHECK(c.frameView(64, 48).ibl == nullptr);
     CHECK(c.modeSummary().find(" | sky light off") != std::string::npos);
+    // A reload while it is off (K: the scene's new sky light) keeps it off.
+    const ImageLight reloaded(sky);
+    c.setImageLight(&reloaded);
+    CHECK(c.frameView(64, 48).ibl == nullptr);
     c.keyDown(Key::I);
-    CHECK(c.frameView(64, 48).ibl == &ibl);
+    CHECK(c.frameView(64, 48).ibl == &reloaded);
 }
 
