@@ -219,7 +219,7 @@ namespace {
 
 // The directional albedo of brdfCosine (red channel) for a view at `viewAngle` degrees from the
 // normal, integrated in double over light directions drawn from the GGX lobe itself: h on a
-// 64 x 64 stratified grid of (xi, phi), l = reflect(v, h), each sample f N.L / pdf(l) with
+// 128 x 128 stratified grid of (xi, phi), l = reflect(v, h), each sample f N.L / pdf(l) with
 // pdf(l) = D(h) N.H / (4 V.H). multiScatter: -1 for brdfMultiScatter's k at this view, else k.
 double lobeAlbedo(const PbrSurface& s, double viewAngle, float multiScatter) {
     const Vec3 n{0.0f, 0.0f, 1.0f};
