@@ -16,6 +16,11 @@ models=("$@")
 [[ ${#models[@]} -gt 0 ]] || models=("$M/ClearCoat-glTF/ClearCoatTest.gltf" "$M/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf"
   "$M/2CylinderEngine-glTF-Binary/2CylinderEngine.glb" "$M/BoxTextured-glTF/BoxTextured.gltf")
 mkdir -p "$out"
+# A vertex-coloured model (COLOR_0): assimp's glTF export of assimp-testmodels' coloured cube.
+cube=/usr/share/assimp/models/OBJ/cube_with_vertexcolors.obj
+if [[ $# -eq 0 && -f $cube ]] && command -v assimp >/dev/null; then
+  assimp export "$cube" "$out/cube_with_vertexcolors.gltf" -f gltf2 >/dev/null && models+=("$out/cube_with_vertexcolors.gltf")
+fi
 W=${WIDTH:-400} H=${HEIGHT:-300}
 ours=() three=() second=(--shading phong --color gamma) key=psnr_both_nonblack
 heading=("pbr+linear dB" "phong+gamma dB")

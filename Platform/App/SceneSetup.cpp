@@ -58,6 +58,10 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
         }
         for (const DrawRange& range : model.ranges)
             if (usesUvs(range) == textured) clearRange(src, range.firstIndex, range.indexCount, remap);
+        // Vertex colours that are all white change no base colour: the mesh drops them (its
+        // draws then interpolate none).
+        const auto white = [](const Color& c) { return c.r == 1.0f && c.g == 1.0f && c.b == 1.0f && c.a == 1.0f; };
+        if (std::all_of(part.colours.begin(), part.colours.end(), white)) part.colours.clear();
         if (!part.indices.empty()) {
             scene.meshes.push_back(std::move(part));
             if (origins) origins->push_back(std::move(partOrigins));
@@ -143,6 +147,7 @@ std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex,
             if (src.hasNormals()) part.normals.push_back(src.normals[v]);
             if (src.hasUvs()) part.uvs.push_back(src.uvs[v]);
             if (src.hasTangents()) part.tangents.push_back(src.tangents[v]);
+            if (src.hasColours()) part.colours.push_back(src.colours[v]);
             if (origins) origins->push_back(v);
         }
         part.indices.push_back(remap[v]);

@@ -77,7 +77,11 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
 template <bool kTextured>
 void drawShaded(RenderContext& ctx, const DrawContext& d, ShadingMode mode, std::size_t indexCount) {
     switch (mode) {
-    case ShadingMode::Unlit: drawWith(ctx, d, indexCount, UnlitProgram<kTextured>(&d, programs::encode(d, d.kd))); break;
+    case ShadingMode::Unlit: // a glTF material's base colour times its vertex colours (COLOR_0), where the mesh has them
+        if (d.material && d.material->pbr && d.mesh.hasColours())
+            drawWith(ctx, d, indexCount, UnlitProgram<kTextured, true>(&d, programs::encode(d, d.kd)));
+        else drawWith(ctx, d, indexCount, UnlitProgram<kTextured>(&d, programs::encode(d, d.kd)));
+        break;
     case ShadingMode::Flat: drawWith(ctx, d, indexCount, FlatProgram<kTextured>(&d)); break;
     case ShadingMode::Gouraud:
         if (d.whiteLights) drawWith(ctx, d, indexCount, GouraudProgram<kTextured>(&d));
@@ -100,9 +104,16 @@ struct DrawInputs final : RenderContext::Kept {
     std::optional<DrawContext> draw, pbrDraw;
 };
 
+// The pbr program for the draw's maps, with or without the mesh's vertex colours.
+template <bool kMaps, bool kTangents>
+void drawPbrWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
+    if (d.mesh.hasColours()) drawWith(ctx, d, indexCount, PbrProgram<kMaps, kTangents, true>(&d));
+    else drawWith(ctx, d, indexCount, PbrProgram<kMaps, kTangents>(&d));
+}
+
 // A glTF material under ShadingMode::Pbr: the maps it has (with uvs), the tangents its normal
-// map needs (without them the map is not applied). The occlusion map scales the sky's light
-// only: without --ibl nothing reads it.
+// map needs (without them the map is not applied), the vertex colours where the mesh has them.
+// The occlusion map scales the sky's light only: without --ibl nothing reads it.
 void drawPbr(RenderContext& ctx, DrawInputs& in, std::size_t indexCount) {
     const DrawContext& base = *in.draw;
     const SurfaceMaterial& material = in.material;
@@ -116,9 +127,9 @@ void drawPbr(RenderContext& ctx, DrawInputs& in, std::size_t indexCount) {
     const bool maps = anyMap != nullptr && mesh.hasUvs();
     DrawContext& d = in.pbrDraw.emplace(base);
     d.texture = maps ? anyMap : nullptr; // the uv varyings' rebase (drawStateFor)
-    if (!maps) drawWith(ctx, d, indexCount, PbrProgram<false, false>(&d));
-    else if (material.normalMap && mesh.hasTangents()) drawWith(ctx, d, indexCount, PbrProgram<true, true>(&d));
-    else drawWith(ctx, d, indexCount, PbrProgram<true, false>(&d));
+    if (!maps) drawPbrWith<false, false>(ctx, d, indexCount);
+    else if (material.normalMap && mesh.hasTangents()) drawPbrWith<true, true>(ctx, d, indexCount);
+    else drawPbrWith<true, false>(ctx, d, indexCount);
 }
 
 } // namespace

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "Math/Color.hpp"
 #include "Math/Vec.hpp"
 
 namespace sr {
@@ -18,6 +19,9 @@ struct Mesh {
     // Tangent space of a normal map: xyz the unit tangent (along +u), w = +-1 the handedness of
     // the bitangent (B = w N x T, glTF TANGENT's convention). Empty, or one per position.
     std::vector<Vec4> tangents;
+    // Vertex colours in linear light (glTF COLOR_0, RGBA; alpha 1 where the file gives RGB): a
+    // factor of the base colour. Empty, or one per position.
+    std::vector<Color> colours;
     std::vector<std::uint32_t> indices; // 3 per triangle
 
     std::size_t vertexCount() const { return positions.size(); }
@@ -25,6 +29,7 @@ struct Mesh {
     bool hasNormals() const { return !normals.empty() && normals.size() == positions.size(); }
     bool hasUvs() const { return !uvs.empty() && uvs.size() == positions.size(); }
     bool hasTangents() const { return !tangents.empty() && tangents.size() == positions.size(); }
+    bool hasColours() const { return !colours.empty() && colours.size() == positions.size(); }
 };
 
 // Every index refers to an existing vertex and the index count is a multiple of 3. Loaders

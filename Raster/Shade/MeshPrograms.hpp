@@ -145,20 +145,39 @@ inline void transformVertex(const DrawContext& d, std::size_t i, ClipVertex& out
 
 // The four shading programs (drawProgram's Program: vertex, triangle, fragment). Each render
 // thread works on its own copy, so the per-triangle state (setup, terms) lives in the object.
-template <bool kTextured>
+// Unlit: kd (times the texel when textured); with kColours also times the vertex colour's RGB
+// (a glTF material's COLOR_0), in varyings kC..kC+2 after the uv.
+template <bool kTextured, bool kColours = false>
 struct UnlitProgram {
     static constexpr ShadingMode kMode = ShadingMode::Unlit;
     static constexpr bool kIsTextured = kTextured;
-    static constexpr int kVaryings = kTextured ? 2 : 0;
+    static constexpr bool kVertexColours = kColours;
+    static constexpr int kC = kTextured ? 2 : 0;
+    static constexpr int kVaryings = kC + (kColours ? 3 : 0);
     const DrawContext* d;
     Pixel flat;
     const TriangleSetup* setup = nullptr;
     UnlitProgram(const DrawContext* dc, Pixel colour) : d(dc), flat(colour) {}
-    void vertex(std::size_t i, ClipVertex& out) const { transformVertex<kTextured>(*d, i, out); }
+    void vertex(std::size_t i, ClipVertex& out) const {
+        transformVertex<kTextured>(*d, i, out);
+        if constexpr (kColours) {
+            const Color c = d->mesh.colours[i];
+            out.varyings[kC] = c.r;
+            out.varyings[kC + 1] = c.g;
+            out.varyings[kC + 2] = c.b;
+        }
+    }
     void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
     Pixel fragment(const Fragment<kVaryings>& f) const {
-        if constexpr (kTextured) return encode(*d, sampleKd(*d, setup, f));
-        else return flat;
+        if constexpr (kColours) {
+            Color c = d->kd;
+            if constexpr (kTextured) c = sampleKd(*d, setup, f);
+            return encode(*d, Color{c.r * f.varyings[kC], c.g * f.varyings[kC + 1], c.b * f.varyings[kC + 2], 1.0f});
+        } else if constexpr (kTextured) {
+            return encode(*d, sampleKd(*d, setup, f));
+        } else {
+            return flat;
+        }
     }
     template <bool kT = kTextured, std::enable_if_t<kT, int> = 0> // textured programs only (HasFragmentAlpha)
     float fragmentAlpha(const Fragment<kVaryings>& f) const { return sampleTexel(*d, setup, f).a; }

@@ -44,20 +44,23 @@ inline Vec3 imageLight(const ImageLight& light, const PbrSurface& s, Vec3 n, Vec
 // glTF BRDF (pbrRadiance, compensated for multiple scattering: brdfMultiScatter) plus the
 // emissive term. With kMaps: the uv in varyings 0-1 and the
 // material's maps sampled at it (each with its own level of detail); with kTangents also the
-// tangent (xyzw) for the normal map. Colour maps (base colour, emissive) are decoded from sRGB
+// tangent (xyzw) for the normal map; with kColours the vertex colour's RGB (glTF COLOR_0), a
+// factor of the base colour after the texture's (factor x texture x colour, in that order). Colour maps (base colour, emissive) are decoded from sRGB
 // in linear mode; the others are data and read as stored. Double-sided surfaces seen from
 // behind are lit on their back (the normal flipped toward the viewer, as the specification
 // asks); single-sided ones never show their back (culled).
 // The span kernels (Raster/Fill/Kernels/Kernels*Pbr.cpp) cover all three variants.
-template <bool kMaps, bool kTangents = false>
+template <bool kMaps, bool kTangents = false, bool kColours = false>
 struct PbrProgram {
     static_assert(kMaps || !kTangents, "a normal map needs uvs");
     static constexpr ShadingMode kMode = ShadingMode::Pbr;
     static constexpr bool kIsTextured = kMaps;
     static constexpr bool kNormalMap = kTangents;
+    static constexpr bool kVertexColours = kColours;
     static constexpr int kP = kMaps ? 2 : 0; // position kP..kP+2, normal kP+3..kP+5
     static constexpr int kT = kP + 6;        // tangent kT..kT+3 (kTangents)
-    static constexpr int kVaryings = kT + (kTangents ? 4 : 0);
+    static constexpr int kC = kT + (kTangents ? 4 : 0); // vertex colour kC..kC+2 (kColours)
+    static constexpr int kVaryings = kC + (kColours ? 3 : 0);
     const DrawContext* d;
     const TriangleSetup* setup = nullptr;
     explicit PbrProgram(const DrawContext* dc) : d(dc) {}
@@ -73,6 +76,12 @@ struct PbrProgram {
             out.varyings[kT + 1] = t.y;
             out.varyings[kT + 2] = t.z;
             out.varyings[kT + 3] = t.w;
+        }
+        if constexpr (kColours) {
+            const Color c = d->mesh.colours[i];
+            out.varyings[kC] = c.r;
+            out.varyings[kC + 1] = c.g;
+            out.varyings[kC + 2] = c.b;
         }
     }
     void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
@@ -100,6 +109,10 @@ struct PbrProgram {
                 const Color c = sampleMap(*m.texture, true, f);
                 s.baseColor = {s.baseColor.x * c.r, s.baseColor.y * c.g, s.baseColor.z * c.b};
             }
+        }
+        if constexpr (kColours)
+            s.baseColor = {s.baseColor.x * f.varyings[kC], s.baseColor.y * f.varyings[kC + 1], s.baseColor.z * f.varyings[kC + 2]};
+        if constexpr (kMaps) {
             if (m.metallicRoughness) {
                 const Color c = sampleMap(*m.metallicRoughness, false, f);
                 s.roughness *= c.g;

@@ -117,6 +117,18 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
         if (t.count != count) return Status::failure(what + " TEXCOORD_0: count differs from POSITION's");
         uvs = t;
     }
+    // COLOR_0 (glTF "Meshes"): RGB or RGBA, float or normalised unsigned byte/short, linear.
+    std::optional<View> colours;
+    if (const int ci = attribute("COLOR_0"); ci >= 0) {
+        auto v = b.accessors->view(ci, what + " COLOR_0");
+        if (!v) return Status::failure(v.error());
+        const View& c = v.value();
+        const bool unorm = c.normalized && (c.componentType == gltf::kUnsignedByte || c.componentType == gltf::kUnsignedShort);
+        if ((c.components != 3 && c.components != 4) || (c.componentType != gltf::kFloat && !unorm))
+            return Status::failure(what + " COLOR_0: must be float or normalised unsigned byte/short VEC3 or VEC4");
+        if (c.count != count) return Status::failure(what + " COLOR_0: count differs from POSITION's");
+        colours = c;
+    }
     // The primitive's vertex order: indices, or 0..count-1.
     std::vector<std::uint32_t> order;
     if (prim.indices >= 0) {
@@ -240,6 +252,20 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
         }
     } else if (b.model.hasUvs) {
         mesh.uvs.resize(mesh.positions.size(), Vec2{});
+    }
+    // Vertex colours: once one primitive has them, every vertex does (white where none is given,
+    // which multiplies the base colour by 1). A non-finite component reads as 1.
+    if (colours || !mesh.colours.empty()) {
+        mesh.colours.resize(base, Color{1.0f, 1.0f, 1.0f, 1.0f});
+        for (std::size_t i = 0; colours && i < vertices; ++i) {
+            float c[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+            for (int k = 0; k < colours->components; ++k) {
+                const float x = readFloat(*colours, src(i), k);
+                c[k] = std::isfinite(x) ? x : 1.0f;
+            }
+            mesh.colours.push_back(Color{c[0], c[1], c[2], c[3]});
+        }
+        mesh.colours.resize(mesh.positions.size(), Color{1.0f, 1.0f, 1.0f, 1.0f});
     }
     // Tangents, for a material with a normal map: the file's TANGENT through the node's transform,
     // else generated from the uvs (addTangents). Vertices without any get (1, 0, 0, 1).

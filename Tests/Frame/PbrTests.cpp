@@ -552,6 +552,97 @@ TEST_CASE("unlit glTF materials: KHR_materials_unlit and --shading unlit draw th
     }
 }
 
+TEST_CASE("glTF COLOR_0 in pbr: base colour factor x texture x vertex colour, interpolated per pixel", "[render][pbr][colour0]") {
+    // A factor moved into the vertex colours draws the same image (within one level: the
+    // interpolated constant may differ from it in its last bits), on the untextured sphere and on
+    // the textured ground; vertex colours that vary across the sphere make it vary too.
+    const auto compare = [](const Image& a, const Image& b, int& maxDiff, int& differing) {
+        maxDiff = 0;
+        differing = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const int d = std::abs(int(a.texel(x, y)[c]) - int(b.texel(x, y)[c]));
+                    maxDiff = std::max(maxDiff, d);
+                    differing += d > 0;
+                }
+    };
+    for (const ColorMode colour : {ColorMode::Linear, ColorMode::Gamma}) {
+        INFO((colour == ColorMode::Linear ? "linear" : "gamma"));
+        PbrScene s = makePbrScene();
+        s.settings.colour = colour;
+        s.scene.draws[3].pbr->baseColor = {0.5f, 0.25f, 0.75f, 1.0f}; // the textured ground
+        const Image factors = renderPbr(s, s.settings);
+        PbrScene v = s;
+        v.settings.colour = colour;
+        const Color sphere = v.scene.draws[0].pbr->baseColor, ground = v.scene.draws[3].pbr->baseColor;
+        v.scene.draws[0].pbr->baseColor = {1.0f, 1.0f, 1.0f, 1.0f};
+        v.scene.draws[3].pbr->baseColor = {1.0f, 1.0f, 1.0f, 1.0f};
+        v.scene.meshes[0].colours.assign(v.scene.meshes[0].vertexCount(), sphere);
+        v.scene.meshes[3].colours.assign(v.scene.meshes[3].vertexCount(), ground);
+        const Image colours = renderPbr(v, v.settings);
+        int maxDiff = 0, differing = 0;
+        compare(factors, colours, maxDiff, differing);
+        INFO("max difference " << maxDiff << " levels, " << differing << " channels differ");
+        CHECK(maxDiff <= 1);
+        CHECK(differing < kW * kH / 50);
+        // Without the colours the sphere and the ground are white: a different image.
+        PbrScene white = v;
+        white.settings.colour = colour;
+        white.scene.meshes[0].colours.clear();
+        white.scene.meshes[3].colours.clear();
+        compare(factors, renderPbr(white, white.settings), maxDiff, differing);
+        CHECK(maxDiff > 40);
+        // Red above the sphere's equator, blue below: its upper pixels red, its lower ones blue.
+        PbrScene split = white;
+        split.settings.colour = colour;
+        split.scene.draws.pop_back(); // no ground: only the spheres
+        Mesh& m = split.scene.meshes[0];
+        m.colours.resize(m.vertexCount());
+        for (std::size_t i = 0; i < m.vertexCount(); ++i)
+            m.colours[i] = m.positions[i].y > 1.0f ? Color{1.0f, 0.0f, 0.0f, 1.0f} : Color{0.0f, 0.0f, 1.0f, 1.0f};
+        const Image img = renderPbr(split, split.settings);
+        // The sphere's pixels (left third of the image): the red ones above the blue ones.
+        long redRows = 0, blueRows = 0, red = 0, blue = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW / 3; ++x) {
+                const std::uint8_t* t = img.texel(x, y);
+                if (t[0] > t[2] + 20) ++red, redRows += y; // (the white specular lobe adds to every channel)
+                if (t[2] > t[0] + 20) ++blue, blueRows += y;
+            }
+        INFO(red << " red pixels, " << blue << " blue pixels");
+        REQUIRE(red > 50);
+        REQUIRE(blue > 50);
+        CHECK(redRows / red + 5 < blueRows / blue);
+        // Unlit (KHR_materials_unlit): the base colour times the vertex colour, exactly.
+        split.scene.draws[0].pbr->baseColor = {0.5f, 1.0f, 0.25f, 1.0f};
+        split.scene.draws[0].pbr->unlit = true;
+        const Image unlit = renderPbr(split, split.settings);
+        const std::uint8_t redWant = colour == ColorMode::Linear ? encodeSrgb8(0.5f) : toUnorm8(0.5f);
+        const std::uint8_t blueWant = colour == ColorMode::Linear ? encodeSrgb8(0.25f) : toUnorm8(0.25f);
+        int redUnlit = 0, blueUnlit = 0, other = 0;
+        for (int y = 0; y < kH; ++y)
+            for (int x = 0; x < kW / 3; ++x) {
+                const std::uint8_t* t = unlit.texel(x, y);
+                if (t[0] == 0 && t[1] == 0 && t[2] == 0) continue; // the clear colour
+                if (t[0] == redWant && t[1] == 0 && t[2] == 0) ++redUnlit;
+                else if (t[0] == 0 && t[1] == 0 && t[2] == blueWant) ++blueUnlit;
+                else { // the band where red and blue vertices share a triangle: t red + (1 - t) blue
+                    ++other;
+                    if (colour == ColorMode::Gamma) {
+                        INFO("between: " << int(t[0]) << " " << int(t[1]) << " " << int(t[2]));
+                        CHECK(t[1] == 0);
+                        CHECK(std::fabs(t[0] / (255.0 * 0.5) + t[2] / (255.0 * 0.25) - 1.0) < 0.03);
+                    }
+                }
+            }
+        INFO("unlit: " << redUnlit << " red, " << blueUnlit << " blue, " << other << " between");
+        CHECK(redUnlit > 200);
+        CHECK(blueUnlit > 200);
+        CHECK(other < (redUnlit + blueUnlit) / 3);
+    }
+}
+
 TEST_CASE("pbr scene: emissive adds exactly its value; gamma and linear differ as the curve says", "[render][pbr]") {
     PbrScene s = makePbrScene();
     // Emission alone: no lights. The emissive sphere's pixels are the encoded emissive colour,

@@ -303,6 +303,41 @@ TEST_CASE("a glTF material whose only map is occlusion keeps its uvs and its map
     CHECK(scene.meshes[std::size_t(d.mesh)].hasUvs());
 }
 
+TEST_CASE("a scene mesh keeps the file's vertex colours (COLOR_0), and drops them where all are white", "[platform][gltf]") {
+    // Two meshes: the textured primitive's and the untextured one's (sceneFromModel). Coloured
+    // in the untextured one only: the textured mesh's colours (all the white given to vertices
+    // without COLOR_0) are dropped, so its draw interpolates none.
+    gltftest::Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    const int colour = a.floats({1, 0, 0, 0, 1, 0, 0, 0, 1}, "VEC3");
+    const int white = a.floats({1, 1, 1, 1, 1, 1, 1, 1, 1}, "VEC3");
+    a.nodes = R"([{"mesh":0}])";
+    a.meshes = R"([{"primitives":[{"attributes":{"POSITION":)" + std::to_string(pos) + R"(,"TEXCOORD_0":)" + std::to_string(uv) +
+               R"(,"COLOR_0":)" + std::to_string(white) + R"(},"material":0},{"attributes":{"POSITION":)" + std::to_string(pos) +
+               R"(,"COLOR_0":)" + std::to_string(colour) + R"(},"material":1}]}])";
+    a.materials = R"([{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}},{}])";
+    const std::string ppm = "P6\n1 1\n255\n\x40\x40\x40";
+    a.extra = R"(,"textures":[{"source":0}],"images":[{"uri":"data:image/x-portable-pixmap;base64,)" +
+              gltftest::base64(std::vector<unsigned char>(ppm.begin(), ppm.end())) + R"("}])";
+    SceneOptions o;
+    o.obj = objtest::writeText(objtest::freshDir("colour0"), "colour0.gltf", a.embedded());
+    auto loaded = loadScene(o);
+    REQUIRE(loaded.ok());
+    const Scene& scene = loaded.value().scene;
+    REQUIRE(scene.draws.size() == 2);
+    REQUIRE(scene.meshes.size() == 2);
+    const Mesh& textured = scene.meshes[std::size_t(scene.draws[0].mesh)];
+    const Mesh& coloured = scene.meshes[std::size_t(scene.draws[1].mesh)];
+    CHECK(textured.hasUvs());
+    CHECK(textured.colours.empty());
+    REQUIRE(coloured.hasColours());
+    CHECK(coloured.colours[0].r == 1.0f);
+    CHECK(coloured.colours[0].g == 0.0f);
+    CHECK(coloured.colours[2].b == 1.0f);
+    CHECK(coloured.colours[2].r == 0.0f);
+}
+
 TEST_CASE("a glTF scene drawn pbr in front of a sky is lit by it unless --no-ibl; other scenes only with --ibl", "[platform][ibl]") {
     // The flags.
     std::vector<std::string> args{"--no-ibl", "--ibl"};

@@ -210,6 +210,61 @@ TEST_CASE("glTF TEXCOORD_0: float or normalised u16, v flipped to OBJ's conventi
     for (std::size_t i = 6; i < 9; ++i) CHECK(m.mesh.uvs[i].x == 0.0f); // a primitive without uvs
 }
 
+TEST_CASE("glTF COLOR_0: float RGB, normalised u8 and u16 RGBA; white where a primitive has none; bad ones refused",
+          "[resources][gltf][pbr]") {
+    const std::string dir = freshDir("gltf-colour");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int rgb = a.floats({0.25f, 0.5f, 0.75f, 1, 0, 0, 0, 0.125f, 2}, "VEC3");
+    const int rgba8 = a.unsignedBytes({255, 0, 51, 102, 0, 255, 0, 255, 128, 128, 128, 0}, "VEC4");
+    const int rgba16 = a.normalizedShorts({65535, 0, 13107, 65535, 0, 65535, 0, 32768, 1, 2, 3, 4}, "VEC4");
+    const auto prim = [&](int colour) {
+        return "{\"attributes\":{\"POSITION\":" + std::to_string(pos) +
+               (colour >= 0 ? ",\"COLOR_0\":" + std::to_string(colour) : std::string()) + "}}";
+    };
+    a.meshes = "[{\"primitives\":[" + prim(-1) + "," + prim(rgb) + "," + prim(rgba8) + "," + prim(rgba16) + "]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    std::string text = a.embedded();
+    // The u8 accessor is normalised (COLOR_0 allows no other integers).
+    const std::string u8 = "\"componentType\":5121";
+    REQUIRE(text.find(u8) != std::string::npos);
+    text.replace(text.find(u8), u8.size(), u8 + ",\"normalized\":true");
+    auto r = load(dir, "colour.gltf", text);
+    REQUIRE(r.ok());
+    const Mesh& mesh = r.value().mesh;
+    REQUIRE(mesh.hasColours());
+    REQUIRE(mesh.colours.size() == 12);
+    const auto check = [&](std::size_t i, float red, float green, float blue, float alpha) {
+        INFO("vertex " << i);
+        CHECK(mesh.colours[i].r == Approx(red).epsilon(1e-6));
+        CHECK(mesh.colours[i].g == Approx(green).epsilon(1e-6));
+        CHECK(mesh.colours[i].b == Approx(blue).epsilon(1e-6));
+        CHECK(mesh.colours[i].a == Approx(alpha).epsilon(1e-6));
+    };
+    for (std::size_t i = 0; i < 3; ++i) check(i, 1, 1, 1, 1); // the primitive before the first colours: white
+    check(3, 0.25f, 0.5f, 0.75f, 1); // RGB: alpha 1
+    check(5, 0, 0.125f, 2, 1);       // float colours as written
+    check(6, 1, 0, 0.2f, 0.4f);      // u8 / 255
+    check(8, 128.0f / 255, 128.0f / 255, 128.0f / 255, 0);
+    check(9, 1, 0, 0.2f, 1);         // u16 / 65535
+    check(11, 1.0f / 65535, 2.0f / 65535, 3.0f / 65535, 4.0f / 65535);
+    // Refused: integers not normalised, two components, a count that differs from POSITION's.
+    Asset b;
+    const int bpos = b.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int raw = b.unsignedBytes({1, 2, 3, 4, 5, 6, 7, 8, 9}, "VEC3");
+    const int two = b.floats({1, 1, 1, 1, 1, 1}, "VEC2");
+    const int short4 = b.floats({1, 1, 1, 1, 1, 1, 1, 1}, "VEC4");
+    for (const int colour : {raw, two, short4}) {
+        b.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(bpos) + ",\"COLOR_0\":" +
+                   std::to_string(colour) + "}}]}]";
+        b.nodes = "[{\"mesh\":0}]";
+        const std::string e = errorOf(dir, "badcolour.gltf", b.embedded());
+        INFO(e);
+        if (colour == short4) CHECK(contains(e, "COLOR_0: count differs from POSITION's"));
+        else CHECK(contains(e, "COLOR_0: must be float or normalised unsigned byte/short VEC3 or VEC4"));
+    }
+}
+
 TEST_CASE("glTF materials: metallic-roughness mapped to Blinn-Phong; one range per material in first use",
           "[resources][gltf][materials]") {
     const std::string dir = freshDir("gltf-materials");

@@ -509,6 +509,73 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
     CHECK(totals.pixels > 50000 * long(ran));
 }
 
+TEST_CASE("the pbr and unlit kernels with vertex colours (COLOR_0) are bit-identical to the scalar program",
+          "[threads][simd][kernels][pbr]") {
+    std::mt19937 rng(41u);
+    const Mesh mesh = oneTriangle();
+    FrameView view;
+    view.eye = {0.3f, 0.4f, 3.0f};
+    view.lighting.physical = true;
+    view.lighting.ambient = 0.0f;
+    view.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1)), {kPiF, kPiF, kPiF, 1.0f}),
+                            Light::point({0.5f, 1.0f, 2.0f}, {4.0f, 3.0f, 1.0f, 1.0f}, 3.5f)};
+    const Texture base = randomTexture(rng, 13, 7), mr = randomTexture(rng, 32, 16), normals = randomTexture(rng, 16, 8);
+    PbrFactors factors;
+    factors.baseColor = {0.8f, 0.5f, 0.3f, 1.0f};
+    factors.metallic = 0.3f;
+    factors.roughness = 0.6f;
+    factors.normalScale = 0.8f;
+    Totals totals;
+    int ran = 0;
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+        if (!isaAvailable(isa)) continue;
+        ++ran;
+        for (DepthMode depth : {DepthMode::Test, DepthMode::TestWrite})
+            for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
+                for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear})
+                    for (const bool linear : {true, false}) {
+                        RenderSettings settings;
+                        settings.filter = filter;
+                        settings.perspective = persp;
+                        settings.shading = ShadingMode::Pbr;
+                        settings.colour = linear ? ColorMode::Linear : ColorMode::Gamma;
+                        const KernelKey key{depth, persp, filter, WrapMode::Repeat};
+                        SurfaceMaterial material;
+                        material.pbr = &factors;
+                        material.texture = &base;
+                        material.metallicRoughness = &mr;
+                        DrawContext d{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
+                                      Specular{}, 1.0f, false, true, {}};
+                        d.linear = linear;
+                        d.material = &material;
+                        compareKernel<PbrProgram<true, false, true>>(isa, key, [&] { return PbrProgram<true, false, true>(&d); }, rng,
+                                                                     totals);
+                        SurfaceMaterial mapped = material;
+                        mapped.normalMap = &normals;
+                        DrawContext dn = d;
+                        dn.material = &mapped;
+                        compareKernel<PbrProgram<true, true, true>>(isa, key, [&] { return PbrProgram<true, true, true>(&dn); }, rng,
+                                                                    totals);
+                        if (filter != TextureFilter::Bilinear) continue;
+                        SurfaceMaterial plain;
+                        plain.pbr = &factors;
+                        DrawContext u{view, settings, mesh, mesh.indices.data(), nullptr, Color{1.0f, 1.0f, 1.0f, 1.0f},
+                                      Specular{}, depth == DepthMode::Test ? 0.4f : 1.0f, false, false, {}};
+                        u.linear = linear;
+                        u.material = &plain;
+                        compareKernel<PbrProgram<false, false, true>>(isa, key, [&] { return PbrProgram<false, false, true>(&u); }, rng,
+                                                                      totals);
+                        // Unlit (KHR_materials_unlit, --shading unlit): kd x texel x colour, and kd x colour.
+                        DrawContext lit = d;
+                        lit.kd = {0.9f, 0.6f, 0.3f, 1.0f};
+                        compareKernel<UnlitProgram<true, true>>(isa, key, [&] { return UnlitProgram<true, true>(&lit, 0); }, rng, totals);
+                        compareKernel<UnlitProgram<false, true>>(isa, key, [&] { return UnlitProgram<false, true>(&u, 0); }, rng, totals);
+                    }
+    }
+    REQUIRE(ran > 0);
+    CHECK(totals.pixels > 10000 * long(ran));
+}
+
 TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map are bit-identical to the scalar program",
           "[threads][simd][kernels][pbr][ibl]") {
     std::mt19937 rng(41u);

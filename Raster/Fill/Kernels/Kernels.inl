@@ -576,7 +576,7 @@ FlushKernel<Prog> flushKernel(const KernelKey& key) {
 // The one shading model this translation unit instantiates, untextured and textured:
 // SR_KERNEL_PROGRAM, defined by the file that includes Kernels<Isa>.inl (one file per ISA and
 // shading model, so that no single file compiles all 2 x 4 programs' kernels).
-#ifndef SR_KERNEL_FLAG_VARIANTS_ONLY // (Phong's normal-only programs: a file of their own)
+#if !defined(SR_KERNEL_FLAG_VARIANTS_ONLY) && !defined(SR_KERNEL_COLOUR_VARIANTS_ONLY) // (variants in files of their own)
 template FillKernel<programs::SR_KERNEL_PROGRAM<false>> fillKernel(const KernelKey&);
 template FillKernel<programs::SR_KERNEL_PROGRAM<true>> fillKernel(const KernelKey&);
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false>> shadeRunsKernel(const KernelKey&);
@@ -589,8 +589,20 @@ template FillKernel<programs::SR_KERNEL_PROGRAM<true, true>> fillKernel(const Ke
 template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true, true>> shadeRunsKernel(const KernelKey&);
 template FlushKernel<programs::SR_KERNEL_PROGRAM<true, true>> flushKernel(const KernelKey&);
 #endif
+// The pbr programs with vertex colours (COLOR_0): without and with maps, and normal-mapped.
+#ifdef SR_KERNEL_COLOUR_VARIANTS_ONLY
+template FillKernel<programs::SR_KERNEL_PROGRAM<false, false, true>> fillKernel(const KernelKey&);
+template FillKernel<programs::SR_KERNEL_PROGRAM<true, false, true>> fillKernel(const KernelKey&);
+template FillKernel<programs::SR_KERNEL_PROGRAM<true, true, true>> fillKernel(const KernelKey&);
+template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<false, false, true>> shadeRunsKernel(const KernelKey&);
+template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true, false, true>> shadeRunsKernel(const KernelKey&);
+template ShadeRunsKernel<programs::SR_KERNEL_PROGRAM<true, true, true>> shadeRunsKernel(const KernelKey&);
+template FlushKernel<programs::SR_KERNEL_PROGRAM<false, false, true>> flushKernel(const KernelKey&);
+template FlushKernel<programs::SR_KERNEL_PROGRAM<true, false, true>> flushKernel(const KernelKey&);
+template FlushKernel<programs::SR_KERNEL_PROGRAM<true, true, true>> flushKernel(const KernelKey&);
+#endif
 // The program's variants with its second flag set: Gouraud's RGB terms (under coloured lights),
-// Phong's normal-only programs (no position varyings).
+// Phong's normal-only programs (no position varyings), Unlit's vertex colours.
 #if defined(SR_KERNEL_FLAG_VARIANTS) || defined(SR_KERNEL_FLAG_VARIANTS_ONLY)
 template FillKernel<programs::SR_KERNEL_PROGRAM<false, true>> fillKernel(const KernelKey&);
 template FillKernel<programs::SR_KERNEL_PROGRAM<true, true>> fillKernel(const KernelKey&);

@@ -1,3 +1,4 @@
-// The SSE2 span kernels of the unlit programs, untextured and textured (see Kernels.inl).
+// The SSE2 span kernels of the unlit programs, untextured and textured, without and with vertex colours (see Kernels.inl).
 #define SR_KERNEL_PROGRAM UnlitProgram
+#define SR_KERNEL_FLAG_VARIANTS
 #include "Raster/Fill/Kernels/KernelsSse2.inl"

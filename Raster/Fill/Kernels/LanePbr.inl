@@ -130,19 +130,28 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
     F metallic = fset(k.metallic), roughness = fset(k.roughness);
     F eR = fset(k.emissive.x), eG = fset(k.emissive.y), eB = fset(k.emissive.z);
     F occlusion = fset(1.0f); // the occlusion map's factor on the light from the sky
+    // Each map at its own level of detail (PbrProgram::sampleMap); generic, so that it is
+    // instantiated only where a textured program calls it.
+    auto mapLanes = [&](const auto& map, bool colour) SR_SIMD_LAMBDA {
+        F lod = fzero();
+        if constexpr (kPersp == PerspectiveMode::Affine && kFilter == TextureFilter::Trilinear) lod = fset(affineMipLevel(p, map));
+        return sampleMap<kPersp, kFilter>(p, map, colour && d.linear, v[0], v[1], invW, lod);
+    };
     if constexpr (Prog::kIsTextured) {
-        // Each map at its own level of detail (PbrProgram::sampleMap).
-        auto mapLanes = [&](const Texture& map, bool colour) SR_SIMD_LAMBDA {
-            F lod = fzero();
-            if constexpr (kPersp == PerspectiveMode::Affine && kFilter == TextureFilter::Trilinear) lod = fset(affineMipLevel(p, map));
-            return sampleMap<kPersp, kFilter>(p, map, colour && d.linear, v[0], v[1], invW, lod);
-        };
         if (m.texture) {
             const Rgb c = mapLanes(*m.texture, true);
             baseR = baseR * c.r;
             baseG = baseG * c.g;
             baseB = baseB * c.b;
         }
+    }
+    if constexpr (Prog::kVertexColours) { // after the texture, as PbrProgram::fragment
+        constexpr int kC = Prog::kC;
+        baseR = baseR * v[kC];
+        baseG = baseG * v[kC + 1];
+        baseB = baseB * v[kC + 2];
+    }
+    if constexpr (Prog::kIsTextured) {
         if (m.metallicRoughness) {
             const Rgb c = mapLanes(*m.metallicRoughness, false);
             roughness = roughness * c.g;

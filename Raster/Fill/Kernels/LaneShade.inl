@@ -21,6 +21,7 @@ SR_SIMD_INLINE I shadeGroup(const Prog& p, const F* v, F invW, I xs, I ys, F tri
         (void)triangleLod; // each map takes its own (shadePbr)
         out = encodeLanes(p, shadePbr<Prog, kPersp, kFilter>(p, v, invW, ok));
     } else if constexpr (Prog::kMode == ShadingMode::Unlit) {
+        if constexpr (Prog::kVertexColours) kd = {kd.r * v[kT], kd.g * v[kT + 1], kd.b * v[kT + 2]}; // UnlitProgram::fragment
         out = encodeLanes(p, kd);
     } else if constexpr (Prog::kMode == ShadingMode::Flat) {
         p.ensureLit(); // FlatProgram lights on its first shaded fragment
