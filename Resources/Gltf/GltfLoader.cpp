@@ -199,7 +199,7 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
     for (std::size_t i = 0; i < g.materials.size(); ++i) {
         model.materials.push_back(materialFrom(g.materials[i]));
         std::string problem;
-        materialUvTransform(g.materials[i], &problem);
+        materialUvSource(g.materials[i], &problem);
         if (!problem.empty()) model.warnings.push_back(path + ": material " + std::to_string(i) + ": " + problem);
     }
     const Status textures = addTextures(b, options, dir);

@@ -69,7 +69,11 @@ struct UvTransform {
     bool operator==(const UvTransform& o) const;
 };
 UvTransform uvTransformOf(const gltf::Json& extensions);
-UvTransform materialUvTransform(const gltf::Material& gm, std::string* problem);
+struct UvSource {
+    int texCoord = 0; // TEXCOORD_<texCoord>
+    UvTransform transform;
+};
+UvSource materialUvSource(const gltf::Material& gm, std::string* problem);
 
 // Tangents.cpp: per-vertex tangents of vertices [base, end) from their triangles.
 void addTangents(Mesh& mesh, std::uint32_t base, const std::vector<std::uint32_t>& tris);

@@ -120,21 +120,36 @@ UvTransform uvTransformOf(const gltf::Json& extensions) {
     return t;
 }
 
-// The transform a material's uvs get: its base colour texture's (else that of its first other
-// map that has one). One per material, baked into the vertices of its primitives (every vertex
-// of a glTF primitive is its own: no other material reads it); a map with another transform is
-// named in a warning.
-UvTransform materialUvTransform(const gltf::Material& gm, std::string* problem) {
-    const gltf::Json* maps[] = {&gm.pbrMetallicRoughness.baseColorTexture.extensions,
-                                            &gm.pbrMetallicRoughness.metallicRoughnessTexture.extensions,
-                                            &gm.emissiveTexture.extensions, &gm.normalTexture.extensions,
-                                            &gm.occlusionTexture.extensions};
-    UvTransform chosen;
-    for (const gltf::Json* e : maps) {
-        const UvTransform t = uvTransformOf(*e);
-        if (!t.found) continue;
-        if (!chosen.found) chosen = t;
-        else if (!(t == chosen) && problem) *problem = "its maps have different KHR_texture_transforms: the first one is used for all";
+// The uv set and transform a material's maps are drawn with: its base colour texture's (else
+// that of its first other map, in the order metallic-roughness, emissive, normal, occlusion).
+// One per material, baked into the vertices of its primitives (every vertex of a glTF primitive
+// is its own: no other material reads it); a map that reads another set or transform is named
+// in `problem`. A reference's set is its texCoord, or its KHR_texture_transform's texCoord.
+UvSource materialUvSource(const gltf::Material& gm, std::string* problem) {
+    const std::pair<const gltf::TextureInfo*, const char*> maps[] = {
+        {&gm.pbrMetallicRoughness.baseColorTexture, "base colour"},
+        {&gm.pbrMetallicRoughness.metallicRoughnessTexture, "metallic-roughness"},
+        {&gm.emissiveTexture, "emissive"},
+        {&gm.normalTexture, "normal"},
+        {&gm.occlusionTexture, "occlusion"}};
+    UvSource chosen;
+    const char* chosenName = nullptr;
+    for (const auto& [info, name] : maps) {
+        if (info->index < 0) continue;
+        UvSource here;
+        here.transform = uvTransformOf(info->extensions);
+        here.texCoord = info->texCoord;
+        if (const auto ext = info->extensions.find("KHR_texture_transform"); ext != info->extensions.end() && ext->is_object())
+            if (const auto tc = ext->find("texCoord"); tc != ext->end() && tc->is_number_unsigned()) here.texCoord = tc->get<int>();
+        if (!chosenName) {
+            chosen = here;
+            chosenName = name;
+        } else if (problem && problem->empty() && (here.texCoord != chosen.texCoord || !(here.transform == chosen.transform))) {
+            *problem = std::string("its ") + name + " texture reads TEXCOORD_" + std::to_string(here.texCoord) +
+                       (here.transform.found ? " with a KHR_texture_transform" : "") + ", its " + chosenName + " texture TEXCOORD_" +
+                       std::to_string(chosen.texCoord) + (chosen.transform.found ? " with a KHR_texture_transform" : "") +
+                       ": the " + chosenName + " texture's uvs serve every map";
+        }
     }
     return chosen;
 }

@@ -107,14 +107,19 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
         if (v.value().count != count) return Status::failure(what + " NORMAL: count differs from POSITION's");
         normals = v.value();
     }
-    if (const int ti = attribute("TEXCOORD_0"); ti >= 0) {
-        auto v = b.accessors->view(ti, what + " TEXCOORD_0");
+    // The uv set the material's maps read (materialUvSource), with its transform.
+    UvSource uvSource;
+    if (prim.material >= 0 && std::size_t(prim.material) < g.materials.size())
+        uvSource = materialUvSource(g.materials[std::size_t(prim.material)], nullptr);
+    const std::string uvName = "TEXCOORD_" + std::to_string(uvSource.texCoord);
+    if (const int ti = attribute(uvName.c_str()); ti >= 0) {
+        auto v = b.accessors->view(ti, what + " " + uvName);
         if (!v) return Status::failure(v.error());
         const View& t = v.value();
         // Float, normalised unsigned byte/short, and under KHR_mesh_quantization any byte or short.
         const bool ok = t.components == 2 && (t.componentType == gltf::kFloat || quantized(t));
-        if (!ok) return Status::failure(what + " TEXCOORD_0: must be float, byte or short VEC2");
-        if (t.count != count) return Status::failure(what + " TEXCOORD_0: count differs from POSITION's");
+        if (!ok) return Status::failure(what + " " + uvName + ": must be float, byte or short VEC2");
+        if (t.count != count) return Status::failure(what + " " + uvName + ": count differs from POSITION's");
         uvs = t;
     }
     // COLOR_0 (glTF "Meshes"): RGB or RGBA, float or normalised unsigned byte/short, linear.
@@ -237,9 +242,7 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
             mesh.uvs.assign(base, Vec2{}); // earlier vertices had none: (0, 0)
             b.model.hasUvs = true;
         }
-        UvTransform transform;
-        if (prim.material >= 0 && std::size_t(prim.material) < g.materials.size())
-            transform = materialUvTransform(g.materials[std::size_t(prim.material)], nullptr);
+        const UvTransform& transform = uvSource.transform;
         for (std::size_t i = 0; i < vertices; ++i) {
             float u = readFloat(*uvs, src(i), 0), v = readFloat(*uvs, src(i), 1);
             if (transform.found) {

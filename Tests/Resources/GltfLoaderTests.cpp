@@ -397,6 +397,61 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     CHECK(plain.normalTexture == -1);
 }
 
+TEST_CASE("glTF texCoord: a material's maps read the uv set they name (TEXCOORD_1, or KHR_texture_transform's texCoord)",
+          "[resources][gltf][pbr]") {
+    const std::string dir = freshDir("gltf-texcoord");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {200, 100, 50, 255};
+    REQUIRE(writeImage(dir + "/t.png", one).ok());
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv0 = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    const int uv1 = a.floats({0.5f, 0.25f, 0.75f, 0.5f, 0.125f, 1}, "VEC2");
+    const auto prim = [&](int material) {
+        return "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" + std::to_string(uv0) +
+               ",\"TEXCOORD_1\":" + std::to_string(uv1) + "},\"material\":" + std::to_string(material) + "}";
+    };
+    a.meshes = "[{\"primitives\":[" + prim(0) + "," + prim(1) + "," + prim(2) + "," + prim(3) + "]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    // 0: an occlusion map alone on TEXCOORD_1. 1: base colour on TEXCOORD_1, emissive too.
+    // 2: KHR_texture_transform's texCoord 1 overrides the reference's 0, with a scale of 2.
+    // 3: base colour on TEXCOORD_0, occlusion on TEXCOORD_1: the base colour's set, and a warning.
+    a.materials = R"([{"occlusionTexture":{"index":0,"texCoord":1}},
+        {"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"texCoord":1}},"emissiveTexture":{"index":0,"texCoord":1}},
+        {"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"texCoord":1,"scale":[2,2]}}}}},
+        {"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},"occlusionTexture":{"index":0,"texCoord":1}}])";
+    a.extra = ",\"images\":[{\"uri\":\"t.png\"}],\"textures\":[{\"source\":0}]";
+    auto r = load(dir, "texcoord.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.mesh.uvs.size() == 12);
+    // Ours: v' = 1 - v (OBJ's convention).
+    const auto check = [&](std::size_t k, float u, float v) {
+        INFO("vertex " << k);
+        CHECK(m.mesh.uvs[k].x == Approx(u).margin(1e-7));
+        CHECK(m.mesh.uvs[k].y == Approx(1.0f - v).margin(1e-7));
+    };
+    for (std::size_t p = 0; p < 2; ++p) {
+        check(3 * p, 0.5f, 0.25f);
+        check(3 * p + 1, 0.75f, 0.5f);
+        check(3 * p + 2, 0.125f, 1.0f);
+    }
+    check(6, 1.0f, 0.5f);
+    check(7, 1.5f, 1.0f);
+    check(8, 0.25f, 2.0f);
+    check(9, 0.0f, 0.0f);
+    check(10, 1.0f, 0.0f);
+    check(11, 0.0f, 1.0f);
+    std::string warnings;
+    for (const std::string& w : m.warnings) warnings += w + "\n";
+    INFO(warnings);
+    CHECK(m.warnings.size() == 1);
+    CHECK(contains(warnings, "material 3: its occlusion texture reads TEXCOORD_1, its base colour texture TEXCOORD_0: the base "
+                             "colour texture's uvs serve every map"));
+}
+
 TEST_CASE("glTF tangents for a normal map: generated from the uvs, or the file's through the node", "[resources][gltf][pbr]") {
     const std::string dir = freshDir("gltf-tangents");
     Image one;
