@@ -21,6 +21,10 @@ cube=/usr/share/assimp/models/OBJ/cube_with_vertexcolors.obj
 if [[ $# -eq 0 && -f $cube ]] && command -v assimp >/dev/null; then
   assimp export "$cube" "$out/cube_with_vertexcolors.gltf" -f gltf2 >/dev/null && models+=("$out/cube_with_vertexcolors.gltf")
 fi
+# Dielectric spheres under KHR_materials_ior and KHR_materials_specular.
+if [[ $# -eq 0 ]]; then
+  python3 scripts/make-specular-spheres.py "$out/specular_spheres.gltf" && models+=("$out/specular_spheres.gltf")
+fi
 W=${WIDTH:-400} H=${HEIGHT:-300}
 ours=() three=() second=(--shading phong --color gamma) key=psnr_both_nonblack
 heading=("pbr+linear dB" "phong+gamma dB")

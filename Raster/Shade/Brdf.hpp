@@ -21,6 +21,11 @@ struct PbrFactors {
     float normalScale = 1.0f;        // normalTexture.scale
     float occlusionStrength = 1.0f;  // occlusionTexture.strength
     bool unlit = false;              // KHR_materials_unlit: the base colour as it is, no light (MeshRenderer)
+    // The dielectric's reflectance at normal incidence, min(((ior - 1) / (ior + 1))^2 x
+    // specularColorFactor, 1) (KHR_materials_ior, KHR_materials_specular; 0.04 without them), and
+    // the specular weight (specularFactor, 1 without it) that scales its Fresnel term, F0 and F90.
+    Vec3 dielectricF0{0.04f, 0.04f, 0.04f};
+    float specularWeight = 1.0f;
 };
 
 // A surface point as the BRDF sees it: linear base colour, metallic and perceptual roughness,
@@ -29,6 +34,8 @@ struct PbrSurface {
     Vec3 baseColor{1.0f, 1.0f, 1.0f};
     float metallic = 1.0f;
     float roughness = 1.0f;
+    Vec3 dielectricF0{0.04f, 0.04f, 0.04f}; // PbrFactors::dielectricF0
+    float specularWeight = 1.0f;            // PbrFactors::specularWeight
 };
 
 // The smallest perceptual roughness evaluated: the GGX lobe of roughness 0 is a Dirac peak that
@@ -57,8 +64,10 @@ inline Vec3 brdfCosine(const PbrSurface& s, Vec3 n, Vec3 l, Vec3 v, float multiS
     const Vec3 h = normalize(l + v);
     const Vec3 nxh = cross(n, h);
     const float base[3] = {s.baseColor.x, s.baseColor.y, s.baseColor.z};
+    const float f0[3] = {s.dielectricF0.x, s.dielectricF0.y, s.dielectricF0.z};
     float out[3];
-    brdfCosineTerms(dot(n, l), dot(n, v), dot(n, h), dot(nxh, nxh), dot(v, h), s.roughness, s.metallic, base, multiScatter, out);
+    brdfCosineTerms(dot(n, l), dot(n, v), dot(n, h), dot(nxh, nxh), dot(v, h), s.roughness, s.metallic, base, f0, s.specularWeight,
+                    multiScatter, out);
     return {out[0], out[1], out[2]};
 }
 

@@ -11,8 +11,11 @@
 //   D      = alpha^2 / (pi ((N.H)^2 (alpha^2 - 1) + 1)^2)                  (GGX / Trowbridge-Reitz)
 //   V      = 0.5 / (N.L sqrt((N.V)^2 (1 - alpha^2) + alpha^2) + N.V sqrt((N.L)^2 (1 - alpha^2) + alpha^2))
 //                                                                          (Smith, height-correlated)
-//   F      = F0 + (1 - F0) (1 - V.H)^5, F0 = mix(0.04, baseColor, metallic) (Schlick)
-//   f N.L  = ((1 - F) c_diff / pi + F D V (1 + F0 k)) N.L, c_diff = baseColor (1 - metallic)
+//   F      = F0 + (1 - F0) (1 - V.H)^5, F0 = mix(F0_d, baseColor, metallic) (Schlick)
+//   f N.L  = ((1 - W F) c_diff / pi + W F D V (1 + F0 k)) N.L, c_diff = baseColor (1 - metallic)
+// F0_d is the dielectric's reflectance (0.04, or KHR_materials_ior / _specular's, per channel)
+// and W = mix(w, 1, metallic) the specular weight w of KHR_materials_specular on the dielectric
+// (scaling its F0 and F90 alike; 1 without the extension, when the terms are appendix B's exactly).
 // k = 1 / E_ss - 1 is the multiple-scattering compensation (brdfMultiScatter, IblTerms.inl; per
 // pixel, as it depends on N.V and roughness only); k = 0 is appendix B's single scattering exactly.
 // V is the specification's G / (4 N.L N.V). D's denominator is written |N x H|^2 + (N.H)^2 alpha^2
@@ -37,7 +40,7 @@ inline R brdfMetallic(R metallic) {
 
 template <class R>
 inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRaw, R roughnessIn, R metallicIn,
-                            const R base[3], R multiScatter, R out[3]) {
+                            const R base[3], const R dielectricF0[3], R specularWeight, R multiScatter, R out[3]) {
     const R zero = splatAs(nDotL, 0.0f), one = splatAs(nDotL, 1.0f);
     const R nDotV = maxOf(nDotVRaw, splatAs(nDotL, 1e-4f));
     const R nDotH = maxOf(nDotHRaw, zero), vDotH = maxOf(vDotHRaw, zero);
@@ -58,11 +61,11 @@ inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRa
     const R sum = gv + gl;
     const R visibility = selectOf(sum > zero, splatAs(nDotL, 0.5f) / sum, zero);
     const R specular = distribution * visibility;
-    const R dielectricF0 = splatAs(nDotL, 0.04f);
+    const R weight = specularWeight + (one - specularWeight) * metallic;
     const auto lit = nDotL > zero;
     for (int c = 0; c < 3; ++c) {
-        const R f0 = dielectricF0 + (base[c] - dielectricF0) * metallic;
-        const R f = f0 + (one - f0) * fw;
+        const R f0 = dielectricF0[c] + (base[c] - dielectricF0[c]) * metallic;
+        const R f = (f0 + (one - f0) * fw) * weight;
         const R diffuse = (one - f) * (base[c] * (one - metallic)) / pi;
         out[c] = selectOf(lit, (diffuse + f * specular * (one + f0 * multiScatter)) * nDotL, zero);
     }

@@ -119,16 +119,17 @@ inline R brdfMultiScatter(const float* ess, R nDotV, R roughnessIn) {
 }
 
 // The light a sky sends toward v from a surface with unit normal n (programs::imageLight): the
-// prefiltered radiance along R = 2 (N.V) N - V times the lobe's albedo S = (F0 a + b) (1 + F0 k)
+// prefiltered radiance along R = 2 (N.V) N - V times the lobe's albedo S = (F0 a + b) W (1 + F0 k)
 // (the split sum, compensated for multiple scattering as the direct light is: brdfMultiScatter's
 // k, with E_ss = a + b here), plus Lambert's c_diff x E(n) / pi times 1 - S, the light the lobe
-// did not reflect (per channel; the direct light's (1 - F) integrated over the sky), with the
+// did not reflect (per channel; the direct light's (1 - W F) integrated over the sky; F0 and the
+// specular weight W as brdfCosineTerms has them), with the
 // BRDF's roughness and metallic (brdfRoughness, brdfMetallic). A white metal, and a white
 // dielectric, return the uniform sky they sit in.
 template <class R>
-inline void iblRadiance(const ImageLight::Tables& t, const R base[3], R metallicIn, R roughnessIn, R nx, R ny, R nz, R vx,
-                        R vy, R vz, R out[3]) {
-    const R one = splatAs(nx, 1.0f), f0Dielectric = splatAs(nx, 0.04f);
+inline void iblRadiance(const ImageLight::Tables& t, const R base[3], const R dielectricF0[3], R specularWeight, R metallicIn,
+                        R roughnessIn, R nx, R ny, R nz, R vx, R vy, R vz, R out[3]) {
+    const R one = splatAs(nx, 1.0f);
     const R roughness = brdfRoughness(roughnessIn), metallic = brdfMetallic(metallicIn);
     const R ndv = (nx * vx + ny * vy) + nz * vz;
     const R nDotV = maxOf(ndv, splatAs(nx, 1e-4f));
@@ -139,9 +140,10 @@ inline void iblRadiance(const ImageLight::Tables& t, const R base[3], R metallic
     iblSpecular(t, nx * twice - vx, ny * twice - vy, nz * twice - vz, roughness, spec);
     const R ess = a + b, zero = splatAs(nx, 0.0f);
     const R k = selectOf(ess > zero, one / ess - one, zero);
+    const R weight = specularWeight + (one - specularWeight) * metallic; // brdfCosineTerms' W
     for (int c = 0; c < 3; ++c) {
-        const R f0 = f0Dielectric + (base[c] - f0Dielectric) * metallic;
-        const R albedo = (f0 * a + b) * (one + f0 * k);
+        const R f0 = dielectricF0[c] + (base[c] - dielectricF0[c]) * metallic;
+        const R albedo = (f0 * a + b) * weight * (one + f0 * k);
         out[c] = base[c] * (one - metallic) * e[c] * (one - albedo) + spec[c] * albedo;
     }
 }

@@ -35,8 +35,9 @@ inline Vec3 perturbNormal(Vec3 n, Vec4 tangent, Color texel, float scale) {
 // iblRadiance: the kernels evaluate the same source).
 inline Vec3 imageLight(const ImageLight& light, const PbrSurface& s, Vec3 n, Vec3 v) {
     const float base[3] = {s.baseColor.x, s.baseColor.y, s.baseColor.z};
+    const float f0[3] = {s.dielectricF0.x, s.dielectricF0.y, s.dielectricF0.z};
     float out[3];
-    ibl::iblRadiance(light.tables(), base, s.metallic, s.roughness, n.x, n.y, n.z, v.x, v.y, v.z, out);
+    ibl::iblRadiance(light.tables(), base, f0, s.specularWeight, s.metallic, s.roughness, n.x, n.y, n.z, v.x, v.y, v.z, out);
     return {out[0], out[1], out[2]};
 }
 
@@ -103,6 +104,8 @@ struct PbrProgram {
         s.baseColor = {k.baseColor.r, k.baseColor.g, k.baseColor.b};
         s.metallic = k.metallic;
         s.roughness = k.roughness;
+        s.dielectricF0 = k.dielectricF0;
+        s.specularWeight = k.specularWeight;
         Vec3 emissive = k.emissive;
         if constexpr (kMaps) {
             if (m.texture) {

@@ -6,6 +6,17 @@
 
 namespace sr::gltfimport {
 
+namespace {
+
+// A non-negative finite number at `key` of an extension object, else `fallback`.
+double extensionNumber(const gltf::Json& ext, const char* key, double fallback) {
+    if (!ext.is_object()) return fallback;
+    const auto v = ext.find(key);
+    return v != ext.end() && v->is_number() && std::isfinite(v->get<double>()) && v->get<double>() >= 0.0 ? v->get<double>() : fallback;
+}
+
+} // namespace
+
 // The metallic-roughness to Blinn-Phong mapping of GltfLoader.hpp.
 Material materialFrom(const gltf::Material& gm) {
     const auto& pbr = gm.pbrMetallicRoughness;
@@ -15,9 +26,30 @@ Material materialFrom(const gltf::Material& gm) {
     const double metal = std::clamp(pbr.metallicFactor, 0.0, 1.0), rough = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
     double base[3] = {1, 1, 1};
     for (std::size_t c = 0; c < 3 && c < pbr.baseColorFactor.size(); ++c) base[c] = std::clamp(pbr.baseColorFactor[c], 0.0, 1.0);
+    // The dielectric's F0 and specular weight: KHR_materials_ior (ior >= 1, or 0: F0 = 1) and
+    // KHR_materials_specular (specularFactor in [0, 1], specularColorFactor >= 0); without them
+    // 0.04 and 1 exactly.
+    double f0[3] = {0.04, 0.04, 0.04}, weight = 1.0;
+    const auto iorExt = gm.extensions.find("KHR_materials_ior"), specExt = gm.extensions.find("KHR_materials_specular");
+    const bool hasIor = iorExt != gm.extensions.end(), hasSpec = specExt != gm.extensions.end();
+    if (hasIor || hasSpec) {
+        double ior = hasIor ? extensionNumber(*iorExt, "ior", 1.5) : 1.5;
+        if (ior > 0.0 && ior < 1.0) ior = 1.5; // outside the extension's range: its default
+        const double r = (ior - 1.0) / (ior + 1.0);
+        for (int c = 0; c < 3; ++c) {
+            double tint = 1.0;
+            if (hasSpec && specExt->is_object() && specExt->contains("specularColorFactor")) {
+                const gltf::Json& t = (*specExt)["specularColorFactor"];
+                if (t.is_array() && t.size() == 3 && t[std::size_t(c)].is_number() && std::isfinite(t[std::size_t(c)].get<double>()))
+                    tint = std::max(t[std::size_t(c)].get<double>(), 0.0);
+            }
+            f0[c] = std::min(r * r * tint, 1.0);
+        }
+        if (hasSpec) weight = std::min(extensionNumber(*specExt, "specularFactor", 1.0), 1.0);
+    }
     m.kd = Color{float(base[0] * (1 - metal)), float(base[1] * (1 - metal)), float(base[2] * (1 - metal)), 1.0f};
-    m.ks = Color{float(0.04 * (1 - metal) + base[0] * metal), float(0.04 * (1 - metal) + base[1] * metal),
-                 float(0.04 * (1 - metal) + base[2] * metal), 1.0f};
+    m.ks = Color{float(f0[0] * weight * (1 - metal) + base[0] * metal), float(f0[1] * weight * (1 - metal) + base[1] * metal),
+                 float(f0[2] * weight * (1 - metal) + base[2] * metal), 1.0f};
     const double alpha = rough * rough;
     const double n = alpha > 0.0 ? 2.0 / (alpha * alpha) - 2.0 : 1024.0;
     m.shininess = float(std::clamp(std::round(n), 1.0, 1024.0));
@@ -25,6 +57,8 @@ Material materialFrom(const gltf::Material& gm) {
     f.baseColor = Color{float(base[0]), float(base[1]), float(base[2]), 1.0f};
     f.metallic = float(metal);
     f.roughness = float(rough);
+    f.dielectricF0 = Vec3{float(f0[0]), float(f0[1]), float(f0[2])};
+    f.specularWeight = float(weight);
     double emissive[3] = {0, 0, 0};
     for (std::size_t c = 0; c < 3 && c < gm.emissiveFactor.size(); ++c) emissive[c] = std::clamp(gm.emissiveFactor[c], 0.0, 1.0);
     double strength = 1.0;

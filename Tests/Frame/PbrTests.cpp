@@ -40,8 +40,12 @@ double encodeD(double l) { return l <= 0.0031308 ? 12.92 * l : 1.055 * std::pow(
 // fresnel_mix(ior 1.5, diffuse, specular), a metal conductor_fresnel(baseColor, specular), the
 // material mix(dielectric, metal, metallic); D is GGX, the visibility is G2 / (4 N.L N.V) with
 // the height-correlated Smith G2 = 2 N.L N.V / (N.V sqrt(a2 + (1 - a2) N.L^2) + N.L sqrt(a2 + (1 - a2) N.V^2)).
-// Returns f x N.L for one channel of base colour `base`.
-double specBrdfCosine(double base, double metallic, double roughness, const double n[3], const double l[3], const double v[3]) {
+// Returns f x N.L for one channel of base colour `base`. With KHR_materials_ior / _specular the
+// dielectric is fresnel_mix with that channel's f0 = min(((ior - 1) / (ior + 1))^2 x
+// specularColorFactor, 1) and weight w = specularFactor: (1 - w fr) diffuse + w fr specular (per
+// channel, as the Khronos sample renderer has it).
+double specBrdfCosine(double base, double metallic, double roughness, const double n[3], const double l[3], const double v[3],
+                      double dielectricF0 = -1.0, double weight = 1.0) {
     const auto dot3 = [](const double* a, const double* b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; };
     double h[3] = {l[0] + v[0], l[1] + v[1], l[2] + v[2]};
     const double hl = std::sqrt(dot3(h, h));
@@ -55,9 +59,9 @@ double specBrdfCosine(double base, double metallic, double roughness, const doub
     const double G2 = 2.0 * nl * nv / (nv * std::sqrt(a2 + (1.0 - a2) * nl * nl) + nl * std::sqrt(a2 + (1.0 - a2) * nv * nv));
     const double specular = D * G2 / (4.0 * nl * nv);
     const double w = std::pow(1.0 - std::fabs(vh), 5.0);
-    const double ior = 1.5, f0 = std::pow((1.0 - ior) / (1.0 + ior), 2.0);
+    const double ior = 1.5, f0 = dielectricF0 >= 0.0 ? dielectricF0 : std::pow((1.0 - ior) / (1.0 + ior), 2.0);
     const double fr = f0 + (1.0 - f0) * w;
-    const double dielectric = (1.0 - fr) * base / kPiT + fr * specular;
+    const double dielectric = (1.0 - weight * fr) * base / kPiT + weight * fr * specular;
     const double metal = specular * (base + (1.0 - base) * w);
     return ((1.0 - metallic) * dielectric + metallic * metal) * nl;
 }
@@ -166,6 +170,63 @@ TEST_CASE("glTF BRDF: the float reference against the specification's mix form i
             }
         }
     }
+}
+
+TEST_CASE("glTF BRDF: KHR_materials_ior and _specular against the extensions' fresnel_mix in double", "[render][brdf][pbr]") {
+    const double n[3] = {0, 0, 1};
+    const Vec3 nf{0.0f, 0.0f, 1.0f};
+    const double angles[][4] = {{0, 0, 0, 0}, {30, 0, 45, 180}, {60, 90, 10, 0}, {75, 0, 75, 180}, {85, 0, 20, 200}};
+    // ior 2 with a specular colour (2, 1, 0.25) and specularFactor 0.6; ior 0 (F0 = 1); weight 0.
+    struct Case {
+        double ior, tint[3], weight;
+    };
+    const Case cases[] = {{2.0, {2.0, 1.0, 0.25}, 0.6}, {0.0, {1.0, 1.0, 1.0}, 1.0}, {1.5, {1.0, 1.0, 1.0}, 0.0}, {1.2, {40.0, 1.0, 0.0}, 1.0}};
+    for (const Case& k : cases)
+        for (double roughness : {0.05, 0.5, 1.0})
+            for (double metallic : {0.0, 1.0})
+                for (const auto& a : angles) {
+                    const double tl = a[0] * kPiT / 180, pl = a[1] * kPiT / 180, tv = a[2] * kPiT / 180, pv = a[3] * kPiT / 180;
+                    const double l[3] = {std::sin(tl) * std::cos(pl), std::sin(tl) * std::sin(pl), std::cos(tl)};
+                    const double v[3] = {std::sin(tv) * std::cos(pv), std::sin(tv) * std::sin(pv), std::cos(tv)};
+                    const double r = (k.ior - 1.0) / (k.ior + 1.0);
+                    double f0[3];
+                    for (int c = 0; c < 3; ++c) f0[c] = std::min(r * r * k.tint[c], 1.0);
+                    PbrSurface s;
+                    s.baseColor = {0.9f, 0.5f, 0.1f};
+                    s.metallic = float(metallic);
+                    s.roughness = float(roughness);
+                    s.dielectricF0 = {float(f0[0]), float(f0[1]), float(f0[2])};
+                    s.specularWeight = float(k.weight);
+                    const Vec3 got = brdfCosine(s, nf, Vec3{float(l[0]), float(l[1]), float(l[2])}, Vec3{float(v[0]), float(v[1]), float(v[2])});
+                    const double base[3] = {0.9, 0.5, 0.1};
+                    const float gotC[3] = {got.x, got.y, got.z};
+                    for (int c = 0; c < 3; ++c) {
+                        const double want = specBrdfCosine(base[c], metallic, roughness, n, l, v, f0[c], k.weight);
+                        INFO("ior " << k.ior << " weight " << k.weight << " roughness " << roughness << " metallic " << metallic
+                                    << " light " << a[0] << "/" << a[1] << " view " << a[2] << "/" << a[3] << " channel " << c);
+                        CHECK(double(gotC[c]) == Approx(want).epsilon(2e-4).margin(1e-7));
+                    }
+                }
+    // specularFactor 0 on a dielectric: Lambert alone, exactly c_diff / pi x N.L.
+    PbrSurface s;
+    s.baseColor = {0.8f, 0.4f, 0.2f};
+    s.metallic = 0.0f;
+    s.roughness = 0.3f;
+    s.specularWeight = 0.0f;
+    const Vec3 l = unit(0.3, 0.2, 1.0), v = unit(-0.4, 0.1, 1.0);
+    const Vec3 got = brdfCosine(s, Vec3{0, 0, 1}, l, v);
+    CHECK(got.x == 0.8f / kPiF * l.z);
+    CHECK(got.y == 0.4f / kPiF * l.z);
+    // The defaults (ior 1.5, no specular extension) are appendix B's terms exactly.
+    PbrSurface plain = s, explicit15 = s;
+    plain.specularWeight = 1.0f;
+    explicit15.specularWeight = 1.0f;
+    const double r = 0.5 / 2.5;
+    explicit15.dielectricF0 = {float(r * r), float(r * r), float(r * r)};
+    const Vec3 a = brdfCosine(plain, Vec3{0, 0, 1}, l, v), b = brdfCosine(explicit15, Vec3{0, 0, 1}, l, v);
+    CHECK(a.x == b.x);
+    CHECK(a.y == b.y);
+    CHECK(a.z == b.z);
 }
 
 TEST_CASE("glTF BRDF: a white furnace - the specular lobe never reflects more than it receives", "[render][brdf][pbr]") {

@@ -1172,6 +1172,44 @@ TEST_CASE("glTF: KHR_materials_unlit (required or not) marks the material unlit"
     CHECK_FALSE(r.value().materials[1].pbr->unlit);
 }
 
+TEST_CASE("glTF KHR_materials_ior and _specular: the dielectric's F0 and specular weight; textures named in a warning",
+          "[resources][gltf][pbr]") {
+    const std::string dir = freshDir("gltf-specular");
+    Asset a = triangleAsset("[{\"mesh\":0}]");
+    a.meshes = a.meshes.substr(0, a.meshes.size() - 4) + ",\"material\":0}]}]"; // (the primitive's material)
+    a.materials = R"([{"extensions":{"KHR_materials_ior":{"ior":2.0}}},
+        {"extensions":{"KHR_materials_specular":{"specularFactor":0.5,"specularColorFactor":[2,1,40]}}},
+        {"extensions":{"KHR_materials_ior":{"ior":0},"KHR_materials_specular":{"specularTexture":{"index":0}}}},
+        {"extensions":{"KHR_materials_ior":{"ior":1.5}}},
+        {"pbrMetallicRoughness":{"metallicFactor":0,"baseColorFactor":[0.5,0.5,0.5,1]},
+         "extensions":{"KHR_materials_ior":{"ior":2.0},"KHR_materials_specular":{"specularFactor":0.5}}},
+        {}])";
+    a.extra = R"(,"extensionsUsed":["KHR_materials_ior","KHR_materials_specular"],"extensionsRequired":["KHR_materials_ior"])";
+    auto r = load(dir, "specular.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.materials.size() >= 6);
+    const auto f0 = [&](std::size_t i) { return m.materials[i].pbr->dielectricF0; };
+    const float third2 = float((1.0 / 3.0) * (1.0 / 3.0));
+    CHECK(f0(0).x == third2);
+    CHECK(f0(0).z == third2);
+    CHECK(m.materials[0].pbr->specularWeight == 1.0f);
+    CHECK(f0(1).x == float(0.2 * 0.2 * 2.0)); // ior 1.5 x the colour
+    CHECK(f0(1).y == float(0.2 * 0.2));
+    CHECK(f0(1).z == 1.0f);                  // 0.04 x 40, clamped to 1
+    CHECK(m.materials[1].pbr->specularWeight == 0.5f);
+    CHECK(f0(2).x == 1.0f); // ior 0
+    CHECK(f0(3).x == 0.04f); // ior 1.5 given: the default's value exactly
+    CHECK(f0(5).x == 0.04f);
+    CHECK(m.materials[5].pbr->specularWeight == 1.0f);
+    // The Blinn-Phong mapping: ks = F0 x weight for a dielectric.
+    CHECK(m.materials[4].ks.r == float(third2 * 0.5));
+    CHECK(m.materials[5].ks.r == 1.0f); // a metal (the default metallic 1): its base colour
+    REQUIRE(m.warnings.size() == 1);
+    CHECK(contains(m.warnings[0], "material 2: KHR_materials_specular's specularTexture is not read (its factor is)"));
+}
+
 TEST_CASE("glTF: a primitive without a material gets the specification's default material", "[resources][gltf][pbr]") {
     const std::string dir = freshDir("gltf-default-material");
     Asset a;

@@ -456,6 +456,9 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
     polished.baseColor = {1.0f, 0.8f, 0.4f, 1.0f};
     polished.metallic = 1.0f;
     polished.roughness = 0.03f; // below the smallest roughness evaluated
+    PbrFactors tinted = rough; // KHR_materials_ior / _specular: a tinted dielectric F0, a specular weight
+    tinted.dielectricF0 = {0.11f, 0.06f, 0.3f};
+    tinted.specularWeight = 0.55f;
     Totals totals;
     int ran = 0;
     for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
@@ -473,7 +476,7 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
                             settings.shading = ShadingMode::Pbr;
                             settings.colour = linear ? ColorMode::Linear : ColorMode::Gamma;
                             const KernelKey key{depth, persp, filter, wrap};
-                            for (const PbrFactors* factors : {&rough, &polished}) {
+                            for (const PbrFactors* factors : {&rough, &polished, &tinted}) {
                                 SurfaceMaterial material;
                                 material.pbr = factors;
                                 material.texture = &base;
@@ -608,6 +611,9 @@ TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map 
     polished.baseColor = {1.0f, 0.8f, 0.4f, 1.0f};
     polished.metallic = 1.0f;
     polished.roughness = 0.03f;
+    PbrFactors tinted = rough; // KHR_materials_ior / _specular
+    tinted.dielectricF0 = {0.11f, 0.06f, 0.3f};
+    tinted.specularWeight = 0.55f;
     Totals totals;
     int ran = 0;
     for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
@@ -622,7 +628,7 @@ TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map 
                     settings.shading = ShadingMode::Pbr;
                     settings.colour = linear ? ColorMode::Linear : ColorMode::Gamma;
                     const KernelKey key{DepthMode::TestWrite, persp, filter, WrapMode::Repeat};
-                    for (const PbrFactors* factors : {&rough, &polished}) {
+                    for (const PbrFactors* factors : {&rough, &polished, &tinted}) {
                         SurfaceMaterial material;
                         material.pbr = factors;
                         material.texture = &base;
