@@ -28,6 +28,12 @@ struct PbrFactors {
     float specularWeight = 1.0f;
 };
 
+// Whether a material's dielectric differs from appendix B's (F0 0.04, weight 1): the kernels
+// evaluate the BRDF without those inputs otherwise (brdfCosineTerms' kSpecular).
+inline bool hasDielectricSpecular(const PbrFactors& k) {
+    return !(k.specularWeight == 1.0f && k.dielectricF0.x == 0.04f && k.dielectricF0.y == 0.04f && k.dielectricF0.z == 0.04f);
+}
+
 // A surface point as the BRDF sees it: linear base colour, metallic and perceptual roughness,
 // each already combined from its factor and texture.
 struct PbrSurface {

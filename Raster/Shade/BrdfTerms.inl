@@ -16,6 +16,8 @@
 // F0_d is the dielectric's reflectance (0.04, or KHR_materials_ior / _specular's, per channel)
 // and W = mix(w, 1, metallic) the specular weight w of KHR_materials_specular on the dielectric
 // (scaling its F0 and F90 alike; 1 without the extension, when the terms are appendix B's exactly).
+// kSpecular false: F0_d = 0.04 and W = 1 taken as given (dielectricF0 and specularWeight unread),
+// the same bits with fewer operations, for the kernels' draws without either extension.
 // k = 1 / E_ss - 1 is the multiple-scattering compensation (brdfMultiScatter, IblTerms.inl; per
 // pixel, as it depends on N.V and roughness only); k = 0 is appendix B's single scattering exactly.
 // V is the specification's G / (4 N.L N.V). D's denominator is written |N x H|^2 + (N.H)^2 alpha^2
@@ -38,7 +40,7 @@ inline R brdfMetallic(R metallic) {
     return selectOf(metallic > zero, minOf(metallic, splatAs(metallic, 1.0f)), zero);
 }
 
-template <class R>
+template <class R, bool kSpecular = true>
 inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRaw, R roughnessIn, R metallicIn,
                             const R base[3], const R dielectricF0[3], R specularWeight, R multiScatter, R out[3]) {
     const R zero = splatAs(nDotL, 0.0f), one = splatAs(nDotL, 1.0f);
@@ -61,11 +63,13 @@ inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRa
     const R sum = gv + gl;
     const R visibility = selectOf(sum > zero, splatAs(nDotL, 0.5f) / sum, zero);
     const R specular = distribution * visibility;
-    const R weight = specularWeight + (one - specularWeight) * metallic;
+    const R weight = kSpecular ? specularWeight + (one - specularWeight) * metallic : one;
     const auto lit = nDotL > zero;
     for (int c = 0; c < 3; ++c) {
-        const R f0 = dielectricF0[c] + (base[c] - dielectricF0[c]) * metallic;
-        const R f = (f0 + (one - f0) * fw) * weight;
+        const R fd = kSpecular ? dielectricF0[c] : splatAs(nDotL, 0.04f);
+        const R f0 = fd + (base[c] - fd) * metallic;
+        R f = f0 + (one - f0) * fw;
+        if constexpr (kSpecular) f = f * weight;
         const R diffuse = (one - f) * (base[c] * (one - metallic)) / pi;
         out[c] = selectOf(lit, (diffuse + f * specular * (one + f0 * multiScatter)) * nDotL, zero);
     }

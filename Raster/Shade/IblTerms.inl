@@ -126,7 +126,8 @@ inline R brdfMultiScatter(const float* ess, R nDotV, R roughnessIn) {
 // specular weight W as brdfCosineTerms has them), with the
 // BRDF's roughness and metallic (brdfRoughness, brdfMetallic). A white metal, and a white
 // dielectric, return the uniform sky they sit in.
-template <class R>
+// kSpecular false: brdfCosineTerms' shortcut (F0_d = 0.04, W = 1 as given), the same bits.
+template <class R, bool kSpecular = true>
 inline void iblRadiance(const ImageLight::Tables& t, const R base[3], const R dielectricF0[3], R specularWeight, R metallicIn,
                         R roughnessIn, R nx, R ny, R nz, R vx, R vy, R vz, R out[3]) {
     const R one = splatAs(nx, 1.0f);
@@ -140,10 +141,13 @@ inline void iblRadiance(const ImageLight::Tables& t, const R base[3], const R di
     iblSpecular(t, nx * twice - vx, ny * twice - vy, nz * twice - vz, roughness, spec);
     const R ess = a + b, zero = splatAs(nx, 0.0f);
     const R k = selectOf(ess > zero, one / ess - one, zero);
-    const R weight = specularWeight + (one - specularWeight) * metallic; // brdfCosineTerms' W
+    const R weight = kSpecular ? specularWeight + (one - specularWeight) * metallic : one; // brdfCosineTerms' W
     for (int c = 0; c < 3; ++c) {
-        const R f0 = dielectricF0[c] + (base[c] - dielectricF0[c]) * metallic;
-        const R albedo = (f0 * a + b) * weight * (one + f0 * k);
+        const R fd = kSpecular ? dielectricF0[c] : splatAs(nx, 0.04f);
+        const R f0 = fd + (base[c] - fd) * metallic;
+        R albedo = f0 * a + b;
+        if constexpr (kSpecular) albedo = albedo * weight;
+        albedo = albedo * (one + f0 * k);
         out[c] = base[c] * (one - metallic) * e[c] * (one - albedo) + spec[c] * albedo;
     }
 }

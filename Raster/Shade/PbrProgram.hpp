@@ -64,7 +64,9 @@ struct PbrProgram {
     static constexpr int kVaryings = kC + (kColours ? 3 : 0);
     const DrawContext* d;
     const TriangleSetup* setup = nullptr;
-    explicit PbrProgram(const DrawContext* dc) : d(dc) {}
+    // The material has KHR_materials_ior / _specular values (the kernels' BRDF reads them only then).
+    bool dielectricSpecular;
+    explicit PbrProgram(const DrawContext* dc) : d(dc), dielectricSpecular(hasDielectricSpecular(*dc->material->pbr)) {}
 
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kMaps>(*d, i, out);

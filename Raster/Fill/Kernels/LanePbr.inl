@@ -16,12 +16,14 @@ SR_SIMD_INLINE F gatherOf(const float* table, F index) {
 #include "Raster/Shade/IblTerms.inl"
 
 // programs::imageLight per lane (iblRadiance), out of line: about forty gathers.
+// kSpecular: the material has KHR_materials_ior / _specular values (hasDielectricSpecular).
+template <bool kSpecular>
 SR_SIMD_NOINLINE Rgb imageLightLanes(const ImageLight::Tables& t, const PbrFactors& k, F baseR, F baseG, F baseB, F metallic,
                                      F roughness, const V3& n, const V3& v) {
     const F base[3] = {baseR, baseG, baseB};
     const F f0[3] = {fset(k.dielectricF0.x), fset(k.dielectricF0.y), fset(k.dielectricF0.z)};
     F out[3];
-    iblRadiance(t, base, f0, fset(k.specularWeight), metallic, roughness, n.x, n.y, n.z, v.x, v.y, v.z, out);
+    iblRadiance<F, kSpecular>(t, base, f0, fset(k.specularWeight), metallic, roughness, n.x, n.y, n.z, v.x, v.y, v.z, out);
     return {out[0], out[1], out[2]};
 }
 
@@ -29,6 +31,7 @@ SR_SIMD_NOINLINE Rgb imageLightLanes(const ImageLight::Tables& t, const PbrFacto
 // pbrRadiance's loop over the lights (lightAt's direction and factor as lightsRgb computes
 // them, the shadow maps' lit fraction, brdfCosineTerms with brdfMultiScatter's k), the same
 // operations in the same order. Lanes whose light or half vector is off normalize's fast path lose `ok`.
+template <bool kSpecular>
 SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* shadows, const PbrFactors& k, F baseR, F baseG, F baseB,
                                F metallic, F roughness, F nx, F ny, F nz, F px, F py, F pz, F vx, F vy, F vz, M& ok) {
     if (lighting.lights.empty()) return {fzero(), fzero(), fzero()};
@@ -72,7 +75,7 @@ SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* sha
         ok = (lit & hOk) | andNot(ok, lit);
         const V3 nxh{n.y * h.z - n.z * h.y, n.z * h.x - n.x * h.z, n.x * h.y - n.y * h.x}; // cross(n, h)
         F f[3];
-        brdfCosineTerms(ndl, dot3(n, v), dot3(n, h), dot3(nxh, nxh), dot3(v, h), roughness, metallic, base, f0, weight, multiScatter, f);
+        brdfCosineTerms<F, kSpecular>(ndl, dot3(n, v), dot3(n, h), dot3(nxh, nxh), dot3(v, h), roughness, metallic, base, f0, weight, multiScatter, f);
         sum.r = select(lit, sum.r + f[0] * fset(light.colour.r) * a, sum.r);
         sum.g = select(lit, sum.g + f[1] * fset(light.colour.g) * a, sum.g);
         sum.b = select(lit, sum.b + f[2] * fset(light.colour.b) * a, sum.b);
@@ -175,10 +178,15 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
             n = perturbNormalLanes(n, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.normalMap, false), k.normalScale);
         }
     }
-    Rgb r = pbrLights(d.view.lighting, d.view.shadows, k, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z, v[kP],
-                      v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok);
+    // A material without KHR_materials_ior / _specular values takes the shortcut (same bits).
+    const bool specular = p.dielectricSpecular;
+    Rgb r = specular ? pbrLights<true>(d.view.lighting, d.view.shadows, k, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z,
+                                       v[kP], v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok)
+                     : pbrLights<false>(d.view.lighting, d.view.shadows, k, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z,
+                                        v[kP], v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok);
     if (d.view.ibl) {
-        const Rgb sky = imageLightLanes(d.view.ibl->tables(), k, baseR, baseG, baseB, metallic, roughness, n, toEye);
+        const Rgb sky = specular ? imageLightLanes<true>(d.view.ibl->tables(), k, baseR, baseG, baseB, metallic, roughness, n, toEye)
+                                 : imageLightLanes<false>(d.view.ibl->tables(), k, baseR, baseG, baseB, metallic, roughness, n, toEye);
         r = {r.r + sky.r * occlusion, r.g + sky.g * occlusion, r.b + sky.b * occlusion};
     }
     return {r.r + eR, r.g + eG, r.b + eB};
