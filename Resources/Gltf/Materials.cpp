@@ -1,6 +1,7 @@
 // gltfimport materials: metallic-roughness as the renderer's Material, samplers as wrap modes and filters, KHR_texture_transform.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "Resources/Gltf/Import.hpp"
 
@@ -174,7 +175,8 @@ UvSource materialUvSource(const gltf::Material& gm, std::string* problem) {
         here.transform = uvTransformOf(info->extensions);
         here.texCoord = info->texCoord;
         if (const auto ext = info->extensions.find("KHR_texture_transform"); ext != info->extensions.end() && ext->is_object())
-            if (const auto tc = ext->find("texCoord"); tc != ext->end() && tc->is_number_unsigned()) here.texCoord = tc->get<int>();
+            if (const auto tc = ext->find("texCoord"); tc != ext->end() && tc->is_number_unsigned() && tc->get<std::uint64_t>() < 64)
+                here.texCoord = int(tc->get<std::uint64_t>());
         if (!chosenName) {
             chosen = here;
             chosenName = name;

@@ -1,6 +1,7 @@
 // Regression tests for the inputs the fuzzers (Tests/Fuzz) found: each builds the bytes in code and expects a clean one-line error.
 #include "TestFramework.hpp"
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -188,4 +189,35 @@ TEST_CASE("fuzz: an array of glTF objects holding something else is refused nami
     }
     // The same properties as objects load (an empty scene list: nothing to draw, no error).
     CHECK(load(asset + R"("accessors":[],"materials":[{"doubleSided":true}],"extensionsUsed":["KHR_materials_unlit"]})").ok());
+}
+
+TEST_CASE("fuzz: malformed material extensions and texture references load with their defaults, never a throw",
+          "[resources][gltf][fuzz]") {
+    const auto load = [](const std::string& json) {
+        return loadGltfFromMemory(reinterpret_cast<const unsigned char*>(json.data()), json.size(), "fuzz.gltf");
+    };
+    const std::string asset = R"({"asset":{"version":"2.0"},"materials":[)";
+    const char* materials[] = {
+        R"({"extensions":{"KHR_materials_ior":"x","KHR_materials_specular":7}})",
+        R"({"extensions":{"KHR_materials_ior":{"ior":"1.5"},"KHR_materials_specular":{"specularColorFactor":[1,"a"],"specularFactor":-2}}})",
+        R"({"extensions":{"KHR_materials_ior":{"ior":-3},"KHR_materials_specular":{"specularColorFactor":{"r":1},"specularTexture":3}}})",
+        R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"texCoord":1e30}}}}})",
+        R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"texCoord":18446744073709551615}}}}})",
+        R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":[1]}}},"occlusionTexture":{"index":0,"texCoord":5}})",
+    };
+    for (const char* m : materials) {
+        INFO(m);
+        const auto r = load(asset + m + "]}");
+        // A file with materials and nothing to draw: it loads (no scene), or is refused in one line.
+        if (!r.ok()) CHECK(r.error().find('\n') == std::string::npos);
+        else REQUIRE(!r.value().materials.empty());
+        if (r.ok() && r.value().materials[0].pbr) {
+            const PbrFactors& f = *r.value().materials[0].pbr;
+            CHECK(std::isfinite(f.dielectricF0.x));
+            CHECK(f.dielectricF0.x >= 0.0f);
+            CHECK(f.dielectricF0.x <= 1.0f);
+            CHECK(f.specularWeight >= 0.0f);
+            CHECK(f.specularWeight <= 1.0f);
+        }
+    }
 }
