@@ -43,14 +43,14 @@ inline Vec3 imageLight(const ImageLight& light, const PbrSurface& s, Vec3 n, Vec
 
 // Phong's interpolation (world position and normal, perspective-correct), lit per pixel by the
 // glTF BRDF (pbrRadiance, compensated for multiple scattering: brdfMultiScatter) plus the
-// emissive term. With kMaps: the uv in varyings 0-1 and the
-// material's maps sampled at it (each with its own level of detail); with kTangents also the
-// tangent (xyzw) for the normal map; with kColours the vertex colour's RGB (glTF COLOR_0), a
-// factor of the base colour after the texture's (factor x texture x colour, in that order). Colour maps (base colour, emissive) are decoded from sRGB
-// in linear mode; the others are data and read as stored. Double-sided surfaces seen from
-// behind are lit on their back (the normal flipped toward the viewer, as the specification
-// asks); single-sided ones never show their back (culled).
-// The span kernels (Raster/Fill/Kernels/Kernels*Pbr.cpp) cover all three variants.
+// emissive term. With kMaps: the uv in varyings 0-1 and the material's maps sampled at it (each
+// with its own level of detail); with kTangents also the tangent (xyzw) for the normal map; with
+// kColours the vertex colour's RGB (glTF COLOR_0), a factor of the base colour after the
+// texture's (factor x texture x colour, in that order). Colour maps (base colour, emissive) are
+// decoded from sRGB in linear mode; the others are data and read as stored. Double-sided
+// surfaces seen from behind are lit on their back (the normal flipped toward the viewer, as the
+// specification asks); single-sided ones never show their back (culled).
+// The span kernels (Raster/Fill/Kernels/Kernels*Pbr.cpp, Kernels*PbrColours.cpp) cover all six variants.
 template <bool kMaps, bool kTangents = false, bool kColours = false>
 struct PbrProgram {
     static_assert(kMaps || !kTangents, "a normal map needs uvs");
