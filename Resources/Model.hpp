@@ -48,6 +48,7 @@ struct Material {
     // (indices into Model::textures, -1 = none; sampled with the base colour texture's sampler).
     std::optional<PbrFactors> pbr;
     int metallicRoughnessTexture = -1, emissiveTexture = -1, normalTexture = -1, occlusionTexture = -1;
+    int specularTexture = -1, specularColorTexture = -1; // KHR_materials_specular's
 };
 
 // The triangles of one material: one draw call. One range per material (faces without one form

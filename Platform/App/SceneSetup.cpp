@@ -36,13 +36,26 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
     Scene scene;
     for (const Image& img : model.textures)
         scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
+    // A glTF specularTexture is read by its alpha: a copy with the alpha in RGB, once per image.
+    std::vector<int> alphaCopy(model.textures.size(), -1);
+    const auto alphaTexture = [&](int slot) {
+        if (slot < 0 || std::size_t(slot) >= model.textures.size()) return -1;
+        if (alphaCopy[std::size_t(slot)] < 0) {
+            Image img = model.textures[std::size_t(slot)];
+            for (std::size_t i = 0; i + 3 < img.rgba.size(); i += 4) img.rgba[i] = img.rgba[i + 1] = img.rgba[i + 2] = img.rgba[i + 3];
+            alphaCopy[std::size_t(slot)] = int(scene.textures.size());
+            scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
+        }
+        return alphaCopy[std::size_t(slot)];
+    };
     const Mesh& src = model.mesh;
     // A range reads uvs when it has a base colour texture or any other map of a glTF material.
     const auto usesUvs = [&](const DrawRange& range) {
         if (range.texture >= 0) return true;
         if (range.material < 0 || !model.hasUvs) return false;
         const Material& m = model.materials[std::size_t(range.material)];
-        return m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 || m.normalTexture >= 0 || m.occlusionTexture >= 0;
+        return m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 || m.normalTexture >= 0 || m.occlusionTexture >= 0 ||
+               m.specularTexture >= 0 || m.specularColorTexture >= 0;
     };
     std::vector<std::uint32_t> remap(src.vertexCount(), kNoVertex);
     std::vector<std::uint32_t> firstIndex(model.ranges.size(), 0);
@@ -96,6 +109,8 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
                 d.emissiveTexture = m->emissiveTexture;
                 d.normalTexture = m->normalTexture;
                 d.occlusionTexture = m->occlusionTexture;
+                d.specularTexture = alphaTexture(m->specularTexture);
+                d.specularColorTexture = m->specularColorTexture;
             }
             if (!(d.alpha > 0.0f)) continue; // fully transparent (glTF MASK below its cutoff): nothing to draw
         }

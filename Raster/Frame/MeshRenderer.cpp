@@ -123,6 +123,8 @@ void drawPbr(RenderContext& ctx, DrawInputs& in, std::size_t indexCount) {
                             : material.metallicRoughness ? material.metallicRoughness
                             : material.emissive          ? material.emissive
                             : material.normalMap         ? material.normalMap
+                            : material.specularMap       ? material.specularMap
+                            : material.specularColour    ? material.specularColour
                                                          : occlusion;
     const bool maps = anyMap != nullptr && mesh.hasUvs();
     DrawContext& d = in.pbrDraw.emplace(base);

@@ -114,6 +114,10 @@ struct SurfaceMaterial {
     const Texture* emissive = nullptr;
     const Texture* normalMap = nullptr;
     const Texture* occlusion = nullptr;
+    // KHR_materials_specular's specularTexture: the file's alpha channel, copied into all of RGB
+    // (the samplers filter colour; SceneSetup makes the copy).
+    const Texture* specularMap = nullptr;
+    const Texture* specularColour = nullptr; // its specularColorTexture (RGB, sRGB)
 };
 
 } // namespace sr

@@ -32,6 +32,8 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
         material.emissive = map(d.emissiveTexture);
         material.normalMap = map(d.normalTexture);
         material.occlusion = map(d.occlusionTexture);
+        material.specularMap = map(d.specularTexture);
+        material.specularColour = map(d.specularColorTexture);
     }
     return material;
 }

@@ -30,6 +30,7 @@ struct SceneDraw {
     // none): what the pbr shading model reads (SurfaceMaterial::pbr).
     std::optional<PbrFactors> pbr;
     int metallicRoughnessTexture = -1, emissiveTexture = -1, normalTexture = -1, occlusionTexture = -1;
+    int specularTexture = -1, specularColorTexture = -1; // KHR_materials_specular's (specularTexture: its alpha copy)
 };
 
 // World-space line segments (index pairs) or points, in one flat colour (lines are unlit).

@@ -26,6 +26,10 @@ struct PbrFactors {
     // the specular weight (specularFactor, 1 without it) that scales its Fresnel term, F0 and F90.
     Vec3 dielectricF0{0.04f, 0.04f, 0.04f};
     float specularWeight = 1.0f;
+    // ((ior - 1) / (ior + 1))^2 x specularColorFactor before the clamp: with a
+    // specularColorTexture, F0 = min(this x its texel, 1) per pixel (and the weight x the
+    // specularTexture's alpha).
+    Vec3 specularColorF0{0.04f, 0.04f, 0.04f};
 };
 
 // Whether a material's dielectric differs from appendix B's (F0 0.04, weight 1): the kernels

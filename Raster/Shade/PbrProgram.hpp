@@ -66,7 +66,8 @@ struct PbrProgram {
     const TriangleSetup* setup = nullptr;
     // The material has KHR_materials_ior / _specular values (the kernels' BRDF reads them only then).
     bool dielectricSpecular;
-    explicit PbrProgram(const DrawContext* dc) : d(dc), dielectricSpecular(hasDielectricSpecular(*dc->material->pbr)) {}
+    explicit PbrProgram(const DrawContext* dc)
+        : d(dc), dielectricSpecular(hasDielectricSpecular(*dc->material->pbr) || dc->material->specularMap || dc->material->specularColour) {}
 
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kMaps>(*d, i, out);
@@ -127,6 +128,13 @@ struct PbrProgram {
                 const Color c = sampleMap(*m.emissive, true, f);
                 emissive = {emissive.x * c.r, emissive.y * c.g, emissive.z * c.b};
             }
+            // KHR_materials_specular's maps: F0 = min(specularColorF0 x texel, 1), the weight x its alpha.
+            if (m.specularColour) {
+                const Color c = sampleMap(*m.specularColour, true, f);
+                s.dielectricF0 = {std::min(k.specularColorF0.x * c.r, 1.0f), std::min(k.specularColorF0.y * c.g, 1.0f),
+                                  std::min(k.specularColorF0.z * c.b, 1.0f)};
+            }
+            if (m.specularMap) s.specularWeight = k.specularWeight * sampleMap(*m.specularMap, false, f).r; // (its alpha, in red)
             if constexpr (kTangents) {
                 const Vec4 t{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], f.varyings[kT + 3]};
                 n = perturbNormal(n, t, sampleMap(*m.normalMap, false, f), k.normalScale);

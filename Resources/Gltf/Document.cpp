@@ -447,6 +447,9 @@ Result<Document> parseDocument(const unsigned char* data, std::size_t size, cons
         m.alphaCutoff = numberOr(o, "alphaCutoff", 0.5);
         m.doubleSided = boolOr(o, "doubleSided", false);
         m.extensions = objectOr(o, "extensions");
+        const Json specular = objectOr(m.extensions, "KHR_materials_specular");
+        m.specularTexture = textureInfo(specular, "specularTexture");
+        m.specularColorTexture = textureInfo(specular, "specularColorTexture");
         d.materials.push_back(std::move(m));
     }
     for (const Json& o : arrayOf(j, "meshes")) {

@@ -42,6 +42,8 @@ struct Material {
         TextureInfo baseColorTexture, metallicRoughnessTexture;
     } pbrMetallicRoughness;
     TextureInfo normalTexture, occlusionTexture, emissiveTexture;
+    // KHR_materials_specular's maps (its specularTexture's alpha, its specularColorTexture's RGB).
+    TextureInfo specularTexture, specularColorTexture;
     std::vector<double> emissiveFactor{0, 0, 0};
     std::string alphaMode = "OPAQUE";
     double alphaCutoff = 0.5;

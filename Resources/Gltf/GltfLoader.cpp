@@ -21,7 +21,7 @@ const std::set<std::string>& supportedExtensions() {
         "KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_lights_punctual", "KHR_mesh_quantization",
         "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp",
         "EXT_mesh_gpu_instancing", "KHR_texture_basisu", "EXT_texture_avif", "KHR_materials_unlit",
-        "KHR_materials_ior", "KHR_materials_specular", // (specular: its factors; its textures are named in a warning)
+        "KHR_materials_ior", "KHR_materials_specular",
         "KHR_animation_pointer"}; // node transforms and weights; other targets are named in a warning
     return kSupported;
 }
@@ -202,11 +202,6 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
         std::string problem;
         materialUvSource(g.materials[i], &problem);
         if (!problem.empty()) model.warnings.push_back(path + ": material " + std::to_string(i) + ": " + problem);
-        if (const auto ext = g.materials[i].extensions.find("KHR_materials_specular"); ext != g.materials[i].extensions.end())
-            for (const char* map : {"specularTexture", "specularColorTexture"})
-                if (ext->is_object() && ext->contains(map))
-                    model.warnings.push_back(path + ": material " + std::to_string(i) + ": KHR_materials_specular's " + map +
-                                             " is not read (its factor is)");
     }
     const Status textures = addTextures(b, options, dir);
     if (!textures) return R::failure(textures.error());

@@ -30,7 +30,7 @@ Material materialFrom(const gltf::Material& gm) {
     // The dielectric's F0 and specular weight: KHR_materials_ior (ior >= 1, or 0: F0 = 1) and
     // KHR_materials_specular (specularFactor in [0, 1], specularColorFactor >= 0); without them
     // 0.04 and 1 exactly.
-    double f0[3] = {0.04, 0.04, 0.04}, weight = 1.0;
+    double f0[3] = {0.04, 0.04, 0.04}, f0Unclamped[3] = {0.04, 0.04, 0.04}, weight = 1.0;
     const auto iorExt = gm.extensions.find("KHR_materials_ior"), specExt = gm.extensions.find("KHR_materials_specular");
     const bool hasIor = iorExt != gm.extensions.end(), hasSpec = specExt != gm.extensions.end();
     if (hasIor || hasSpec) {
@@ -45,6 +45,7 @@ Material materialFrom(const gltf::Material& gm) {
                     tint = std::max(t[std::size_t(c)].get<double>(), 0.0);
             }
             f0[c] = std::min(r * r * tint, 1.0);
+            f0Unclamped[c] = r * r * tint;
         }
         if (hasSpec) weight = std::min(extensionNumber(*specExt, "specularFactor", 1.0), 1.0);
     }
@@ -59,6 +60,7 @@ Material materialFrom(const gltf::Material& gm) {
     f.metallic = float(metal);
     f.roughness = float(rough);
     f.dielectricF0 = Vec3{float(f0[0]), float(f0[1]), float(f0[2])};
+    f.specularColorF0 = Vec3{float(f0Unclamped[0]), float(f0Unclamped[1]), float(f0Unclamped[2])};
     f.specularWeight = float(weight);
     double emissive[3] = {0, 0, 0};
     for (std::size_t c = 0; c < 3 && c < gm.emissiveFactor.size(); ++c) emissive[c] = std::clamp(gm.emissiveFactor[c], 0.0, 1.0);
@@ -156,7 +158,8 @@ UvTransform uvTransformOf(const gltf::Json& extensions) {
 }
 
 // The uv set and transform a material's maps are drawn with: its base colour texture's (else
-// that of its first other map, in the order metallic-roughness, emissive, normal, occlusion).
+// that of its first other map, in the order metallic-roughness, emissive, normal, occlusion,
+// specular, specular colour).
 // One per material, baked into the vertices of its primitives (every vertex of a glTF primitive
 // is its own: no other material reads it); a map that reads another set or transform is named
 // in `problem`. A reference's set is its texCoord, or its KHR_texture_transform's texCoord.
@@ -166,7 +169,9 @@ UvSource materialUvSource(const gltf::Material& gm, std::string* problem) {
         {&gm.pbrMetallicRoughness.metallicRoughnessTexture, "metallic-roughness"},
         {&gm.emissiveTexture, "emissive"},
         {&gm.normalTexture, "normal"},
-        {&gm.occlusionTexture, "occlusion"}};
+        {&gm.occlusionTexture, "occlusion"},
+        {&gm.specularTexture, "specular"},
+        {&gm.specularColorTexture, "specular colour"}};
     UvSource chosen;
     const char* chosenName = nullptr;
     for (const auto& [info, name] : maps) {

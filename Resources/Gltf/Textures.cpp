@@ -87,6 +87,8 @@ Status addTextures(Builder& b, const LoadOptions& options, const std::string& di
                 mat.emissiveTexture = slotForTexture(gm.emissiveTexture.index);
                 mat.normalTexture = slotForTexture(gm.normalTexture.index);
                 mat.occlusionTexture = slotForTexture(gm.occlusionTexture.index);
+                mat.specularTexture = slotForTexture(gm.specularTexture.index);
+                mat.specularColorTexture = slotForTexture(gm.specularColorTexture.index);
                 mat.texture = slotForTexture(textureIndex);
                 if (!failure.empty()) return Status::failure(path + ": " + failure);
                 if (mat.texture < 0) continue;

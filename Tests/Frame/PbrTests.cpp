@@ -704,6 +704,40 @@ TEST_CASE("glTF COLOR_0 in pbr: base colour factor x texture x vertex colour, in
     }
 }
 
+TEST_CASE("KHR_materials_specular's maps: a specularTexture of alpha 0 is specularFactor 0, a white specularColorTexture is none",
+          "[render][pbr][specular]") {
+    const auto same = [](const Image& a, const Image& b) { return a.rgba == b.rgba; };
+    for (const ColorMode colour : {ColorMode::Linear, ColorMode::Gamma}) {
+        INFO((colour == ColorMode::Linear ? "linear" : "gamma"));
+        PbrScene s = makePbrScene();
+        s.settings.colour = colour;
+        SceneDraw& ground = s.scene.draws[3];
+        ground.pbr->metallic = 0.0f;
+        ground.pbr->roughness = 0.3f; // a visible highlight
+        ground.pbr->dielectricF0 = ground.pbr->specularColorF0 = {0.09f, 0.05f, 0.02f};
+        const Image tinted = renderPbr(s, s.settings);
+        // The alpha copy SceneSetup makes of a specularTexture whose alpha is 0: black.
+        const std::vector<std::uint8_t> zeros(4 * 4 * 4, 0), white(4 * 4 * 4, 255);
+        s.scene.textures.push_back(Texture::fromRgba8(4, 4, zeros.data()));
+        s.scene.textures.push_back(Texture::fromRgba8(4, 4, white.data()));
+        const int black = int(s.scene.textures.size()) - 2, whiteMap = black + 1;
+        PbrScene zeroFactor = s;
+        zeroFactor.scene.draws[3].pbr->specularWeight = 0.0f;
+        const Image noSpecular = renderPbr(zeroFactor, zeroFactor.settings);
+        PbrScene zeroMap = s;
+        zeroMap.scene.draws[3].specularTexture = black;
+        CHECK(same(renderPbr(zeroMap, zeroMap.settings), noSpecular));
+        CHECK_FALSE(same(noSpecular, tinted)); // the specular lobe shows without the map
+        PbrScene whiteColour = s;
+        whiteColour.scene.draws[3].specularColorTexture = whiteMap;
+        CHECK(same(renderPbr(whiteColour, whiteColour.settings), tinted));
+        // A black specularColorTexture: F0 0 on the dielectric, unlike the tinted factor alone.
+        PbrScene blackColour = s;
+        blackColour.scene.draws[3].specularColorTexture = black;
+        CHECK_FALSE(same(renderPbr(blackColour, blackColour.settings), tinted));
+    }
+}
+
 TEST_CASE("pbr scene: emissive adds exactly its value; gamma and linear differ as the curve says", "[render][pbr]") {
     PbrScene s = makePbrScene();
     // Emission alone: no lights. The emissive sphere's pixels are the encoded emissive colour,

@@ -338,6 +338,44 @@ TEST_CASE("a scene mesh keeps the file's vertex colours (COLOR_0), and drops the
     CHECK(coloured.colours[2].r == 0.0f);
 }
 
+TEST_CASE("a glTF specularTexture is drawn from a copy holding its alpha in RGB; its specularColorTexture as it is",
+          "[platform][gltf][specular]") {
+    const std::string dir = objtest::freshDir("specular-maps");
+    // A 2 x 1 TGA with alpha (32 bits, top row first): (10, 20, 30, 64) and (200, 100, 50, 255), as BGRA.
+    const unsigned char tga[] = {0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 1, 0, 32, 0x28, 30, 20, 10, 64, 50, 100, 200, 255};
+    objtest::writeText(dir, "s.tga", std::string(reinterpret_cast<const char*>(tga), sizeof tga));
+    gltftest::Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    a.nodes = R"([{"mesh":0}])";
+    a.meshes = R"([{"primitives":[{"attributes":{"POSITION":)" + std::to_string(pos) + R"(,"TEXCOORD_0":)" + std::to_string(uv) +
+               R"(},"material":0}]}])";
+    a.materials = R"([{"extensions":{"KHR_materials_specular":{"specularTexture":{"index":0},"specularColorTexture":{"index":0}}}}])";
+    a.extra = R"(,"textures":[{"source":0}],"images":[{"uri":"s.tga"}])";
+    SceneOptions o;
+    o.obj = objtest::writeText(dir, "specular.gltf", a.embedded());
+    auto loaded = loadScene(o);
+    REQUIRE(loaded.ok());
+    const Scene& scene = loaded.value().scene;
+    REQUIRE(scene.draws.size() == 1);
+    const SceneDraw& d = scene.draws[0];
+    REQUIRE(d.specularTexture >= 0);
+    REQUIRE(d.specularColorTexture >= 0);
+    CHECK(d.specularTexture != d.specularColorTexture);
+    const Texture& alpha = scene.textures[std::size_t(d.specularTexture)];
+    const Texture& colour = scene.textures[std::size_t(d.specularColorTexture)];
+    // Nearest texel of each column (u 0.25 and 0.75).
+    const Color a0 = alpha.sample({0.25f, 0.5f}, 0.0f, TextureFilter::Nearest, WrapMode::Clamp);
+    const Color a1 = alpha.sample({0.75f, 0.5f}, 0.0f, TextureFilter::Nearest, WrapMode::Clamp);
+    CHECK(a0.r == 64.0f / 255.0f);
+    CHECK(a0.g == 64.0f / 255.0f);
+    CHECK(a0.b == 64.0f / 255.0f);
+    CHECK(a1.r == 1.0f);
+    const Color c0 = colour.sample({0.25f, 0.5f}, 0.0f, TextureFilter::Nearest, WrapMode::Clamp);
+    CHECK(c0.r == 10.0f / 255.0f);
+    CHECK(c0.g == 20.0f / 255.0f);
+}
+
 TEST_CASE("a glTF scene drawn pbr in front of a sky is lit by it unless --no-ibl; other scenes only with --ibl", "[platform][ibl]") {
     // The flags.
     std::vector<std::string> args{"--no-ibl", "--ibl"};

@@ -456,9 +456,11 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
     polished.baseColor = {1.0f, 0.8f, 0.4f, 1.0f};
     polished.metallic = 1.0f;
     polished.roughness = 0.03f; // below the smallest roughness evaluated
-    PbrFactors tinted = rough; // KHR_materials_ior / _specular: a tinted dielectric F0, a specular weight
+    PbrFactors tinted = rough; // KHR_materials_ior / _specular: a tinted dielectric F0, a specular weight, their maps
     tinted.dielectricF0 = {0.11f, 0.06f, 0.3f};
+    tinted.specularColorF0 = {0.11f, 0.06f, 3.0f};
     tinted.specularWeight = 0.55f;
+    const Texture specularMap = randomTexture(rng, 8, 16), specularColour = randomTexture(rng, 16, 16);
     Totals totals;
     int ran = 0;
     for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
@@ -482,6 +484,10 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
                                 material.texture = &base;
                                 material.metallicRoughness = &mr;
                                 material.emissive = &emissive;
+                                if (factors == &tinted) {
+                                    material.specularMap = &specularMap;
+                                    material.specularColour = &specularColour;
+                                }
                                 for (const bool doubleSided : {true, false}) {
                                     DrawContext d{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
                                                   Specular{}, 1.0f, false, doubleSided, {}};
@@ -611,9 +617,11 @@ TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map 
     polished.baseColor = {1.0f, 0.8f, 0.4f, 1.0f};
     polished.metallic = 1.0f;
     polished.roughness = 0.03f;
-    PbrFactors tinted = rough; // KHR_materials_ior / _specular
+    PbrFactors tinted = rough; // KHR_materials_ior / _specular, with their maps
     tinted.dielectricF0 = {0.11f, 0.06f, 0.3f};
+    tinted.specularColorF0 = {0.11f, 0.06f, 3.0f};
     tinted.specularWeight = 0.55f;
+    const Texture specularMap = randomTexture(rng, 8, 16), specularColour = randomTexture(rng, 16, 16);
     Totals totals;
     int ran = 0;
     for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
@@ -634,6 +642,10 @@ TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map 
                         material.texture = &base;
                         material.metallicRoughness = &mr;
                         material.occlusion = &occlusion;
+                        if (factors == &tinted) {
+                            material.specularMap = &specularMap;
+                            material.specularColour = &specularColour;
+                        }
                         DrawContext d{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
                                       Specular{}, 1.0f, false, true, {}};
                         d.linear = linear;

@@ -18,12 +18,11 @@ SR_SIMD_INLINE F gatherOf(const float* table, F index) {
 // programs::imageLight per lane (iblRadiance), out of line: about forty gathers.
 // kSpecular: the material has KHR_materials_ior / _specular values (hasDielectricSpecular).
 template <bool kSpecular>
-SR_SIMD_NOINLINE Rgb imageLightLanes(const ImageLight::Tables& t, const PbrFactors& k, F baseR, F baseG, F baseB, F metallic,
+SR_SIMD_NOINLINE Rgb imageLightLanes(const ImageLight::Tables& t, const F f0[3], F weight, F baseR, F baseG, F baseB, F metallic,
                                      F roughness, const V3& n, const V3& v) {
     const F base[3] = {baseR, baseG, baseB};
-    const F f0[3] = {fset(k.dielectricF0.x), fset(k.dielectricF0.y), fset(k.dielectricF0.z)};
     F out[3];
-    iblRadiance<F, kSpecular>(t, base, f0, fset(k.specularWeight), metallic, roughness, n.x, n.y, n.z, v.x, v.y, v.z, out);
+    iblRadiance<F, kSpecular>(t, base, f0, weight, metallic, roughness, n.x, n.y, n.z, v.x, v.y, v.z, out);
     return {out[0], out[1], out[2]};
 }
 
@@ -32,13 +31,11 @@ SR_SIMD_NOINLINE Rgb imageLightLanes(const ImageLight::Tables& t, const PbrFacto
 // them, the shadow maps' lit fraction, brdfCosineTerms with brdfMultiScatter's k), the same
 // operations in the same order. Lanes whose light or half vector is off normalize's fast path lose `ok`.
 template <bool kSpecular>
-SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* shadows, const PbrFactors& k, F baseR, F baseG, F baseB,
-                               F metallic, F roughness, F nx, F ny, F nz, F px, F py, F pz, F vx, F vy, F vz, M& ok) {
+SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* shadows, const F f0[3], F weight, F baseR, F baseG,
+                               F baseB, F metallic, F roughness, F nx, F ny, F nz, F px, F py, F pz, F vx, F vy, F vz, M& ok) {
     if (lighting.lights.empty()) return {fzero(), fzero(), fzero()};
     const V3 n{nx, ny, nz}, p{px, py, pz}, v{vx, vy, vz};
     const F base[3] = {baseR, baseG, baseB};
-    const F f0[3] = {fset(k.dielectricF0.x), fset(k.dielectricF0.y), fset(k.dielectricF0.z)};
-    const F weight = fset(k.specularWeight);
     const F multiScatter = brdfMultiScatter(brdfAlbedoTable().ess.data(), dot3(n, v), roughness);
     Rgb sum{fzero(), fzero(), fzero()};
     for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
@@ -136,6 +133,8 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
     F metallic = fset(k.metallic), roughness = fset(k.roughness);
     F eR = fset(k.emissive.x), eG = fset(k.emissive.y), eB = fset(k.emissive.z);
     F occlusion = fset(1.0f); // the occlusion map's factor on the light from the sky
+    F f0[3] = {fset(k.dielectricF0.x), fset(k.dielectricF0.y), fset(k.dielectricF0.z)}; // the dielectric's F0 and weight
+    F weight = fset(k.specularWeight);
     // Each map at its own level of detail (PbrProgram::sampleMap); generic, so that it is
     // instantiated only where a textured program calls it.
     auto mapLanes = [&](const auto& map, bool colour) SR_SIMD_LAMBDA {
@@ -173,6 +172,15 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
             const F one = fset(1.0f);
             occlusion = one + fset(k.occlusionStrength) * (mapLanes(*m.occlusion, false).r - one);
         }
+        // KHR_materials_specular's maps (PbrProgram::fragment).
+        if (m.specularColour) {
+            const Rgb c = mapLanes(*m.specularColour, true);
+            const F one = fset(1.0f);
+            f0[0] = minOf(fset(k.specularColorF0.x) * c.r, one);
+            f0[1] = minOf(fset(k.specularColorF0.y) * c.g, one);
+            f0[2] = minOf(fset(k.specularColorF0.z) * c.b, one);
+        }
+        if (m.specularMap) weight = weight * mapLanes(*m.specularMap, false).r; // (its alpha, held in red: SurfaceMaterial)
         if constexpr (Prog::kNormalMap) {
             constexpr int kT = Prog::kT;
             n = perturbNormalLanes(n, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.normalMap, false), k.normalScale);
@@ -180,13 +188,13 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
     }
     // A material without KHR_materials_ior / _specular values takes the shortcut (same bits).
     const bool specular = p.dielectricSpecular;
-    Rgb r = specular ? pbrLights<true>(d.view.lighting, d.view.shadows, k, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z,
+    Rgb r = specular ? pbrLights<true>(d.view.lighting, d.view.shadows, f0, weight, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z,
                                        v[kP], v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok)
-                     : pbrLights<false>(d.view.lighting, d.view.shadows, k, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z,
+                     : pbrLights<false>(d.view.lighting, d.view.shadows, f0, weight, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z,
                                         v[kP], v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok);
     if (d.view.ibl) {
-        const Rgb sky = specular ? imageLightLanes<true>(d.view.ibl->tables(), k, baseR, baseG, baseB, metallic, roughness, n, toEye)
-                                 : imageLightLanes<false>(d.view.ibl->tables(), k, baseR, baseG, baseB, metallic, roughness, n, toEye);
+        const Rgb sky = specular ? imageLightLanes<true>(d.view.ibl->tables(), f0, weight, baseR, baseG, baseB, metallic, roughness, n, toEye)
+                                 : imageLightLanes<false>(d.view.ibl->tables(), f0, weight, baseR, baseG, baseB, metallic, roughness, n, toEye);
         r = {r.r + sky.r * occlusion, r.g + sky.g * occlusion, r.b + sky.b * occlusion};
     }
     return {r.r + eR, r.g + eG, r.b + eB};
