@@ -49,6 +49,7 @@ struct Material {
     std::optional<PbrFactors> pbr;
     int metallicRoughnessTexture = -1, emissiveTexture = -1, normalTexture = -1, occlusionTexture = -1;
     int specularTexture = -1, specularColorTexture = -1; // KHR_materials_specular's
+    int clearcoatTexture = -1, clearcoatRoughnessTexture = -1, clearcoatNormalTexture = -1; // KHR_materials_clearcoat's
 };
 
 // The triangles of one material: one draw call. One range per material (faces without one form

@@ -21,9 +21,11 @@ cube=/usr/share/assimp/models/OBJ/cube_with_vertexcolors.obj
 if [[ $# -eq 0 && -f $cube ]] && command -v assimp >/dev/null; then
   assimp export "$cube" "$out/cube_with_vertexcolors.gltf" -f gltf2 >/dev/null && models+=("$out/cube_with_vertexcolors.gltf")
 fi
-# Dielectric spheres under KHR_materials_ior and KHR_materials_specular.
+# Sphere sweeps of the material extensions: KHR_materials_ior with _specular, KHR_materials_clearcoat.
 if [[ $# -eq 0 ]]; then
-  python3 scripts/make-specular-spheres.py "$out/specular_spheres.gltf" && models+=("$out/specular_spheres.gltf")
+  for set in specular clearcoat; do
+    python3 scripts/make-material-spheres.py "$set" "$out/${set}_spheres.gltf" && models+=("$out/${set}_spheres.gltf")
+  done
 fi
 W=${WIDTH:-400} H=${HEIGHT:-300}
 ours=() three=() second=(--shading phong --color gamma) key=psnr_both_nonblack

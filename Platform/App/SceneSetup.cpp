@@ -55,7 +55,8 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
         if (range.material < 0 || !model.hasUvs) return false;
         const Material& m = model.materials[std::size_t(range.material)];
         return m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 || m.normalTexture >= 0 || m.occlusionTexture >= 0 ||
-               m.specularTexture >= 0 || m.specularColorTexture >= 0;
+               m.specularTexture >= 0 || m.specularColorTexture >= 0 || m.clearcoatTexture >= 0 || m.clearcoatRoughnessTexture >= 0 ||
+               m.clearcoatNormalTexture >= 0;
     };
     std::vector<std::uint32_t> remap(src.vertexCount(), kNoVertex);
     std::vector<std::uint32_t> firstIndex(model.ranges.size(), 0);
@@ -111,6 +112,9 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
                 d.occlusionTexture = m->occlusionTexture;
                 d.specularTexture = alphaTexture(m->specularTexture);
                 d.specularColorTexture = m->specularColorTexture;
+                d.clearcoatTexture = m->clearcoatTexture;
+                d.clearcoatRoughnessTexture = m->clearcoatRoughnessTexture;
+                d.clearcoatNormalTexture = m->clearcoatNormalTexture;
             }
             if (!(d.alpha > 0.0f)) continue; // fully transparent (glTF MASK below its cutoff): nothing to draw
         }

@@ -118,6 +118,10 @@ struct SurfaceMaterial {
     // (the samplers filter colour; SceneSetup makes the copy).
     const Texture* specularMap = nullptr;
     const Texture* specularColour = nullptr; // its specularColorTexture (RGB, sRGB)
+    // KHR_materials_clearcoat's maps: the layer's weight (red), its roughness (green), its normal map.
+    const Texture* clearcoatMap = nullptr;
+    const Texture* clearcoatRoughnessMap = nullptr;
+    const Texture* clearcoatNormalMap = nullptr;
 };
 
 } // namespace sr

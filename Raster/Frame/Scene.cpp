@@ -34,6 +34,9 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
         material.occlusion = map(d.occlusionTexture);
         material.specularMap = map(d.specularTexture);
         material.specularColour = map(d.specularColorTexture);
+        material.clearcoatMap = map(d.clearcoatTexture);
+        material.clearcoatRoughnessMap = map(d.clearcoatRoughnessTexture);
+        material.clearcoatNormalMap = map(d.clearcoatNormalTexture);
     }
     return material;
 }

@@ -31,6 +31,7 @@ struct SceneDraw {
     std::optional<PbrFactors> pbr;
     int metallicRoughnessTexture = -1, emissiveTexture = -1, normalTexture = -1, occlusionTexture = -1;
     int specularTexture = -1, specularColorTexture = -1; // KHR_materials_specular's (specularTexture: its alpha copy)
+    int clearcoatTexture = -1, clearcoatRoughnessTexture = -1, clearcoatNormalTexture = -1; // KHR_materials_clearcoat's
 };
 
 // World-space line segments (index pairs) or points, in one flat colour (lines are unlit).

@@ -30,6 +30,9 @@ struct PbrFactors {
     // specularColorTexture, F0 = min(this x its texel, 1) per pixel (and the weight x the
     // specularTexture's alpha).
     Vec3 specularColorF0{0.04f, 0.04f, 0.04f};
+    // KHR_materials_clearcoat: the coat's weight (0: none; x the clearcoatTexture's red), its
+    // perceptual roughness (x the clearcoatRoughnessTexture's green) and its normal map's scale.
+    float clearcoat = 0.0f, clearcoatRoughness = 0.0f, clearcoatNormalScale = 1.0f;
 };
 
 // Whether a material's dielectric differs from appendix B's (F0 0.04, weight 1): the kernels
@@ -103,6 +106,32 @@ inline Vec3 pbrRadiance(const Lighting& lighting, const PbrSurface& s, Vec3 n, V
         sum.x += f.x * light.colour.r * a;
         sum.y += f.y * light.colour.g * a;
         sum.z += f.z * light.colour.b * a;
+    }
+    return sum;
+}
+
+// The clear coat's lobe under every light (KHR_materials_clearcoat; BrdfTerms.inl's
+// coatCosineTerm on the coat normal nc, unit, at the coat's roughness), where the light reaches
+// the point and nc faces it; `visible` as in pbrRadiance, asked with the base's normal n.
+template <class Visibility = AllVisible>
+inline Vec3 coatRadiance(const Lighting& lighting, Vec3 nc, float coatRoughness, Vec3 n, Vec3 p, Vec3 v,
+                         const Visibility& visible = {}) {
+    Vec3 sum{0.0f, 0.0f, 0.0f};
+    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
+        const Light& light = lighting.lights[i];
+        Vec3 l;
+        float a = lightAt(light, p, l);
+        if (!(a > 0.0f) || !(dot(nc, l) > 0.0f)) continue;
+        if constexpr (!std::is_same_v<Visibility, AllVisible>) {
+            const float seen = visible(i, p, n, l);
+            if (seen < 1.0f) a = a * seen;
+        }
+        const Vec3 h = normalize(l + v);
+        const Vec3 nxh = cross(nc, h);
+        const float f = coatCosineTerm(dot(nc, l), dot(nc, v), dot(nc, h), dot(nxh, nxh), coatRoughness);
+        sum.x += f * light.colour.r * a;
+        sum.y += f * light.colour.g * a;
+        sum.z += f * light.colour.b * a;
     }
     return sum;
 }

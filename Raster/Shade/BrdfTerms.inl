@@ -40,6 +40,22 @@ inline R brdfMetallic(R metallic) {
     return selectOf(metallic > zero, minOf(metallic, splatAs(metallic, 1.0f)), zero);
 }
 
+// D V, the microfacet lobe without its Fresnel term (appendix B's specular_brdf over F), from
+// N.L, N.V (clamped above 0), N.H (clamped to 0), |N x H|^2 and alpha^2, as brdfCosineTerms has
+// them (its source: the base's lobe and the clear coat's are the same operations).
+template <class R>
+inline R ggxLobe(R nDotL, R nDotV, R nDotH, R sin2NH, R a2) {
+    const R zero = splatAs(nDotL, 0.0f), one = splatAs(nDotL, 1.0f);
+    const R pi = splatAs(nDotL, kPiF);
+    const R d = sin2NH + nDotH * nDotH * a2;
+    const R distribution = selectOf(d > zero, a2 / (pi * d * d), zero);
+    const R gv = nDotL * sqrtOf(nDotV * nDotV * (one - a2) + a2);
+    const R gl = nDotV * sqrtOf(nDotL * nDotL * (one - a2) + a2);
+    const R sum = gv + gl;
+    const R visibility = selectOf(sum > zero, splatAs(nDotL, 0.5f) / sum, zero);
+    return distribution * visibility;
+}
+
 template <class R, bool kSpecular = true>
 inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRaw, R roughnessIn, R metallicIn,
                             const R base[3], const R dielectricF0[3], R specularWeight, R multiScatter, R out[3]) {
@@ -56,13 +72,7 @@ inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRa
     const R m2 = m * m;
     const R fw = m2 * m2 * m;
     const R pi = splatAs(nDotL, kPiF);
-    const R d = sin2NH + nDotH * nDotH * a2;
-    const R distribution = selectOf(d > zero, a2 / (pi * d * d), zero);
-    const R gv = nDotL * sqrtOf(nDotV * nDotV * (one - a2) + a2);
-    const R gl = nDotV * sqrtOf(nDotL * nDotL * (one - a2) + a2);
-    const R sum = gv + gl;
-    const R visibility = selectOf(sum > zero, splatAs(nDotL, 0.5f) / sum, zero);
-    const R specular = distribution * visibility;
+    const R specular = ggxLobe(nDotL, nDotV, nDotH, sin2NH, a2);
     const R weight = kSpecular ? specularWeight + (one - specularWeight) * metallic : one;
     const auto lit = nDotL > zero;
     for (int c = 0; c < 3; ++c) {
@@ -73,4 +83,36 @@ inline void brdfCosineTerms(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R vDotHRa
         const R diffuse = (one - f) * (base[c] * (one - metallic)) / pi;
         out[c] = selectOf(lit, (diffuse + f * specular * (one + f0 * multiScatter)) * nDotL, zero);
     }
+}
+
+// KHR_materials_clearcoat, layered as the glTF specification's fresnel_coat does it:
+//   coated = mix(base, clearcoat_brdf, clearcoat Fc),  Fc = 0.04 + 0.96 (1 - |Nc.V|)^5
+// (the coat's ior 1.5, Schlick's weight at the coat normal Nc's N.V: one value per pixel), with
+// clearcoat_brdf = D V, appendix B's specular_brdf at the coat's roughness on Nc (no Fresnel
+// inside: fresnel_coat holds it). The base (its lights, its sky light and its emission) is
+// scaled by 1 - clearcoat Fc, the coat's lobe by clearcoat Fc.
+// coatWeight: clearcoat Fc, clearcoat clamped to [0, 1] (NaN 0), |Nc.V| to [0, 1].
+template <class R>
+inline R coatWeight(R clearcoat, R nDotVc) {
+    const R zero = splatAs(clearcoat, 0.0f), one = splatAs(clearcoat, 1.0f);
+    const R weight = selectOf(clearcoat > zero, minOf(clearcoat, one), zero);
+    const R c = maxOf(nDotVc, zero - nDotVc);
+    const R m0 = one - c;
+    const R m = selectOf(m0 < zero, zero, selectOf(one < m0, one, m0));
+    const R m2 = m * m;
+    const R fresnel = splatAs(clearcoat, 0.04f) + splatAs(clearcoat, 0.96f) * (m2 * m2 * m);
+    return weight * fresnel;
+}
+
+// The coat's lobe times its N.L for one light: D V N.L on the coat normal (ggxLobe; N.V clamped
+// to 1e-4, N.H to 0, the roughness by brdfRoughness), 0 where N.L <= 0.
+template <class R>
+inline R coatCosineTerm(R nDotL, R nDotVRaw, R nDotHRaw, R sin2NH, R roughnessIn) {
+    const R zero = splatAs(nDotL, 0.0f);
+    const R nDotV = maxOf(nDotVRaw, splatAs(nDotL, 1e-4f));
+    const R nDotH = maxOf(nDotHRaw, zero);
+    const R roughness = brdfRoughness(roughnessIn);
+    const R alpha = roughness * roughness;
+    const R lobe = ggxLobe(nDotL, nDotV, nDotH, sin2NH, alpha * alpha);
+    return selectOf(nDotL > zero, lobe * nDotL, zero);
 }

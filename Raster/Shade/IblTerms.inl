@@ -151,3 +151,20 @@ inline void iblRadiance(const ImageLight::Tables& t, const R base[3], const R di
         out[c] = base[c] * (one - metallic) * e[c] * (one - albedo) + spec[c] * albedo;
     }
 }
+
+// The clear coat's sky light (BrdfTerms.inl's coatWeight layers it): the prefiltered radiance
+// along R = 2 (Nc.V) Nc - V at the coat's roughness times the directional albedo of its lobe D V,
+// which has no Fresnel inside: E_ss = a + b at (Nc.V clamped to 1e-4, the roughness by
+// brdfRoughness).
+template <class R>
+inline void iblCoat(const ImageLight::Tables& t, R roughnessIn, R nx, R ny, R nz, R vx, R vy, R vz, R out[3]) {
+    const R roughness = brdfRoughness(roughnessIn);
+    const R ndv = (nx * vx + ny * vy) + nz * vz;
+    const R nDotV = maxOf(ndv, splatAs(nx, 1e-4f));
+    const R twice = splatAs(nx, 2.0f) * ndv;
+    R a, b, spec[3];
+    iblScaleBias(t, nDotV, roughness, a, b);
+    iblSpecular(t, nx * twice - vx, ny * twice - vy, nz * twice - vz, roughness, spec);
+    const R ess = a + b;
+    for (int c = 0; c < 3; ++c) out[c] = spec[c] * ess;
+}

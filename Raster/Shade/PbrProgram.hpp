@@ -41,6 +41,13 @@ inline Vec3 imageLight(const ImageLight& light, const PbrSurface& s, Vec3 n, Vec
     return {out[0], out[1], out[2]};
 }
 
+// The light a sky sends toward v from a clear coat with unit normal nc (IblTerms.inl's iblCoat).
+inline Vec3 coatImageLight(const ImageLight& light, float coatRoughness, Vec3 nc, Vec3 v) {
+    float out[3];
+    ibl::iblCoat(light.tables(), coatRoughness, nc.x, nc.y, nc.z, v.x, v.y, v.z, out);
+    return {out[0], out[1], out[2]};
+}
+
 // Phong's interpolation (world position and normal, perspective-correct), lit per pixel by the
 // glTF BRDF (pbrRadiance, compensated for multiple scattering: brdfMultiScatter) plus the
 // emissive term. With kMaps: the uv in varyings 0-1 and the material's maps sampled at it (each
@@ -50,6 +57,9 @@ inline Vec3 imageLight(const ImageLight& light, const PbrSurface& s, Vec3 n, Vec
 // decoded from sRGB in linear mode; the others are data and read as stored. Double-sided
 // surfaces seen from behind are lit on their back (the normal flipped toward the viewer, as the
 // specification asks); single-sided ones never show their back (culled).
+// A material with a clear coat (KHR_materials_clearcoat, clearcoat > 0) layers it over all of
+// that as BrdfTerms.inl's coatWeight says: its lobe on the interpolated normal, or on its own
+// normal map (kTangents; the base's normal map does not bend it), in direct and sky light.
 // The span kernels (Raster/Fill/Kernels/Kernels*Pbr.cpp, Kernels*PbrColours.cpp) cover all six variants.
 template <bool kMaps, bool kTangents = false, bool kColours = false>
 struct PbrProgram {
@@ -66,8 +76,11 @@ struct PbrProgram {
     const TriangleSetup* setup = nullptr;
     // The material has KHR_materials_ior / _specular values (the kernels' BRDF reads them only then).
     bool dielectricSpecular;
+    // The material has a clear coat (KHR_materials_clearcoat; its maps are read only then).
+    bool coat;
     explicit PbrProgram(const DrawContext* dc)
-        : d(dc), dielectricSpecular(hasDielectricSpecular(*dc->material->pbr) || dc->material->specularMap || dc->material->specularColour) {}
+        : d(dc), dielectricSpecular(hasDielectricSpecular(*dc->material->pbr) || dc->material->specularMap || dc->material->specularColour),
+          coat(dc->material->pbr->clearcoat > 0.0f) {}
 
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kMaps>(*d, i, out);
@@ -103,6 +116,7 @@ struct PbrProgram {
         Vec3 n = normalize(Vec3{f.varyings[kP + 3], f.varyings[kP + 4], f.varyings[kP + 5]});
         const Vec3 v = normalize(d->view.eye - p);
         if (d->doubleSided && dot(n, v) < 0.0f) n = -n;
+        const Vec3 geometric = n; // the clear coat's normal without a map of its own
         PbrSurface s;
         s.baseColor = {k.baseColor.r, k.baseColor.g, k.baseColor.b};
         s.metallic = k.metallic;
@@ -137,7 +151,20 @@ struct PbrProgram {
             if (m.specularMap) s.specularWeight = k.specularWeight * sampleMap(*m.specularMap, false, f).r; // (its alpha, in red)
             if constexpr (kTangents) {
                 const Vec4 t{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], f.varyings[kT + 3]};
-                n = perturbNormal(n, t, sampleMap(*m.normalMap, false, f), k.normalScale);
+                if (m.normalMap) n = perturbNormal(n, t, sampleMap(*m.normalMap, false, f), k.normalScale);
+            }
+        }
+        // The clear coat's weight, roughness and normal, each x its map.
+        float clearcoat = k.clearcoat, coatRoughness = k.clearcoatRoughness;
+        Vec3 nc = geometric;
+        if constexpr (kMaps) {
+            if (coat) {
+                if (m.clearcoatMap) clearcoat *= sampleMap(*m.clearcoatMap, false, f).r;
+                if (m.clearcoatRoughnessMap) coatRoughness *= sampleMap(*m.clearcoatRoughnessMap, false, f).g;
+                if constexpr (kTangents) {
+                    const Vec4 t{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], f.varyings[kT + 3]};
+                    if (m.clearcoatNormalMap) nc = perturbNormal(geometric, t, sampleMap(*m.clearcoatNormalMap, false, f), k.clearcoatNormalScale);
+                }
             }
         }
         const float multiScatter =
@@ -147,15 +174,26 @@ struct PbrProgram {
                                                    return sh->visibility(light, q, normal, l);
                                                })
                                  : pbrRadiance(d->view.lighting, s, n, p, v, multiScatter);
+        float occlusion = 1.0f;
         if (d->view.ibl) {
-            float occlusion = 1.0f;
             if constexpr (kMaps) {
                 if (m.occlusion) occlusion = 1.0f + k.occlusionStrength * (sampleMap(*m.occlusion, false, f).r - 1.0f);
             }
             const Vec3 sky = imageLight(*d->view.ibl, s, n, v) * occlusion;
             r = r + sky;
         }
-        return encode(*d, Color{r.x + emissive.x, r.y + emissive.y, r.z + emissive.z, 1.0f});
+        Vec3 out{r.x + emissive.x, r.y + emissive.y, r.z + emissive.z};
+        if (coat) {
+            Vec3 c = d->view.shadows ? coatRadiance(d->view.lighting, nc, coatRoughness, n, p, v,
+                                                    [sh = d->view.shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) {
+                                                        return sh->visibility(light, q, normal, l);
+                                                    })
+                                     : coatRadiance(d->view.lighting, nc, coatRoughness, n, p, v);
+            if (d->view.ibl) c = c + coatImageLight(*d->view.ibl, coatRoughness, nc, v) * occlusion;
+            const float w = coatWeight(clearcoat, dot(nc, v));
+            out = {out.x * (1.0f - w) + c.x * w, out.y * (1.0f - w) + c.y * w, out.z * (1.0f - w) + c.z * w};
+        }
+        return encode(*d, Color{out.x, out.y, out.z, 1.0f});
     }
     template <bool kM = kMaps, std::enable_if_t<kM, int> = 0> // textured programs only (HasFragmentAlpha)
     float fragmentAlpha(const Fragment<kVaryings>& f) const {

@@ -450,6 +450,10 @@ Result<Document> parseDocument(const unsigned char* data, std::size_t size, cons
         const Json specular = objectOr(m.extensions, "KHR_materials_specular");
         m.specularTexture = textureInfo(specular, "specularTexture");
         m.specularColorTexture = textureInfo(specular, "specularColorTexture");
+        const Json clearcoat = objectOr(m.extensions, "KHR_materials_clearcoat");
+        m.clearcoatTexture = textureInfo(clearcoat, "clearcoatTexture");
+        m.clearcoatRoughnessTexture = textureInfo(clearcoat, "clearcoatRoughnessTexture");
+        m.clearcoatNormalTexture = textureInfo(clearcoat, "clearcoatNormalTexture");
         d.materials.push_back(std::move(m));
     }
     for (const Json& o : arrayOf(j, "meshes")) {

@@ -44,6 +44,8 @@ struct Material {
     TextureInfo normalTexture, occlusionTexture, emissiveTexture;
     // KHR_materials_specular's maps (its specularTexture's alpha, its specularColorTexture's RGB).
     TextureInfo specularTexture, specularColorTexture;
+    // KHR_materials_clearcoat's maps (the layer's weight in red, its roughness in green, its normal map).
+    TextureInfo clearcoatTexture, clearcoatRoughnessTexture, clearcoatNormalTexture;
     std::vector<double> emissiveFactor{0, 0, 0};
     std::string alphaMode = "OPAQUE";
     double alphaCutoff = 0.5;

@@ -73,6 +73,12 @@ Material materialFrom(const gltf::Material& gm) {
     f.normalScale = std::isfinite(gm.normalTexture.scale) ? float(gm.normalTexture.scale) : 1.0f;
     f.occlusionStrength = float(std::clamp(gm.occlusionTexture.strength, 0.0, 1.0));
     f.unlit = gm.extensions.contains("KHR_materials_unlit");
+    // KHR_materials_clearcoat: the layer's weight and roughness in [0, 1], its normal map's scale.
+    if (const auto ext = gm.extensions.find("KHR_materials_clearcoat"); ext != gm.extensions.end()) {
+        f.clearcoat = float(std::min(extensionNumber(*ext, "clearcoatFactor", 0.0), 1.0));
+        f.clearcoatRoughness = float(std::min(extensionNumber(*ext, "clearcoatRoughnessFactor", 0.0), 1.0));
+        f.clearcoatNormalScale = std::isfinite(gm.clearcoatNormalTexture.scale) ? float(gm.clearcoatNormalTexture.scale) : 1.0f;
+    }
     // Alpha modes. With the factor's alpha alone (untextured, or a texture without alpha): BLEND
     // blends with it, MASK keeps the surface when it reaches alphaCutoff and drops it otherwise,
     // OPAQUE ignores it. With a base colour texture, texelAlpha holds the per-fragment rule (the
@@ -159,7 +165,7 @@ UvTransform uvTransformOf(const gltf::Json& extensions) {
 
 // The uv set and transform a material's maps are drawn with: its base colour texture's (else
 // that of its first other map, in the order metallic-roughness, emissive, normal, occlusion,
-// specular, specular colour).
+// specular, specular colour, clearcoat, clearcoat roughness, clearcoat normal).
 // One per material, baked into the vertices of its primitives (every vertex of a glTF primitive
 // is its own: no other material reads it); a map that reads another set or transform is named
 // in `problem`. A reference's set is its texCoord, or its KHR_texture_transform's texCoord.
@@ -171,7 +177,10 @@ UvSource materialUvSource(const gltf::Material& gm, std::string* problem) {
         {&gm.normalTexture, "normal"},
         {&gm.occlusionTexture, "occlusion"},
         {&gm.specularTexture, "specular"},
-        {&gm.specularColorTexture, "specular colour"}};
+        {&gm.specularColorTexture, "specular colour"},
+        {&gm.clearcoatTexture, "clearcoat"},
+        {&gm.clearcoatRoughnessTexture, "clearcoat roughness"},
+        {&gm.clearcoatNormalTexture, "clearcoat normal"}};
     UvSource chosen;
     const char* chosenName = nullptr;
     for (const auto& [info, name] : maps) {

@@ -89,6 +89,9 @@ Status addTextures(Builder& b, const LoadOptions& options, const std::string& di
                 mat.occlusionTexture = slotForTexture(gm.occlusionTexture.index);
                 mat.specularTexture = slotForTexture(gm.specularTexture.index);
                 mat.specularColorTexture = slotForTexture(gm.specularColorTexture.index);
+                mat.clearcoatTexture = slotForTexture(gm.clearcoatTexture.index);
+                mat.clearcoatRoughnessTexture = slotForTexture(gm.clearcoatRoughnessTexture.index);
+                mat.clearcoatNormalTexture = slotForTexture(gm.clearcoatNormalTexture.index);
                 mat.texture = slotForTexture(textureIndex);
                 if (!failure.empty()) return Status::failure(path + ": " + failure);
                 if (mat.texture < 0) continue;

@@ -385,6 +385,91 @@ TEST_CASE("glTF BRDF: the white furnace for a white dielectric - what the specif
     }
 }
 
+TEST_CASE("KHR_materials_clearcoat: the coat's lobe and weight against their closed forms in double", "[render][brdf][pbr][clearcoat]") {
+    // The coat's lobe is appendix B's D V N.L without Fresnel: the double form's white metal (F = 1).
+    const double n[3] = {0, 0, 1};
+    const double angles[][4] = {{0, 0, 0, 0}, {30, 0, 45, 180}, {60, 90, 10, 0}, {75, 0, 75, 180}, {85, 0, 20, 200}, {20, 0, 89, 0}};
+    for (double roughness : {0.0, 0.05, 0.3, 0.7, 1.0})
+        for (const auto& a : angles) {
+            const double tl = a[0] * kPiT / 180, pl = a[1] * kPiT / 180, tv = a[2] * kPiT / 180, pv = a[3] * kPiT / 180;
+            const double l[3] = {std::sin(tl) * std::cos(pl), std::sin(tl) * std::sin(pl), std::cos(tl)};
+            const double v[3] = {std::sin(tv) * std::cos(pv), std::sin(tv) * std::sin(pv), std::cos(tv)};
+            const Vec3 lf{float(l[0]), float(l[1]), float(l[2])}, vf{float(v[0]), float(v[1]), float(v[2])};
+            const Vec3 h = normalize(lf + vf), nf{0.0f, 0.0f, 1.0f};
+            const Vec3 nxh = cross(nf, h);
+            const float got = coatCosineTerm(dot(nf, lf), dot(nf, vf), dot(nf, h), dot(nxh, nxh), float(roughness));
+            const double want = specBrdfCosine(1.0, 1.0, roughness, n, l, v);
+            INFO("roughness " << roughness << " light " << a[0] << "/" << a[1] << " view " << a[2] << "/" << a[3]);
+            CHECK(double(got) == Approx(want).epsilon(2e-4).margin(1e-7));
+        }
+    // Light from behind the coat: nothing.
+    CHECK(coatCosineTerm(-0.2f, 0.8f, 0.5f, 0.75f, 0.3f) == 0.0f);
+    // fresnel_coat's weight: clearcoat x (0.04 + 0.96 (1 - |Nc.V|)^5), clearcoat clamped to [0, 1].
+    for (double c : {0.0, 0.3, 1.0, 1.7, -1.0})
+        for (double ndv : {1.0, 0.5, 0.1, 0.0, -0.5}) {
+            const double want = std::clamp(c, 0.0, 1.0) * (0.04 + 0.96 * std::pow(1.0 - std::fabs(ndv), 5.0));
+            INFO("clearcoat " << c << ", Nc.V " << ndv);
+            CHECK(double(coatWeight(float(c), float(ndv))) == Approx(want).epsilon(1e-5).margin(1e-7));
+        }
+    CHECK(coatWeight(std::nanf(""), 0.5f) == 0.0f);
+}
+
+TEST_CASE("KHR_materials_clearcoat in a white furnace: a coat never adds light; a smooth coat over a white metal returns the sky",
+          "[render][brdf][pbr][clearcoat][furnace]") {
+    // Under a uniform sky of radiance 1: (1 - w) x the base's sky light + w x the coat's, with
+    // w = coatWeight. A white metal returns 1 (compensated); the coat's lobe returns its albedo
+    // a + b, at most 1, so the coated surface returns 1 - w (1 - (a + b)) <= 1: equal to 1 within
+    // 1% for a smooth coat, below it by w (1 - (a + b)) for a rough one.
+    Sky white;
+    white.kind = Sky::Kind::Gradient;
+    white.gradient.zenith = white.gradient.horizon = white.gradient.ground = Color{1.0f, 1.0f, 1.0f, 1.0f};
+    const ImageLight ibl(white);
+    PbrSurface metal;
+    metal.baseColor = {1.0f, 1.0f, 1.0f};
+    metal.metallic = 1.0f;
+    const Vec3 n{0, 0, 1};
+    for (float r : {0.05f, 0.5f, 1.0f})
+        for (float rc : {0.0f, 0.25f, 0.5f, 1.0f})
+            for (const Vec3& v : {Vec3{0, 0, 1}, normalize(Vec3{1, 0, 1}), normalize(Vec3{3, 1, 1})}) {
+                metal.roughness = r;
+                const Vec3 base = programs::imageLight(ibl, metal, n, v);
+                const Vec3 coat = programs::coatImageLight(ibl, rc, n, v);
+                const float w = coatWeight(1.0f, dot(n, v));
+                const float out = base.x * (1.0f - w) + coat.x * w;
+                float a = 0.0f, b = 0.0f;
+                ibl.brdfScaleBias(dot(n, v), std::max(rc, kMinRoughness), a, b);
+                INFO("roughness " << r << ", coat roughness " << rc << ", N.V " << v.z << ": coat " << coat.x << ", total " << out);
+                CHECK(coat.x == Approx(a + b).margin(0.01)); // the coat's lobe keeps its albedo of the unit sky
+                CHECK(out <= 1.0f + 0.01f);
+                CHECK(out == Approx(1.0f - w * (1.0f - (a + b))).margin(0.01));
+                if (rc == 0.0f) CHECK(out == Approx(1.0f).margin(0.01));
+            }
+    // The direct light's lobe integrated over the hemisphere (midpoint rule in cos theta, phi)
+    // is the same albedo a + b the sky light uses, at roughness 0.5 and 1 and three views.
+    for (float rc : {0.5f, 1.0f})
+        for (double viewAngle : {0.0, 45.0, 70.0}) {
+            const double tv = viewAngle * kPiT / 180;
+            const Vec3 v = unit(std::sin(tv), 0.0, std::cos(tv));
+            constexpr int kTheta = 256, kPhi = 128;
+            double sum = 0.0;
+            for (int i = 0; i < kTheta; ++i) {
+                const double ct = (i + 0.5) / kTheta, st = std::sqrt(1.0 - ct * ct);
+                for (int j = 0; j < kPhi; ++j) {
+                    const double ph = (j + 0.5) * 2.0 * kPiT / kPhi;
+                    const Vec3 l = unit(st * std::cos(ph), st * std::sin(ph), ct);
+                    const Vec3 h = normalize(l + v), nxh = cross(n, h);
+                    sum += double(coatCosineTerm(dot(n, l), dot(n, v), dot(n, h), dot(nxh, nxh), rc));
+                }
+            }
+            const double albedo = sum * (1.0 / kTheta) * (2.0 * kPiT / kPhi);
+            float a = 0.0f, b = 0.0f;
+            ibl.brdfScaleBias(float(std::cos(tv)), rc, a, b);
+            INFO("coat roughness " << rc << ", view " << viewAngle << ": " << albedo << " (table: " << a + b << ")");
+            CHECK(albedo == Approx(double(a + b)).margin(0.015));
+            CHECK(albedo <= 1.0 + 2e-3);
+        }
+}
+
 TEST_CASE("glTF BRDF: finite at the extremes (roughness 0, metallic 1, grazing and NaN-free)", "[render][brdf][pbr]") {
     const Vec3 n{0.0f, 0.0f, 1.0f};
     PbrSurface s;
@@ -736,6 +821,67 @@ TEST_CASE("KHR_materials_specular's maps: a specularTexture of alpha 0 is specul
         blackColour.scene.draws[3].specularColorTexture = black;
         CHECK_FALSE(same(renderPbr(blackColour, blackColour.settings), tinted));
     }
+}
+
+TEST_CASE("KHR_materials_clearcoat in a scene: a coat of weight 0 (factor or map) is the base exactly; a coat reflects the lights",
+          "[render][pbr][clearcoat]") {
+    const auto same = [](const Image& a, const Image& b) { return a.rgba == b.rgba; };
+    const std::vector<std::uint8_t> zeros(4 * 4 * 4, 0), white(4 * 4 * 4, 255);
+    for (const bool sky : {false, true})
+        for (const ColorMode colour : {ColorMode::Linear, ColorMode::Gamma}) {
+            INFO((colour == ColorMode::Linear ? "linear" : "gamma") << (sky ? ", with the sky's light" : ""));
+            PbrScene s = makePbrScene();
+            s.settings.colour = colour;
+            Sky gradient;
+            gradient.kind = Sky::Kind::Gradient;
+            const ImageLight ibl(gradient);
+            if (sky) s.view.ibl = &ibl;
+            s.scene.textures.push_back(Texture::fromRgba8(4, 4, zeros.data()));
+            s.scene.textures.push_back(Texture::fromRgba8(4, 4, white.data()));
+            const int black = int(s.scene.textures.size()) - 2, whiteMap = black + 1;
+            const Image plain = renderPbr(s, s.settings);
+            // A coat on the rough blue sphere and on the ground, factor 1, roughness 0.1.
+            PbrScene coated = s;
+            for (int k : {0, 3}) {
+                coated.scene.draws[std::size_t(k)].pbr->clearcoat = 1.0f;
+                coated.scene.draws[std::size_t(k)].pbr->clearcoatRoughness = 0.1f;
+            }
+            const Image withCoat = renderPbr(coated, coated.settings);
+            CHECK_FALSE(same(withCoat, plain));
+            // The ground's map of weight 0 takes its coat away: the base bit for bit there.
+            PbrScene groundOnly = s;
+            groundOnly.scene.draws[3].pbr->clearcoat = 1.0f;
+            groundOnly.scene.draws[3].pbr->clearcoatRoughness = 0.1f;
+            groundOnly.scene.draws[3].clearcoatTexture = black;
+            CHECK(same(renderPbr(groundOnly, groundOnly.settings), plain));
+            // A white map (weight 1) and a white roughness map change nothing; the roughness map's
+            // black (roughness 0 under the factor) does.
+            PbrScene whiteMaps = coated;
+            whiteMaps.scene.draws[3].clearcoatTexture = whiteMap;
+            whiteMaps.scene.draws[3].clearcoatRoughnessTexture = whiteMap;
+            CHECK(same(renderPbr(whiteMaps, whiteMaps.settings), withCoat));
+            PbrScene smooth = coated;
+            smooth.scene.draws[3].clearcoatRoughnessTexture = black;
+            CHECK_FALSE(same(renderPbr(smooth, smooth.settings), withCoat));
+            // Factor 0: the coat's maps are not read, the image is the base's.
+            PbrScene zero = s;
+            zero.scene.draws[3].clearcoatTexture = whiteMap;
+            zero.scene.draws[3].clearcoatNormalTexture = whiteMap;
+            CHECK(same(renderPbr(zero, zero.settings), plain));
+            // The coat reflects the sun where the rough sphere alone shows a faint lobe: the
+            // brightest pixel of the coated sphere's region is brighter than the plain one's.
+            const auto brightest = [](const Image& im) {
+                int best = 0;
+                for (int y = 0; y < im.height; ++y)
+                    for (int x = 0; x < im.width / 3; ++x) { // the left sphere's third of the frame
+                        const std::size_t i = 4 * (std::size_t(y) * std::size_t(im.width) + std::size_t(x));
+                        best = std::max(best, int(im.rgba[i]) + int(im.rgba[i + 1]) + int(im.rgba[i + 2]));
+                    }
+                return best;
+            };
+            INFO("brightest: plain " << brightest(plain) << ", coated " << brightest(withCoat));
+            CHECK(brightest(withCoat) > brightest(plain) + 30);
+        }
 }
 
 TEST_CASE("pbr scene: emissive adds exactly its value; gamma and linear differ as the curve says", "[render][pbr]") {

@@ -1210,6 +1210,47 @@ TEST_CASE("glTF KHR_materials_ior and _specular: the dielectric's F0 and specula
     CHECK(m.warnings.empty());
 }
 
+TEST_CASE("glTF KHR_materials_clearcoat: the coat's weight, roughness and normal scale, its maps", "[resources][gltf][pbr][clearcoat]") {
+    const std::string dir = freshDir("gltf-clearcoat");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {200, 100, 50, 255};
+    REQUIRE(writeImage(dir + "/t.png", one).ok());
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" + std::to_string(uv) +
+               "},\"material\":0}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    a.materials = R"([{"extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":0.8,"clearcoatRoughnessFactor":0.3,
+            "clearcoatTexture":{"index":0},"clearcoatNormalTexture":{"index":0,"scale":0.5}}}},
+        {"extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":2,"clearcoatRoughnessFactor":-1,"clearcoatRoughnessTexture":{"index":0}}}},
+        {"extensions":{"KHR_materials_clearcoat":{}}},
+        {}])";
+    a.extra = R"(,"images":[{"uri":"t.png"}],"textures":[{"source":0}],)"
+              R"("extensionsUsed":["KHR_materials_clearcoat"],"extensionsRequired":["KHR_materials_clearcoat"])";
+    auto r = load(dir, "clearcoat.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.materials.size() >= 4);
+    const PbrFactors& k0 = *m.materials[0].pbr;
+    CHECK(k0.clearcoat == 0.8f);
+    CHECK(k0.clearcoatRoughness == 0.3f);
+    CHECK(k0.clearcoatNormalScale == 0.5f);
+    CHECK(m.materials[0].clearcoatTexture >= 0);
+    CHECK(m.materials[0].clearcoatNormalTexture >= 0);
+    CHECK(m.materials[0].clearcoatRoughnessTexture == -1);
+    CHECK(m.materials[1].pbr->clearcoat == 1.0f);          // clamped into [0, 1]
+    CHECK(m.materials[1].pbr->clearcoatRoughness == 0.0f); // out of range: the default
+    CHECK(m.materials[1].clearcoatRoughnessTexture >= 0);
+    CHECK(m.materials[1].clearcoatTexture == -1);
+    CHECK(m.materials[2].pbr->clearcoat == 0.0f); // the extension's defaults: no coat
+    CHECK(m.materials[2].pbr->clearcoatNormalScale == 1.0f);
+    CHECK(m.materials[3].pbr->clearcoat == 0.0f);
+    CHECK(m.warnings.empty());
+}
+
 TEST_CASE("glTF: a primitive without a material gets the specification's default material", "[resources][gltf][pbr]") {
     const std::string dir = freshDir("gltf-default-material");
     Asset a;

@@ -730,6 +730,102 @@ ShadowMap randomMap(std::mt19937& rng, int size, const Mat4& viewProj, Vec3 orig
 
 } // namespace
 
+TEST_CASE("the pbr kernels with a clear coat (KHR_materials_clearcoat) are bit-identical to the scalar program",
+          "[threads][simd][kernels][pbr][clearcoat]") {
+    std::mt19937 rng(43u);
+    const Mesh mesh = oneTriangle();
+    constexpr int kN = 8;
+    std::vector<std::uint8_t> faces[kCubeFaces];
+    for (auto& f : faces) {
+        f.resize(std::size_t(kN) * kN * 4);
+        for (auto& b : f) b = std::uint8_t(rng() & 0xFFu);
+    }
+    Sky sky;
+    sky.kind = Sky::Kind::Cube;
+    sky.cube = std::make_shared<const CubeMap>(CubeMap::fromRgba8(
+        kN, {faces[0].data(), faces[1].data(), faces[2].data(), faces[3].data(), faces[4].data(), faces[5].data()}));
+    const ImageLight ibl(sky);
+    FrameView lightsOnly;
+    lightsOnly.eye = {0.3f, 0.4f, 3.0f};
+    lightsOnly.lighting.physical = true;
+    lightsOnly.lighting.ambient = 0.0f;
+    lightsOnly.lighting.lights = {Light::directional(normalize(Vec3(1, 1, 1)), {kPiF, kPiF, kPiF, 1.0f}),
+                                  Light::point({0.5f, 1.0f, 2.0f}, {4.0f, 3.0f, 1.0f, 1.0f}, 3.5f),
+                                  Light::spot({0.0f, 0.0f, 4.0f}, {0.1f, -0.2f, -1.0f}, {6.0f, 6.0f, 3.0f, 1.0f}, 0.2f, 0.6f, 9.0f)};
+    FrameView withSky = lightsOnly;
+    withSky.ibl = &ibl;
+    const Texture base = randomTexture(rng, 13, 7), mr = randomTexture(rng, 32, 16), occlusion = randomTexture(rng, 8, 4);
+    const Texture normals = randomTexture(rng, 16, 8), coatNormals = randomTexture(rng, 8, 16);
+    const Texture coatMap = randomTexture(rng, 16, 4), coatRoughnessMap = randomTexture(rng, 4, 16);
+    PbrFactors lacquer; // a coat over a rough coloured dielectric
+    lacquer.baseColor = {0.8f, 0.1f, 0.1f, 1.0f};
+    lacquer.metallic = 0.0f;
+    lacquer.roughness = 0.7f;
+    lacquer.emissive = {0.2f, 0.1f, 0.0f};
+    lacquer.occlusionStrength = 0.6f;
+    lacquer.clearcoat = 0.9f;
+    lacquer.clearcoatRoughness = 0.15f;
+    lacquer.clearcoatNormalScale = 0.6f;
+    PbrFactors carPaint = lacquer; // a polished coat over a metal with KHR_materials_specular values
+    carPaint.metallic = 0.8f;
+    carPaint.roughness = 0.4f;
+    carPaint.clearcoat = 1.0f;
+    carPaint.clearcoatRoughness = 0.01f; // below the smallest roughness evaluated
+    carPaint.dielectricF0 = {0.11f, 0.06f, 0.3f};
+    carPaint.specularWeight = 0.55f;
+    Totals totals;
+    int ran = 0;
+    for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
+        if (!isaAvailable(isa)) continue;
+        ++ran;
+        for (PerspectiveMode persp : {PerspectiveMode::Exact, PerspectiveMode::Affine})
+            for (TextureFilter filter : {TextureFilter::Bilinear, TextureFilter::Trilinear})
+                for (const bool linear : {true, false})
+                    for (const FrameView* view : {&lightsOnly, &withSky}) {
+                        RenderSettings settings;
+                        settings.filter = filter;
+                        settings.perspective = persp;
+                        settings.shading = ShadingMode::Pbr;
+                        settings.colour = linear ? ColorMode::Linear : ColorMode::Gamma;
+                        const KernelKey key{DepthMode::TestWrite, persp, filter, WrapMode::Repeat};
+                        for (const PbrFactors* factors : {&lacquer, &carPaint}) {
+                            SurfaceMaterial material;
+                            material.pbr = factors;
+                            material.texture = &base;
+                            material.metallicRoughness = &mr;
+                            material.occlusion = &occlusion;
+                            material.clearcoatMap = &coatMap;
+                            material.clearcoatRoughnessMap = &coatRoughnessMap;
+                            DrawContext d{*view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
+                                          Specular{}, 1.0f, false, true, {}};
+                            d.linear = linear;
+                            d.material = &material;
+                            compareKernel<PbrProgram<true>>(isa, key, [&] { return PbrProgram<true>(&d); }, rng, totals);
+                            // The coat's own normal map, alone and over the base's.
+                            SurfaceMaterial coatMapped = material;
+                            coatMapped.clearcoatNormalMap = &coatNormals;
+                            DrawContext dc = d;
+                            dc.material = &coatMapped;
+                            compareKernel<PbrProgram<true, true>>(isa, key, [&] { return PbrProgram<true, true>(&dc); }, rng, totals);
+                            SurfaceMaterial bothMapped = coatMapped;
+                            bothMapped.normalMap = &normals;
+                            DrawContext db = d;
+                            db.material = &bothMapped;
+                            compareKernel<PbrProgram<true, true>>(isa, key, [&] { return PbrProgram<true, true>(&db); }, rng, totals);
+                            SurfaceMaterial plain;
+                            plain.pbr = factors;
+                            DrawContext u{*view, settings, mesh, mesh.indices.data(), nullptr, Color{1.0f, 1.0f, 1.0f, 1.0f},
+                                          Specular{}, 1.0f, false, false, {}};
+                            u.linear = linear;
+                            u.material = &plain;
+                            compareKernel<PbrProgram<false>>(isa, key, [&] { return PbrProgram<false>(&u); }, rng, totals);
+                        }
+                    }
+    }
+    REQUIRE(ran > 0);
+    CHECK(totals.pixels > 20000 * long(ran));
+}
+
 TEST_CASE("the Phong kernels' shadow-map test is bit-identical to the scalar program's", "[threads][simd][kernels][shadow]") {
     std::mt19937 rng(17u);
     const Mesh mesh = oneTriangle();

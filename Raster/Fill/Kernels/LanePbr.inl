@@ -26,13 +26,23 @@ SR_SIMD_NOINLINE Rgb imageLightLanes(const ImageLight::Tables& t, const F f0[3],
     return {out[0], out[1], out[2]};
 }
 
+// programs::coatImageLight per lane (iblCoat), out of line.
+SR_SIMD_NOINLINE Rgb coatImageLightLanes(const ImageLight::Tables& t, F roughness, const V3& n, const V3& v) {
+    F out[3];
+    iblCoat<F>(t, roughness, n.x, n.y, n.z, v.x, v.y, v.z, out);
+    return {out[0], out[1], out[2]};
+}
+
 // The radiance at the lanes' points (px, py, pz) with unit normals n and view vectors v:
 // pbrRadiance's loop over the lights (lightAt's direction and factor as lightsRgb computes
 // them, the shadow maps' lit fraction, brdfCosineTerms with brdfMultiScatter's k), the same
 // operations in the same order. Lanes whose light or half vector is off normalize's fast path lose `ok`.
-template <bool kSpecular>
+// kCoat: also coatRadiance's sum on the coat normal nc at coatRoughness, added to `coat` in the
+// same loop (the light's direction, factor and lit fraction computed once for both).
+template <bool kSpecular, bool kCoat>
 SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* shadows, const F f0[3], F weight, F baseR, F baseG,
-                               F baseB, F metallic, F roughness, F nx, F ny, F nz, F px, F py, F pz, F vx, F vy, F vz, M& ok) {
+                               F baseB, F metallic, F roughness, F nx, F ny, F nz, F px, F py, F pz, F vx, F vy, F vz, M& ok,
+                               const V3& nc, F coatRoughness, Rgb& coat) {
     if (lighting.lights.empty()) return {fzero(), fzero(), fzero()};
     const V3 n{nx, ny, nz}, p{px, py, pz}, v{vx, vy, vz};
     const F base[3] = {baseR, baseG, baseB};
@@ -61,7 +71,14 @@ SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* sha
             }
         }
         const F ndl = dot3(n, l);
-        const M lit = (a > fzero()) & (ndl > fzero());
+        const M baseLit = (a > fzero()) & (ndl > fzero());
+        F ndlc = fzero();
+        M coatLit = baseLit;
+        if constexpr (kCoat) {
+            ndlc = dot3(nc, l);
+            coatLit = (a > fzero()) & (ndlc > fzero());
+        }
+        const M lit = kCoat ? (baseLit | coatLit) : baseLit;
         if (bits(lit) == 0) continue;
         if (shadows) {
             const F seen = shadowVisibility(*shadows, i, p, n, l, lit & ok);
@@ -73,9 +90,16 @@ SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* sha
         const V3 nxh{n.y * h.z - n.z * h.y, n.z * h.x - n.x * h.z, n.x * h.y - n.y * h.x}; // cross(n, h)
         F f[3];
         brdfCosineTerms<F, kSpecular>(ndl, dot3(n, v), dot3(n, h), dot3(nxh, nxh), dot3(v, h), roughness, metallic, base, f0, weight, multiScatter, f);
-        sum.r = select(lit, sum.r + f[0] * fset(light.colour.r) * a, sum.r);
-        sum.g = select(lit, sum.g + f[1] * fset(light.colour.g) * a, sum.g);
-        sum.b = select(lit, sum.b + f[2] * fset(light.colour.b) * a, sum.b);
+        sum.r = select(baseLit, sum.r + f[0] * fset(light.colour.r) * a, sum.r);
+        sum.g = select(baseLit, sum.g + f[1] * fset(light.colour.g) * a, sum.g);
+        sum.b = select(baseLit, sum.b + f[2] * fset(light.colour.b) * a, sum.b);
+        if constexpr (kCoat) {
+            const V3 ncxh{nc.y * h.z - nc.z * h.y, nc.z * h.x - nc.x * h.z, nc.x * h.y - nc.y * h.x}; // cross(nc, h)
+            const F fc = coatCosineTerm<F>(ndlc, dot3(nc, v), dot3(nc, h), dot3(ncxh, ncxh), coatRoughness);
+            coat.r = select(coatLit, coat.r + fc * fset(light.colour.r) * a, coat.r);
+            coat.g = select(coatLit, coat.g + fc * fset(light.colour.g) * a, coat.g);
+            coat.b = select(coatLit, coat.b + fc * fset(light.colour.b) * a, coat.b);
+        }
     }
     return sum;
 }
@@ -129,6 +153,7 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
         const F minus = fset(-1.0f);
         n = {select(back, minus * n.x, n.x), select(back, minus * n.y, n.y), select(back, minus * n.z, n.z)};
     }
+    const V3 geometric = n; // the clear coat's normal without a map of its own
     F baseR = fset(k.baseColor.r), baseG = fset(k.baseColor.g), baseB = fset(k.baseColor.b);
     F metallic = fset(k.metallic), roughness = fset(k.roughness);
     F eR = fset(k.emissive.x), eG = fset(k.emissive.y), eB = fset(k.emissive.z);
@@ -183,19 +208,50 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
         if (m.specularMap) weight = weight * mapLanes(*m.specularMap, false).r; // (its alpha, held in red: SurfaceMaterial)
         if constexpr (Prog::kNormalMap) {
             constexpr int kT = Prog::kT;
-            n = perturbNormalLanes(n, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.normalMap, false), k.normalScale);
+            if (m.normalMap) n = perturbNormalLanes(n, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.normalMap, false), k.normalScale);
         }
     }
-    // A material without KHR_materials_ior / _specular values takes the shortcut (same bits).
+    // The clear coat's weight, roughness and normal, each x its map (PbrProgram::fragment).
+    F clearcoat = fset(k.clearcoat), coatRoughness = fset(k.clearcoatRoughness);
+    V3 nc = geometric;
+    if constexpr (Prog::kIsTextured) {
+        if (p.coat) {
+            if (m.clearcoatMap) clearcoat = clearcoat * mapLanes(*m.clearcoatMap, false).r;
+            if (m.clearcoatRoughnessMap) coatRoughness = coatRoughness * mapLanes(*m.clearcoatRoughnessMap, false).g;
+            if constexpr (Prog::kNormalMap) {
+                constexpr int kT = Prog::kT;
+                if (m.clearcoatNormalMap)
+                    nc = perturbNormalLanes(geometric, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.clearcoatNormalMap, false),
+                                            k.clearcoatNormalScale);
+            }
+        }
+    }
+    // A material without KHR_materials_ior / _specular values takes the shortcut (same bits), one
+    // without a clear coat the loop without it.
     const bool specular = p.dielectricSpecular;
-    Rgb r = specular ? pbrLights<true>(d.view.lighting, d.view.shadows, f0, weight, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z,
-                                       v[kP], v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok)
-                     : pbrLights<false>(d.view.lighting, d.view.shadows, f0, weight, baseR, baseG, baseB, metallic, roughness, n.x, n.y, n.z,
-                                        v[kP], v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok);
+    Rgb coat{fzero(), fzero(), fzero()};
+    const auto lights = [&](auto kSpec, auto kCoat) SR_SIMD_LAMBDA {
+        return pbrLights<decltype(kSpec)::value, decltype(kCoat)::value>(d.view.lighting, d.view.shadows, f0, weight, baseR, baseG, baseB,
+                                                                          metallic, roughness, n.x, n.y, n.z, v[kP], v[kP + 1], v[kP + 2],
+                                                                          toEye.x, toEye.y, toEye.z, ok, nc, coatRoughness, coat);
+    };
+    using Yes = std::true_type;
+    using No = std::false_type;
+    Rgb r = specular ? (p.coat ? lights(Yes{}, Yes{}) : lights(Yes{}, No{})) : (p.coat ? lights(No{}, Yes{}) : lights(No{}, No{}));
     if (d.view.ibl) {
         const Rgb sky = specular ? imageLightLanes<true>(d.view.ibl->tables(), f0, weight, baseR, baseG, baseB, metallic, roughness, n, toEye)
                                  : imageLightLanes<false>(d.view.ibl->tables(), f0, weight, baseR, baseG, baseB, metallic, roughness, n, toEye);
         r = {r.r + sky.r * occlusion, r.g + sky.g * occlusion, r.b + sky.b * occlusion};
     }
-    return {r.r + eR, r.g + eG, r.b + eB};
+    Rgb out{r.r + eR, r.g + eG, r.b + eB};
+    if (p.coat) {
+        if (d.view.ibl) {
+            const Rgb sky = coatImageLightLanes(d.view.ibl->tables(), coatRoughness, nc, toEye);
+            coat = {coat.r + sky.r * occlusion, coat.g + sky.g * occlusion, coat.b + sky.b * occlusion};
+        }
+        const F w = coatWeight<F>(clearcoat, dot3(nc, toEye));
+        const F keep = fset(1.0f) - w;
+        out = {out.r * keep + coat.r * w, out.g * keep + coat.g * w, out.b * keep + coat.b * w};
+    }
+    return out;
 }
