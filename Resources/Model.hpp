@@ -13,6 +13,7 @@
 #include "Raster/Fill/Blend.hpp" // TexelAlpha
 #include "Raster/Geometry/Mesh.hpp"
 #include "Raster/Shade/Brdf.hpp"  // PbrFactors
+#include "Raster/Shade/MaterialMaps.hpp"
 #include "Raster/Shade/Shading.hpp" // Light
 #include "Raster/Texture/Texture.hpp" // WrapMode, TextureFilter
 #include "Resources/Image.hpp"
@@ -47,9 +48,7 @@ struct Material {
     // model's input; kd, ks and shininess above are its Blinn-Phong mapping), and its other maps
     // (indices into Model::textures, -1 = none; sampled with the base colour texture's sampler).
     std::optional<PbrFactors> pbr;
-    int metallicRoughnessTexture = -1, emissiveTexture = -1, normalTexture = -1, occlusionTexture = -1;
-    int specularTexture = -1, specularColorTexture = -1; // KHR_materials_specular's
-    int clearcoatTexture = -1, clearcoatRoughnessTexture = -1, clearcoatNormalTexture = -1; // KHR_materials_clearcoat's
+    MaterialMaps<int> maps;
 };
 
 // The triangles of one material: one draw call. One range per material (faces without one form

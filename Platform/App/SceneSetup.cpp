@@ -36,7 +36,8 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
     Scene scene;
     for (const Image& img : model.textures)
         scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
-    // A glTF specularTexture is read by its alpha: a copy with the alpha in RGB, once per image.
+    // A map read by its alpha (readsAlpha: a glTF specularTexture, a glossiness): a copy with the
+    // alpha in RGB, once per image.
     std::vector<int> alphaCopy(model.textures.size(), -1);
     const auto alphaTexture = [&](int slot) {
         if (slot < 0 || std::size_t(slot) >= model.textures.size()) return -1;
@@ -53,10 +54,7 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
     const auto usesUvs = [&](const DrawRange& range) {
         if (range.texture >= 0) return true;
         if (range.material < 0 || !model.hasUvs) return false;
-        const Material& m = model.materials[std::size_t(range.material)];
-        return m.metallicRoughnessTexture >= 0 || m.emissiveTexture >= 0 || m.normalTexture >= 0 || m.occlusionTexture >= 0 ||
-               m.specularTexture >= 0 || m.specularColorTexture >= 0 || m.clearcoatTexture >= 0 || m.clearcoatRoughnessTexture >= 0 ||
-               m.clearcoatNormalTexture >= 0;
+        return model.materials[std::size_t(range.material)].maps.any();
     };
     std::vector<std::uint32_t> remap(src.vertexCount(), kNoVertex);
     std::vector<std::uint32_t> firstIndex(model.ranges.size(), 0);
@@ -106,15 +104,7 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
             d.texelAlpha = m->texelAlpha;
             d.pbr = m->pbr;
             if (model.hasUvs) {
-                d.metallicRoughnessTexture = m->metallicRoughnessTexture;
-                d.emissiveTexture = m->emissiveTexture;
-                d.normalTexture = m->normalTexture;
-                d.occlusionTexture = m->occlusionTexture;
-                d.specularTexture = alphaTexture(m->specularTexture);
-                d.specularColorTexture = m->specularColorTexture;
-                d.clearcoatTexture = m->clearcoatTexture;
-                d.clearcoatRoughnessTexture = m->clearcoatRoughnessTexture;
-                d.clearcoatNormalTexture = m->clearcoatNormalTexture;
+                for (const MapSlot s : kAllMapSlots) d.maps[s] = readsAlpha(s) ? alphaTexture(m->maps[s]) : m->maps[s];
             }
             if (!(d.alpha > 0.0f)) continue; // fully transparent (glTF MASK below its cutoff): nothing to draw
         }

@@ -118,26 +118,19 @@ void drawPbr(RenderContext& ctx, DrawInputs& in, std::size_t indexCount) {
     const DrawContext& base = *in.draw;
     const SurfaceMaterial& material = in.material;
     const Mesh& mesh = base.mesh;
-    const Texture* occlusion = base.view.ibl ? material.occlusion : nullptr;
     // KHR_materials_clearcoat's maps are read only where the material has a coat.
-    const bool coat = material.pbr->clearcoat > 0.0f;
-    const Texture* coatMap = !coat                           ? nullptr
-                             : material.clearcoatMap          ? material.clearcoatMap
-                             : material.clearcoatRoughnessMap ? material.clearcoatRoughnessMap
-                                                              : material.clearcoatNormalMap;
-    const Texture* anyMap = material.texture             ? material.texture
-                            : material.metallicRoughness ? material.metallicRoughness
-                            : material.emissive          ? material.emissive
-                            : material.normalMap         ? material.normalMap
-                            : material.specularMap       ? material.specularMap
-                            : material.specularColour    ? material.specularColour
-                            : coatMap                    ? coatMap
-                                                         : occlusion;
+    const bool coat = (programs::pbrLobesOf(material) & kLobeClearcoat) != 0;
+    const auto read = [&](MapSlot s) {
+        return material.maps.has(s) && (s != MapSlot::Occlusion || base.view.ibl) && (!isClearcoatSlot(s) || coat);
+    };
+    const Texture* anyMap = material.texture;
+    for (const MapSlot s : kAllMapSlots)
+        if (!anyMap && read(s)) anyMap = material.map(s);
     const bool maps = anyMap != nullptr && mesh.hasUvs();
     DrawContext& d = in.pbrDraw.emplace(base);
     d.texture = maps ? anyMap : nullptr; // the uv varyings' rebase (drawStateFor)
     if (!maps) drawPbrWith<false, false>(ctx, d, indexCount);
-    else if ((material.normalMap || (coat && material.clearcoatNormalMap)) && mesh.hasTangents()) drawPbrWith<true, true>(ctx, d, indexCount);
+    else if ((read(MapSlot::Normal) || read(MapSlot::ClearcoatNormal)) && mesh.hasTangents()) drawPbrWith<true, true>(ctx, d, indexCount);
     else drawPbrWith<true, false>(ctx, d, indexCount);
 }
 

@@ -12,6 +12,7 @@
 #include "Raster/Geometry/Cull.hpp"
 #include "Raster/Setup/PipelineModes.hpp" // PerspectiveMode, PipelineStop
 #include "Raster/Shade/ColorSpace.hpp" // ColorMode, ToneMap
+#include "Raster/Shade/MaterialMaps.hpp"
 #include "Raster/Shade/Shading.hpp"
 #include "Raster/Shade/Shadow.hpp"
 #include "Raster/Texture/Texture.hpp"
@@ -110,18 +111,8 @@ struct SurfaceMaterial {
     // A glTF material's metallic-roughness input (the pbr shading model's; null for OBJ/MTL and
     // the built-in scene) and its other maps (null: none; used when the mesh has uvs).
     const PbrFactors* pbr = nullptr;
-    const Texture* metallicRoughness = nullptr;
-    const Texture* emissive = nullptr;
-    const Texture* normalMap = nullptr;
-    const Texture* occlusion = nullptr;
-    // KHR_materials_specular's specularTexture: the file's alpha channel, copied into all of RGB
-    // (the samplers filter colour; SceneSetup makes the copy).
-    const Texture* specularMap = nullptr;
-    const Texture* specularColour = nullptr; // its specularColorTexture (RGB, sRGB)
-    // KHR_materials_clearcoat's maps: the layer's weight (red), its roughness (green), its normal map.
-    const Texture* clearcoatMap = nullptr;
-    const Texture* clearcoatRoughnessMap = nullptr;
-    const Texture* clearcoatNormalMap = nullptr;
+    MaterialMaps<const Texture*> maps;
+    const Texture* map(MapSlot slot) const { return maps[slot]; }
 };
 
 } // namespace sr

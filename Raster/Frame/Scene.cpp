@@ -27,16 +27,8 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
     else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
     if (d.pbr) {
         material.pbr = &*d.pbr;
-        const auto map = [&](int i) { return i >= 0 ? &scene.textures[std::size_t(i)] : nullptr; };
-        material.metallicRoughness = map(d.metallicRoughnessTexture);
-        material.emissive = map(d.emissiveTexture);
-        material.normalMap = map(d.normalTexture);
-        material.occlusion = map(d.occlusionTexture);
-        material.specularMap = map(d.specularTexture);
-        material.specularColour = map(d.specularColorTexture);
-        material.clearcoatMap = map(d.clearcoatTexture);
-        material.clearcoatRoughnessMap = map(d.clearcoatRoughnessTexture);
-        material.clearcoatNormalMap = map(d.clearcoatNormalTexture);
+        for (const MapSlot slot : kAllMapSlots)
+            if (d.maps.has(slot)) material.maps[slot] = &scene.textures[std::size_t(d.maps[slot])];
     }
     return material;
 }

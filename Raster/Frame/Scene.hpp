@@ -8,6 +8,7 @@
 #include "Raster/Frame/MeshRenderer.hpp"
 #include "Raster/Geometry/Mesh.hpp"
 #include "Raster/Shade/Brdf.hpp" // PbrFactors
+#include "Raster/Shade/MaterialMaps.hpp"
 #include "Raster/Texture/Texture.hpp"
 
 namespace sr {
@@ -29,9 +30,7 @@ struct SceneDraw {
     // A glTF material's metallic-roughness input and maps (indices into Scene::textures, -1 =
     // none): what the pbr shading model reads (SurfaceMaterial::pbr).
     std::optional<PbrFactors> pbr;
-    int metallicRoughnessTexture = -1, emissiveTexture = -1, normalTexture = -1, occlusionTexture = -1;
-    int specularTexture = -1, specularColorTexture = -1; // KHR_materials_specular's (specularTexture: its alpha copy)
-    int clearcoatTexture = -1, clearcoatRoughnessTexture = -1, clearcoatNormalTexture = -1; // KHR_materials_clearcoat's
+    MaterialMaps<int> maps; // (a slot that readsAlpha: the alpha copy)
 };
 
 // World-space line segments (index pairs) or points, in one flat colour (lines are unlit).

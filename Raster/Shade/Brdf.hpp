@@ -33,7 +33,24 @@ struct PbrFactors {
     // KHR_materials_clearcoat: the coat's weight (0: none; x the clearcoatTexture's red), its
     // perceptual roughness (x the clearcoatRoughnessTexture's green) and its normal map's scale.
     float clearcoat = 0.0f, clearcoatRoughness = 0.0f, clearcoatNormalScale = 1.0f;
+    // KHR_materials_pbrSpecularGlossiness with a specularGlossinessTexture (kLobeSpecularGlossiness):
+    // per pixel, roughness = 1 - glossiness x the texture's alpha and the base colour (its diffuse)
+    // x 1 - max(F0) (F0 = specularColorF0 x the texture's RGB). Without the texture the loader folds
+    // both into roughness and the base colour.
+    bool specularGlossiness = false;
+    float glossiness = 1.0f;
 };
+
+// The parts of the pbr model a material may add to appendix B's, one bit each: a draw evaluates
+// those its material has and no other (PbrProgram::lobes; the span kernels are instantiated for
+// every set, so a material without a part runs the code without it).
+enum PbrLobe : unsigned {
+    kLobeDielectricSpecular = 1u, // KHR_materials_ior / _specular values (brdfCosineTerms' kSpecular)
+    kLobeClearcoat = 2u,          // KHR_materials_clearcoat (BrdfTerms.inl's coatWeight)
+    kLobeSpecularGlossiness = 4u, // KHR_materials_pbrSpecularGlossiness's per-pixel inputs (PbrFactors::specularGlossiness)
+};
+// The bits the lights' loop reads (the kernels instantiate it for each combination of these).
+inline constexpr unsigned kLightLobes = kLobeDielectricSpecular | kLobeClearcoat;
 
 // Whether a material's dielectric differs from appendix B's (F0 0.04, weight 1): the kernels
 // evaluate the BRDF without those inputs otherwise (brdfCosineTerms' kSpecular).

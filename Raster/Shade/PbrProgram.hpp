@@ -41,6 +41,13 @@ inline Vec3 imageLight(const ImageLight& light, const PbrSurface& s, Vec3 n, Vec
     return {out[0], out[1], out[2]};
 }
 
+// The parts of the pbr model beyond appendix B's that a glTF material has (PbrLobe bits).
+inline unsigned pbrLobesOf(const SurfaceMaterial& m) {
+    const bool specular = hasDielectricSpecular(*m.pbr) || m.maps.has(MapSlot::Specular) || m.maps.has(MapSlot::SpecularColour);
+    return (specular ? kLobeDielectricSpecular : 0u) | (m.pbr->clearcoat > 0.0f ? kLobeClearcoat : 0u) |
+           (m.pbr->specularGlossiness ? kLobeSpecularGlossiness : 0u);
+}
+
 // The light a sky sends toward v from a clear coat with unit normal nc (IblTerms.inl's iblCoat).
 inline Vec3 coatImageLight(const ImageLight& light, float coatRoughness, Vec3 nc, Vec3 v) {
     float out[3];
@@ -74,13 +81,11 @@ struct PbrProgram {
     static constexpr int kVaryings = kC + (kColours ? 3 : 0);
     const DrawContext* d;
     const TriangleSetup* setup = nullptr;
-    // The material has KHR_materials_ior / _specular values (the kernels' BRDF reads them only then).
-    bool dielectricSpecular;
-    // The material has a clear coat (KHR_materials_clearcoat; its maps are read only then).
-    bool coat;
-    explicit PbrProgram(const DrawContext* dc)
-        : d(dc), dielectricSpecular(hasDielectricSpecular(*dc->material->pbr) || dc->material->specularMap || dc->material->specularColour),
-          coat(dc->material->pbr->clearcoat > 0.0f) {}
+    // The material's parts beyond appendix B's (PbrLobe bits): KHR_materials_ior / _specular values
+    // (the kernels' BRDF reads them only then), a clear coat (its maps are read only then).
+    unsigned lobes;
+    explicit PbrProgram(const DrawContext* dc) : d(dc), lobes(pbrLobesOf(*dc->material)) {}
+    bool has(PbrLobe lobe) const { return (lobes & lobe) != 0; }
 
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kMaps>(*d, i, out);
@@ -133,37 +138,50 @@ struct PbrProgram {
         if constexpr (kColours)
             s.baseColor = {s.baseColor.x * f.varyings[kC], s.baseColor.y * f.varyings[kC + 1], s.baseColor.z * f.varyings[kC + 2]};
         if constexpr (kMaps) {
-            if (m.metallicRoughness) {
-                const Color c = sampleMap(*m.metallicRoughness, false, f);
+            if (const Texture* map = m.map(MapSlot::MetallicRoughness)) {
+                const Color c = sampleMap(*map, false, f);
                 s.roughness *= c.g;
                 s.metallic *= c.b;
             }
-            if (m.emissive && (emissive.x > 0.0f || emissive.y > 0.0f || emissive.z > 0.0f)) {
-                const Color c = sampleMap(*m.emissive, true, f);
+            if (const Texture* map = m.map(MapSlot::Emissive); map && (emissive.x > 0.0f || emissive.y > 0.0f || emissive.z > 0.0f)) {
+                const Color c = sampleMap(*map, true, f);
                 emissive = {emissive.x * c.r, emissive.y * c.g, emissive.z * c.b};
             }
             // KHR_materials_specular's maps: F0 = min(specularColorF0 x texel, 1), the weight x its alpha.
-            if (m.specularColour) {
-                const Color c = sampleMap(*m.specularColour, true, f);
+            if (const Texture* map = m.map(MapSlot::SpecularColour)) {
+                const Color c = sampleMap(*map, true, f);
                 s.dielectricF0 = {std::min(k.specularColorF0.x * c.r, 1.0f), std::min(k.specularColorF0.y * c.g, 1.0f),
                                   std::min(k.specularColorF0.z * c.b, 1.0f)};
             }
-            if (m.specularMap) s.specularWeight = k.specularWeight * sampleMap(*m.specularMap, false, f).r; // (its alpha, in red)
+            if (const Texture* map = m.map(MapSlot::Specular)) // (its alpha, in red)
+                s.specularWeight = k.specularWeight * sampleMap(*map, false, f).r;
+        }
+        if (has(kLobeSpecularGlossiness)) { // roughness 1 - glossiness, c_diff = diffuse x (1 - max(F0))
+            float glossiness = k.glossiness;
+            if constexpr (kMaps) {
+                if (const Texture* map = m.map(MapSlot::Glossiness)) glossiness *= sampleMap(*map, false, f).r; // (its alpha, in red)
+            }
+            s.roughness = 1.0f - glossiness;
+            const float keep = 1.0f - std::max(std::max(s.dielectricF0.x, s.dielectricF0.y), s.dielectricF0.z);
+            s.baseColor = {s.baseColor.x * keep, s.baseColor.y * keep, s.baseColor.z * keep};
+        }
+        if constexpr (kMaps) {
             if constexpr (kTangents) {
                 const Vec4 t{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], f.varyings[kT + 3]};
-                if (m.normalMap) n = perturbNormal(n, t, sampleMap(*m.normalMap, false, f), k.normalScale);
+                if (const Texture* map = m.map(MapSlot::Normal)) n = perturbNormal(n, t, sampleMap(*map, false, f), k.normalScale);
             }
         }
         // The clear coat's weight, roughness and normal, each x its map.
         float clearcoat = k.clearcoat, coatRoughness = k.clearcoatRoughness;
         Vec3 nc = geometric;
         if constexpr (kMaps) {
-            if (coat) {
-                if (m.clearcoatMap) clearcoat *= sampleMap(*m.clearcoatMap, false, f).r;
-                if (m.clearcoatRoughnessMap) coatRoughness *= sampleMap(*m.clearcoatRoughnessMap, false, f).g;
+            if (has(kLobeClearcoat)) {
+                if (const Texture* map = m.map(MapSlot::Clearcoat)) clearcoat *= sampleMap(*map, false, f).r;
+                if (const Texture* map = m.map(MapSlot::ClearcoatRoughness)) coatRoughness *= sampleMap(*map, false, f).g;
                 if constexpr (kTangents) {
                     const Vec4 t{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], f.varyings[kT + 3]};
-                    if (m.clearcoatNormalMap) nc = perturbNormal(geometric, t, sampleMap(*m.clearcoatNormalMap, false, f), k.clearcoatNormalScale);
+                    if (const Texture* map = m.map(MapSlot::ClearcoatNormal))
+                        nc = perturbNormal(geometric, t, sampleMap(*map, false, f), k.clearcoatNormalScale);
                 }
             }
         }
@@ -177,13 +195,14 @@ struct PbrProgram {
         float occlusion = 1.0f;
         if (d->view.ibl) {
             if constexpr (kMaps) {
-                if (m.occlusion) occlusion = 1.0f + k.occlusionStrength * (sampleMap(*m.occlusion, false, f).r - 1.0f);
+                if (const Texture* map = m.map(MapSlot::Occlusion))
+                    occlusion = 1.0f + k.occlusionStrength * (sampleMap(*map, false, f).r - 1.0f);
             }
             const Vec3 sky = imageLight(*d->view.ibl, s, n, v) * occlusion;
             r = r + sky;
         }
         Vec3 out{r.x + emissive.x, r.y + emissive.y, r.z + emissive.z};
-        if (coat) {
+        if (has(kLobeClearcoat)) {
             Vec3 c = d->view.shadows ? coatRadiance(d->view.lighting, nc, coatRoughness, n, p, v,
                                                     [sh = d->view.shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) {
                                                         return sh->visibility(light, q, normal, l);

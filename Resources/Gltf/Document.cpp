@@ -454,6 +454,15 @@ Result<Document> parseDocument(const unsigned char* data, std::size_t size, cons
         m.clearcoatTexture = textureInfo(clearcoat, "clearcoatTexture");
         m.clearcoatRoughnessTexture = textureInfo(clearcoat, "clearcoatRoughnessTexture");
         m.clearcoatNormalTexture = textureInfo(clearcoat, "clearcoatNormalTexture");
+        if (const auto sg = m.extensions.find("KHR_materials_pbrSpecularGlossiness"); sg != m.extensions.end() && sg->is_object()) {
+            m.specularGlossiness.present = true;
+            m.pbrMetallicRoughness.baseColorFactor = numbers(*sg, "diffuseFactor", {1, 1, 1, 1});
+            m.pbrMetallicRoughness.baseColorTexture = textureInfo(*sg, "diffuseTexture");
+            m.pbrMetallicRoughness.metallicRoughnessTexture = TextureInfo{};
+            m.specularGlossiness.specularFactor = numbers(*sg, "specularFactor", {1, 1, 1});
+            m.specularGlossiness.glossinessFactor = numberOr(*sg, "glossinessFactor", 1.0);
+            m.specularColorTexture = m.glossinessTexture = textureInfo(*sg, "specularGlossinessTexture");
+        }
         d.materials.push_back(std::move(m));
     }
     for (const Json& o : arrayOf(j, "meshes")) {

@@ -46,6 +46,16 @@ struct Material {
     TextureInfo specularTexture, specularColorTexture;
     // KHR_materials_clearcoat's maps (the layer's weight in red, its roughness in green, its normal map).
     TextureInfo clearcoatTexture, clearcoatRoughnessTexture, clearcoatNormalTexture;
+    // KHR_materials_pbrSpecularGlossiness, where the material has it, in place of the metallic-
+    // roughness block: its diffuse factor and texture are read as the base colour's (into
+    // pbrMetallicRoughness), its specularGlossinessTexture as specularColorTexture (RGB) and
+    // glossinessTexture (alpha).
+    struct {
+        bool present = false;
+        std::vector<double> specularFactor{1, 1, 1};
+        double glossinessFactor = 1.0;
+    } specularGlossiness;
+    TextureInfo glossinessTexture;
     std::vector<double> emissiveFactor{0, 0, 0};
     std::string alphaMode = "OPAQUE";
     double alphaCutoff = 0.5;

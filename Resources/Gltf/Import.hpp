@@ -53,6 +53,9 @@ Result<std::vector<Mat4d>> instanceMatrices(Builder& b, const gltf::Node& node, 
 
 // Materials.cpp: the metallic-roughness material and its Blinn-Phong mapping (GltfLoader.hpp).
 Material materialFrom(const gltf::Material& gm);
+
+// The reference of a material's map in a slot: its texture, uv set and transform.
+const gltf::TextureInfo& textureInfoOf(const gltf::Material& gm, MapSlot slot);
 // A glTF sampler as SoftRaster's wrap mode and filter (see Materials.cpp).
 struct SamplerModes {
     WrapMode wrap = WrapMode::Repeat;

@@ -18,13 +18,31 @@ double extensionNumber(const gltf::Json& ext, const char* key, double fallback) 
 
 } // namespace
 
+const gltf::TextureInfo& textureInfoOf(const gltf::Material& gm, MapSlot slot) {
+    static const gltf::TextureInfo none;
+    switch (slot) {
+    case MapSlot::MetallicRoughness: return gm.pbrMetallicRoughness.metallicRoughnessTexture;
+    case MapSlot::Emissive: return gm.emissiveTexture;
+    case MapSlot::Normal: return gm.normalTexture;
+    case MapSlot::Specular: return gm.specularTexture;
+    case MapSlot::SpecularColour: return gm.specularColorTexture;
+    case MapSlot::Glossiness: return gm.glossinessTexture;
+    case MapSlot::Clearcoat: return gm.clearcoatTexture;
+    case MapSlot::ClearcoatRoughness: return gm.clearcoatRoughnessTexture;
+    case MapSlot::ClearcoatNormal: return gm.clearcoatNormalTexture;
+    case MapSlot::Occlusion: return gm.occlusionTexture;
+    case MapSlot::Count: break;
+    }
+    return none;
+}
+
 // The metallic-roughness to Blinn-Phong mapping of GltfLoader.hpp.
 Material materialFrom(const gltf::Material& gm) {
     const auto& pbr = gm.pbrMetallicRoughness;
     Material m;
     m.name = gm.name;
     m.fromFile = true;
-    const double metal = std::clamp(pbr.metallicFactor, 0.0, 1.0), rough = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
+    double metal = std::clamp(pbr.metallicFactor, 0.0, 1.0), rough = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
     double base[3] = {1, 1, 1};
     for (std::size_t c = 0; c < 3 && c < pbr.baseColorFactor.size(); ++c) base[c] = std::clamp(pbr.baseColorFactor[c], 0.0, 1.0);
     // The dielectric's F0 and specular weight: KHR_materials_ior (ior >= 1, or 0: F0 = 1) and
@@ -49,7 +67,30 @@ Material materialFrom(const gltf::Material& gm) {
         }
         if (hasSpec) weight = std::min(extensionNumber(*specExt, "specularFactor", 1.0), 1.0);
     }
-    m.kd = Color{float(base[0] * (1 - metal)), float(base[1] * (1 - metal)), float(base[2] * (1 - metal)), 1.0f};
+    // KHR_materials_pbrSpecularGlossiness (its appendix): a dielectric with F0 = specular (RGB),
+    // roughness 1 - glossiness and c_diff = diffuse x (1 - max(F0)). The diffuse is the base
+    // colour here (Document.cpp); without a specularGlossinessTexture the factor 1 - max(F0) is
+    // folded into it, with one the program applies it per pixel (kLobeSpecularGlossiness).
+    const auto& sg = gm.specularGlossiness;
+    const bool glossMap = sg.present && gm.glossinessTexture.index >= 0;
+    double glossiness = 1.0, diffuseScale = 1.0;
+    if (sg.present) {
+        glossiness = std::isfinite(sg.glossinessFactor) ? std::clamp(sg.glossinessFactor, 0.0, 1.0) : 1.0;
+        metal = 0.0;
+        rough = 1.0 - glossiness;
+        double largest = 0.0;
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double v = c < sg.specularFactor.size() && std::isfinite(sg.specularFactor[c]) ? sg.specularFactor[c] : 1.0;
+            f0[c] = f0Unclamped[c] = std::clamp(v, 0.0, 1.0);
+            largest = std::max(largest, f0[c]);
+        }
+        weight = 1.0;
+        diffuseScale = 1.0 - largest;
+        if (!glossMap)
+            for (double& b : base) b *= diffuseScale;
+    }
+    const double kdScale = (1 - metal) * (glossMap ? diffuseScale : 1.0);
+    m.kd = Color{float(base[0] * kdScale), float(base[1] * kdScale), float(base[2] * kdScale), 1.0f};
     m.ks = Color{float(f0[0] * weight * (1 - metal) + base[0] * metal), float(f0[1] * weight * (1 - metal) + base[1] * metal),
                  float(f0[2] * weight * (1 - metal) + base[2] * metal), 1.0f};
     const double alpha = rough * rough;
@@ -62,6 +103,8 @@ Material materialFrom(const gltf::Material& gm) {
     f.dielectricF0 = Vec3{float(f0[0]), float(f0[1]), float(f0[2])};
     f.specularColorF0 = Vec3{float(f0Unclamped[0]), float(f0Unclamped[1]), float(f0Unclamped[2])};
     f.specularWeight = float(weight);
+    f.specularGlossiness = glossMap;
+    f.glossiness = float(glossiness);
     double emissive[3] = {0, 0, 0};
     for (std::size_t c = 0; c < 3 && c < gm.emissiveFactor.size(); ++c) emissive[c] = std::clamp(gm.emissiveFactor[c], 0.0, 1.0);
     double strength = 1.0;
@@ -164,23 +207,14 @@ UvTransform uvTransformOf(const gltf::Json& extensions) {
 }
 
 // The uv set and transform a material's maps are drawn with: its base colour texture's (else
-// that of its first other map, in the order metallic-roughness, emissive, normal, occlusion,
-// specular, specular colour, clearcoat, clearcoat roughness, clearcoat normal).
+// that of its first other map, in MapSlot's order).
 // One per material, baked into the vertices of its primitives (every vertex of a glTF primitive
 // is its own: no other material reads it); a map that reads another set or transform is named
 // in `problem`. A reference's set is its texCoord, or its KHR_texture_transform's texCoord.
 UvSource materialUvSource(const gltf::Material& gm, std::string* problem) {
-    const std::pair<const gltf::TextureInfo*, const char*> maps[] = {
-        {&gm.pbrMetallicRoughness.baseColorTexture, "base colour"},
-        {&gm.pbrMetallicRoughness.metallicRoughnessTexture, "metallic-roughness"},
-        {&gm.emissiveTexture, "emissive"},
-        {&gm.normalTexture, "normal"},
-        {&gm.occlusionTexture, "occlusion"},
-        {&gm.specularTexture, "specular"},
-        {&gm.specularColorTexture, "specular colour"},
-        {&gm.clearcoatTexture, "clearcoat"},
-        {&gm.clearcoatRoughnessTexture, "clearcoat roughness"},
-        {&gm.clearcoatNormalTexture, "clearcoat normal"}};
+    std::pair<const gltf::TextureInfo*, const char*> maps[1 + kMapSlots];
+    maps[0] = {&gm.pbrMetallicRoughness.baseColorTexture, "base colour"};
+    for (const MapSlot s : kAllMapSlots) maps[1 + std::size_t(s)] = {&textureInfoOf(gm, s), kMapSlotNames[std::size_t(s)]};
     UvSource chosen;
     const char* chosenName = nullptr;
     for (const auto& [info, name] : maps) {

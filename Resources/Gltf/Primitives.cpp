@@ -274,8 +274,8 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
     // else generated from the uvs (addTangents). Vertices without any get (1, 0, 0, 1).
     // Tangents for a normal map, the base's or the clear coat's (KHR_materials_clearcoat).
     const bool normalMapped = uvs && prim.material >= 0 && std::size_t(prim.material) < g.materials.size() &&
-                              (g.materials[std::size_t(prim.material)].normalTexture.index >= 0 ||
-                               g.materials[std::size_t(prim.material)].clearcoatNormalTexture.index >= 0);
+                              (textureInfoOf(g.materials[std::size_t(prim.material)], MapSlot::Normal).index >= 0 ||
+                               textureInfoOf(g.materials[std::size_t(prim.material)], MapSlot::ClearcoatNormal).index >= 0);
     if (normalMapped || !mesh.tangents.empty()) {
         mesh.tangents.resize(base, Vec4{1.0f, 0.0f, 0.0f, 1.0f});
         if (normalMapped && tangents && normals) {

@@ -83,15 +83,7 @@ Status addTextures(Builder& b, const LoadOptions& options, const std::string& di
                 const gltf::Material& gm = g.materials[i];
                 const int textureIndex = gm.pbrMetallicRoughness.baseColorTexture.index;
                 Material& mat = model.materials[i];
-                mat.metallicRoughnessTexture = slotForTexture(gm.pbrMetallicRoughness.metallicRoughnessTexture.index);
-                mat.emissiveTexture = slotForTexture(gm.emissiveTexture.index);
-                mat.normalTexture = slotForTexture(gm.normalTexture.index);
-                mat.occlusionTexture = slotForTexture(gm.occlusionTexture.index);
-                mat.specularTexture = slotForTexture(gm.specularTexture.index);
-                mat.specularColorTexture = slotForTexture(gm.specularColorTexture.index);
-                mat.clearcoatTexture = slotForTexture(gm.clearcoatTexture.index);
-                mat.clearcoatRoughnessTexture = slotForTexture(gm.clearcoatRoughnessTexture.index);
-                mat.clearcoatNormalTexture = slotForTexture(gm.clearcoatNormalTexture.index);
+                for (const MapSlot s : kAllMapSlots) mat.maps[s] = slotForTexture(textureInfoOf(gm, s).index);
                 mat.texture = slotForTexture(textureIndex);
                 if (!failure.empty()) return Status::failure(path + ": " + failure);
                 if (mat.texture < 0) continue;

@@ -810,15 +810,15 @@ TEST_CASE("KHR_materials_specular's maps: a specularTexture of alpha 0 is specul
         zeroFactor.scene.draws[3].pbr->specularWeight = 0.0f;
         const Image noSpecular = renderPbr(zeroFactor, zeroFactor.settings);
         PbrScene zeroMap = s;
-        zeroMap.scene.draws[3].specularTexture = black;
+        zeroMap.scene.draws[3].maps[MapSlot::Specular] = black;
         CHECK(same(renderPbr(zeroMap, zeroMap.settings), noSpecular));
         CHECK_FALSE(same(noSpecular, tinted)); // the specular lobe shows without the map
         PbrScene whiteColour = s;
-        whiteColour.scene.draws[3].specularColorTexture = whiteMap;
+        whiteColour.scene.draws[3].maps[MapSlot::SpecularColour] = whiteMap;
         CHECK(same(renderPbr(whiteColour, whiteColour.settings), tinted));
         // A black specularColorTexture: F0 0 on the dielectric, unlike the tinted factor alone.
         PbrScene blackColour = s;
-        blackColour.scene.draws[3].specularColorTexture = black;
+        blackColour.scene.draws[3].maps[MapSlot::SpecularColour] = black;
         CHECK_FALSE(same(renderPbr(blackColour, blackColour.settings), tinted));
     }
 }
@@ -852,21 +852,21 @@ TEST_CASE("KHR_materials_clearcoat in a scene: a coat of weight 0 (factor or map
             PbrScene groundOnly = s;
             groundOnly.scene.draws[3].pbr->clearcoat = 1.0f;
             groundOnly.scene.draws[3].pbr->clearcoatRoughness = 0.1f;
-            groundOnly.scene.draws[3].clearcoatTexture = black;
+            groundOnly.scene.draws[3].maps[MapSlot::Clearcoat] = black;
             CHECK(same(renderPbr(groundOnly, groundOnly.settings), plain));
             // A white map (weight 1) and a white roughness map change nothing; the roughness map's
             // black (roughness 0 under the factor) does.
             PbrScene whiteMaps = coated;
-            whiteMaps.scene.draws[3].clearcoatTexture = whiteMap;
-            whiteMaps.scene.draws[3].clearcoatRoughnessTexture = whiteMap;
+            whiteMaps.scene.draws[3].maps[MapSlot::Clearcoat] = whiteMap;
+            whiteMaps.scene.draws[3].maps[MapSlot::ClearcoatRoughness] = whiteMap;
             CHECK(same(renderPbr(whiteMaps, whiteMaps.settings), withCoat));
             PbrScene smooth = coated;
-            smooth.scene.draws[3].clearcoatRoughnessTexture = black;
+            smooth.scene.draws[3].maps[MapSlot::ClearcoatRoughness] = black;
             CHECK_FALSE(same(renderPbr(smooth, smooth.settings), withCoat));
             // Factor 0: the coat's maps are not read, the image is the base's.
             PbrScene zero = s;
-            zero.scene.draws[3].clearcoatTexture = whiteMap;
-            zero.scene.draws[3].clearcoatNormalTexture = whiteMap;
+            zero.scene.draws[3].maps[MapSlot::Clearcoat] = whiteMap;
+            zero.scene.draws[3].maps[MapSlot::ClearcoatNormal] = whiteMap;
             CHECK(same(renderPbr(zero, zero.settings), plain));
             // The coat reflects the sun where the rough sphere alone shows a faint lobe: the
             // brightest pixel of the coated sphere's region is brighter than the plain one's.
@@ -882,6 +882,51 @@ TEST_CASE("KHR_materials_clearcoat in a scene: a coat of weight 0 (factor or map
             INFO("brightest: plain " << brightest(plain) << ", coated " << brightest(withCoat));
             CHECK(brightest(withCoat) > brightest(plain) + 30);
         }
+}
+
+TEST_CASE("KHR_materials_pbrSpecularGlossiness per pixel: a white texture of full alpha draws what its factors folded draw",
+          "[render][pbr][specgloss]") {
+    // With a specularGlossinessTexture the program takes roughness = 1 - glossiness x alpha and
+    // c_diff = diffuse x (1 - max(F0)) per pixel; the loader folds the same into the factors when
+    // there is no texture. A white texture of alpha 1 must give the folded image (within the last
+    // bit of a product taken in another order: one level); alpha 0 (roughness 1) must not.
+    const std::vector<std::uint8_t> white(4 * 4 * 4, 255), black(4 * 4 * 4, 0);
+    for (const ColorMode colour : {ColorMode::Linear, ColorMode::Gamma}) {
+        INFO((colour == ColorMode::Linear ? "linear" : "gamma"));
+        PbrScene s = makePbrScene();
+        s.settings.colour = colour;
+        s.scene.textures.push_back(Texture::fromRgba8(4, 4, white.data()));
+        const int whiteMap = int(s.scene.textures.size()) - 1;
+        s.scene.textures.push_back(Texture::fromRgba8(4, 4, black.data())); // the alpha copy of an image of alpha 0
+        const int zeroAlpha = whiteMap + 1;
+        PbrFactors sg = *s.scene.draws[3].pbr;
+        sg.metallic = 0.0f;
+        sg.dielectricF0 = sg.specularColorF0 = {0.3f, 0.2f, 0.1f};
+        sg.glossiness = 0.8f;
+        PbrScene folded = s;
+        PbrFactors& f = *folded.scene.draws[3].pbr;
+        f = sg;
+        f.roughness = 1.0f - 0.8f;
+        f.baseColor = {f.baseColor.r * 0.7f, f.baseColor.g * 0.7f, f.baseColor.b * 0.7f, 1.0f};
+        const Image foldedImage = renderPbr(folded, folded.settings);
+        PbrScene perPixel = s;
+        *perPixel.scene.draws[3].pbr = sg;
+        perPixel.scene.draws[3].pbr->specularGlossiness = true;
+        perPixel.scene.draws[3].maps[MapSlot::SpecularColour] = whiteMap;
+        perPixel.scene.draws[3].maps[MapSlot::Glossiness] = whiteMap;
+        const Image mapped = renderPbr(perPixel, perPixel.settings);
+        int worst = 0;
+        for (std::size_t i = 0; i < mapped.rgba.size(); ++i) worst = std::max(worst, std::abs(int(mapped.rgba[i]) - int(foldedImage.rgba[i])));
+        CHECK(worst <= 1);
+        PbrScene rough = perPixel;
+        rough.scene.draws[3].maps[MapSlot::Glossiness] = zeroAlpha;
+        CHECK(renderPbr(rough, rough.settings).rgba != mapped.rgba);
+        // Without the lobe the same factors draw the unfolded diffuse: brighter.
+        PbrScene unfolded = s;
+        *unfolded.scene.draws[3].pbr = sg;
+        unfolded.scene.draws[3].pbr->roughness = 0.2f;
+        CHECK(renderPbr(unfolded, unfolded.settings).rgba != foldedImage.rgba);
+    }
 }
 
 TEST_CASE("pbr scene: emissive adds exactly its value; gamma and linear differ as the curve says", "[render][pbr]") {
@@ -1078,7 +1123,7 @@ TEST_CASE("image-based light: a sky bright above lights an upward normal, not a 
     const Image lit = renderPbr(sc, sc.settings);
     const std::uint8_t black[4] = {0, 0, 0, 255};
     sc.scene.textures.push_back(Texture::fromRgba8(1, 1, black));
-    sc.scene.draws[3].occlusionTexture = 1; // the ground, which has uvs
+    sc.scene.draws[3].maps[MapSlot::Occlusion] = 1; // the ground, which has uvs
     sc.scene.draws[3].pbr->occlusionStrength = 1.0f;
     const Image occluded = renderPbr(sc, sc.settings);
     sc.scene.draws[3].pbr->occlusionStrength = 0.0f;

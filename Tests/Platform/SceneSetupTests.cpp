@@ -298,8 +298,8 @@ TEST_CASE("a glTF material whose only map is occlusion keeps its uvs and its map
     const Scene& scene = loaded.value().scene;
     REQUIRE(scene.draws.size() == 1);
     const SceneDraw& d = scene.draws[0];
-    REQUIRE(d.occlusionTexture >= 0);
-    CHECK(scene.textures[std::size_t(d.occlusionTexture)].width() == 1);
+    REQUIRE(d.maps[MapSlot::Occlusion] >= 0);
+    CHECK(scene.textures[std::size_t(d.maps[MapSlot::Occlusion])].width() == 1);
     CHECK(scene.meshes[std::size_t(d.mesh)].hasUvs());
 }
 
@@ -359,11 +359,11 @@ TEST_CASE("a glTF specularTexture is drawn from a copy holding its alpha in RGB;
     const Scene& scene = loaded.value().scene;
     REQUIRE(scene.draws.size() == 1);
     const SceneDraw& d = scene.draws[0];
-    REQUIRE(d.specularTexture >= 0);
-    REQUIRE(d.specularColorTexture >= 0);
-    CHECK(d.specularTexture != d.specularColorTexture);
-    const Texture& alpha = scene.textures[std::size_t(d.specularTexture)];
-    const Texture& colour = scene.textures[std::size_t(d.specularColorTexture)];
+    REQUIRE(d.maps[MapSlot::Specular] >= 0);
+    REQUIRE(d.maps[MapSlot::SpecularColour] >= 0);
+    CHECK(d.maps[MapSlot::Specular] != d.maps[MapSlot::SpecularColour]);
+    const Texture& alpha = scene.textures[std::size_t(d.maps[MapSlot::Specular])];
+    const Texture& colour = scene.textures[std::size_t(d.maps[MapSlot::SpecularColour])];
     // Nearest texel of each column (u 0.25 and 0.75).
     const Color a0 = alpha.sample({0.25f, 0.5f}, 0.0f, TextureFilter::Nearest, WrapMode::Clamp);
     const Color a1 = alpha.sample({0.75f, 0.5f}, 0.0f, TextureFilter::Nearest, WrapMode::Clamp);

@@ -346,7 +346,7 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     Image one;
     one.width = one.height = 1;
     one.rgba = {10, 20, 30, 255};
-    for (const char* name : {"base.png", "mr.png", "em.png", "nrm.png", "occ.png"})
+    for (const char* name : {"base.png", "mr.png", "em.png", "nrm.png", "occ.png", "spec.png", "specc.png", "cc.png", "ccr.png", "ccn.png"})
         REQUIRE(writeImage(dir + "/" + name, one).ok());
     Asset a;
     const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
@@ -358,12 +358,17 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     a.materials = "[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.5,0.25,0.125,0.75],\"metallicFactor\":0.3,"
                   "\"roughnessFactor\":0.6,\"baseColorTexture\":{\"index\":0},\"metallicRoughnessTexture\":{\"index\":1}},"
                   "\"emissiveFactor\":[1,0.5,0],\"emissiveTexture\":{\"index\":2},"
-                  "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4}},"
+                  "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4},"
+                  "\"KHR_materials_specular\":{\"specularTexture\":{\"index\":5},\"specularColorTexture\":{\"index\":6}},"
+                  "\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1,\"clearcoatTexture\":{\"index\":7},"
+                  "\"clearcoatRoughnessTexture\":{\"index\":8},\"clearcoatNormalTexture\":{\"index\":9}}},"
                   "\"normalTexture\":{\"index\":3,\"scale\":0.5},\"occlusionTexture\":{\"index\":4,\"strength\":0.25}},"
                   "{\"name\":\"plain\"}]";
-    a.extra = ",\"extensionsUsed\":[\"KHR_materials_emissive_strength\"],"
-              "\"images\":[{\"uri\":\"base.png\"},{\"uri\":\"mr.png\"},{\"uri\":\"em.png\"},{\"uri\":\"nrm.png\"},{\"uri\":\"occ.png\"}],"
-              "\"textures\":[{\"source\":0},{\"source\":1},{\"source\":2},{\"source\":3},{\"source\":4}]";
+    a.extra = ",\"extensionsUsed\":[\"KHR_materials_emissive_strength\",\"KHR_materials_specular\",\"KHR_materials_clearcoat\"],"
+              "\"images\":[{\"uri\":\"base.png\"},{\"uri\":\"mr.png\"},{\"uri\":\"em.png\"},{\"uri\":\"nrm.png\"},{\"uri\":\"occ.png\"},"
+              "{\"uri\":\"spec.png\"},{\"uri\":\"specc.png\"},{\"uri\":\"cc.png\"},{\"uri\":\"ccr.png\"},{\"uri\":\"ccn.png\"}],"
+              "\"textures\":[{\"source\":0},{\"source\":1},{\"source\":2},{\"source\":3},{\"source\":4},"
+              "{\"source\":5},{\"source\":6},{\"source\":7},{\"source\":8},{\"source\":9}]";
     auto r = load(dir, "pbr.gltf", a.embedded());
     INFO((r.ok() ? std::string() : r.error()));
     REQUIRE(r.ok());
@@ -381,11 +386,26 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     CHECK(k.pbr->normalScale == 0.5f);
     CHECK(k.pbr->occlusionStrength == 0.25f);
     CHECK_FALSE(k.pbr->unlit);
-    // Five distinct images: five slots, each map in its own.
-    const std::set<int> slots{k.texture, k.metallicRoughnessTexture, k.emissiveTexture, k.normalTexture, k.occlusionTexture};
-    CHECK(slots.size() == 5);
-    CHECK(*slots.begin() >= 0);
-    CHECK(m.textures.size() == 5);
+    // Ten distinct images: ten textures, each map in the slot of its own image.
+    CHECK(m.textures.size() == 10);
+    REQUIRE(m.texturePaths.size() == m.textures.size());
+    const auto imageOf = [&](int texture) {
+        return texture >= 0 && std::size_t(texture) < m.texturePaths.size()
+                   ? m.texturePaths[std::size_t(texture)].substr(m.texturePaths[std::size_t(texture)].find_last_of('/') + 1)
+                   : std::string("(none)");
+    };
+    CHECK(imageOf(k.texture) == "base.png");
+    const std::pair<MapSlot, const char*> expected[] = {
+        {MapSlot::MetallicRoughness, "mr.png"}, {MapSlot::Emissive, "em.png"},       {MapSlot::Normal, "nrm.png"},
+        {MapSlot::Occlusion, "occ.png"},        {MapSlot::Specular, "spec.png"},     {MapSlot::SpecularColour, "specc.png"},
+        {MapSlot::Clearcoat, "cc.png"},         {MapSlot::ClearcoatRoughness, "ccr.png"}, {MapSlot::ClearcoatNormal, "ccn.png"}};
+    // Every slot but the glossiness (KHR_materials_pbrSpecularGlossiness replaces the metallic-
+    // roughness block: its own test checks that slot).
+    static_assert(std::size(expected) == kMapSlots - 1, "every slot is checked");
+    for (const auto& [slot, name] : expected) {
+        INFO(kMapSlotNames[std::size_t(slot)]);
+        CHECK(imageOf(k.maps[slot]) == name);
+    }
     // The spec's defaults: base 1, metallic 1, roughness 1, no emission, no maps.
     const Material& plain = m.materials[1];
     REQUIRE(plain.pbr.has_value());
@@ -393,8 +413,8 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     CHECK(plain.pbr->metallic == 1.0f);
     CHECK(plain.pbr->roughness == 1.0f);
     checkVec(plain.pbr->emissive, 0, 0, 0);
-    CHECK(plain.metallicRoughnessTexture == -1);
-    CHECK(plain.normalTexture == -1);
+    CHECK(plain.maps[MapSlot::MetallicRoughness] == -1);
+    CHECK(plain.maps[MapSlot::Normal] == -1);
 }
 
 TEST_CASE("glTF texCoord: a material's maps read the uv set they name (TEXCOORD_1, or KHR_texture_transform's texCoord)",
@@ -1238,16 +1258,78 @@ TEST_CASE("glTF KHR_materials_clearcoat: the coat's weight, roughness and normal
     CHECK(k0.clearcoat == 0.8f);
     CHECK(k0.clearcoatRoughness == 0.3f);
     CHECK(k0.clearcoatNormalScale == 0.5f);
-    CHECK(m.materials[0].clearcoatTexture >= 0);
-    CHECK(m.materials[0].clearcoatNormalTexture >= 0);
-    CHECK(m.materials[0].clearcoatRoughnessTexture == -1);
+    CHECK(m.materials[0].maps[MapSlot::Clearcoat] >= 0);
+    CHECK(m.materials[0].maps[MapSlot::ClearcoatNormal] >= 0);
+    CHECK(m.materials[0].maps[MapSlot::ClearcoatRoughness] == -1);
     CHECK(m.materials[1].pbr->clearcoat == 1.0f);          // clamped into [0, 1]
     CHECK(m.materials[1].pbr->clearcoatRoughness == 0.0f); // out of range: the default
-    CHECK(m.materials[1].clearcoatRoughnessTexture >= 0);
-    CHECK(m.materials[1].clearcoatTexture == -1);
+    CHECK(m.materials[1].maps[MapSlot::ClearcoatRoughness] >= 0);
+    CHECK(m.materials[1].maps[MapSlot::Clearcoat] == -1);
     CHECK(m.materials[2].pbr->clearcoat == 0.0f); // the extension's defaults: no coat
     CHECK(m.materials[2].pbr->clearcoatNormalScale == 1.0f);
     CHECK(m.materials[3].pbr->clearcoat == 0.0f);
+    CHECK(m.warnings.empty());
+}
+
+TEST_CASE("glTF KHR_materials_pbrSpecularGlossiness: diffuse, specular and glossiness as metallic-roughness inputs",
+          "[resources][gltf][pbr][specgloss]") {
+    const std::string dir = freshDir("gltf-specgloss");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {200, 100, 50, 128};
+    REQUIRE(writeImage(dir + "/d.png", one).ok());
+    REQUIRE(writeImage(dir + "/sg.png", one).ok());
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" + std::to_string(uv) +
+               "},\"material\":0}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    // 0: factors alone. 1: both textures, over a metallic-roughness fallback (metal, another
+    // texture) that the extension replaces. 2: the extension's defaults.
+    a.materials = R"([{"extensions":{"KHR_materials_pbrSpecularGlossiness":{"diffuseFactor":[0.8,0.6,0.4,0.5],
+            "specularFactor":[0.2,0.1,0.05],"glossinessFactor":0.7}}},
+        {"pbrMetallicRoughness":{"metallicFactor":1,"baseColorTexture":{"index":1}},
+         "extensions":{"KHR_materials_pbrSpecularGlossiness":{"diffuseTexture":{"index":0},"specularGlossinessTexture":{"index":1},
+            "specularFactor":[0.5,0.25,1],"glossinessFactor":0.9}}},
+        {"extensions":{"KHR_materials_pbrSpecularGlossiness":{}}}])";
+    a.extra = R"(,"images":[{"uri":"d.png"},{"uri":"sg.png"}],"textures":[{"source":0},{"source":1}],)"
+              R"("extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],"extensionsRequired":["KHR_materials_pbrSpecularGlossiness"])";
+    auto r = load(dir, "specgloss.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.materials.size() >= 3);
+    const PbrFactors& k0 = *m.materials[0].pbr;
+    // c_diff = diffuse x (1 - max(specular)) folded in; F0 = specular; roughness = 1 - glossiness.
+    CHECK(k0.baseColor.r == float(0.8 * 0.8));
+    CHECK(k0.baseColor.g == float(0.6 * 0.8));
+    CHECK(k0.baseColor.b == float(0.4 * 0.8));
+    CHECK(k0.baseColor.a == 0.5f);
+    CHECK(k0.metallic == 0.0f);
+    CHECK(k0.roughness == float(1.0 - 0.7));
+    checkVec(k0.dielectricF0, 0.2f, 0.1f, 0.05f);
+    CHECK(k0.specularWeight == 1.0f);
+    CHECK_FALSE(k0.specularGlossiness); // nothing per pixel
+    CHECK(m.materials[0].kd.r == float(0.8 * 0.8)); // the Blinn-Phong mapping: kd = c_diff, ks = F0
+    CHECK(m.materials[0].ks.r == 0.2f);
+    const Material& m1 = m.materials[1];
+    const PbrFactors& k1 = *m1.pbr;
+    CHECK(k1.specularGlossiness); // per pixel: the texture's alpha and RGB
+    CHECK(k1.glossiness == 0.9f);
+    CHECK(k1.metallic == 0.0f);          // not the fallback's metal
+    CHECK(k1.baseColor.r == 1.0f);       // the diffuse, unfolded (the program scales it per pixel)
+    checkVec(k1.specularColorF0, 0.5f, 0.25f, 1.0f);
+    CHECK(m1.kd.r == float(1.0 * (1.0 - 1.0))); // kd with the factor's F0: max 1
+    REQUIRE(m1.texture >= 0);
+    CHECK(m1.maps[MapSlot::SpecularColour] >= 0);
+    CHECK(m1.maps[MapSlot::Glossiness] == m1.maps[MapSlot::SpecularColour]); // one image: RGB and alpha
+    CHECK(m1.texture != m1.maps[MapSlot::Glossiness]);                        // the diffuse texture, not the fallback's
+    CHECK(m1.maps[MapSlot::MetallicRoughness] == -1);
+    const PbrFactors& k2 = *m.materials[2].pbr;
+    checkVec(k2.dielectricF0, 1.0f, 1.0f, 1.0f);
+    CHECK(k2.baseColor.r == 0.0f); // specular 1 leaves no diffuse
+    CHECK(k2.roughness == 0.0f);
     CHECK(m.warnings.empty());
 }
 

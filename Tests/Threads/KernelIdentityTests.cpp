@@ -461,6 +461,12 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
     tinted.specularColorF0 = {0.11f, 0.06f, 3.0f};
     tinted.specularWeight = 0.55f;
     const Texture specularMap = randomTexture(rng, 8, 16), specularColour = randomTexture(rng, 16, 16);
+    PbrFactors glossy = rough; // KHR_materials_pbrSpecularGlossiness with its texture (RGB and alpha)
+    glossy.metallic = 0.0f;
+    glossy.specularGlossiness = true;
+    glossy.glossiness = 0.85f;
+    glossy.dielectricF0 = glossy.specularColorF0 = {0.3f, 0.2f, 0.5f};
+    const Texture glossiness = randomTexture(rng, 16, 8);
     Totals totals;
     int ran = 0;
     for (Isa isa : {Isa::Sse2, Isa::Avx2, Isa::Avx512}) {
@@ -478,15 +484,20 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
                             settings.shading = ShadingMode::Pbr;
                             settings.colour = linear ? ColorMode::Linear : ColorMode::Gamma;
                             const KernelKey key{depth, persp, filter, wrap};
-                            for (const PbrFactors* factors : {&rough, &polished, &tinted}) {
+                            for (const PbrFactors* factors : {&rough, &polished, &tinted, &glossy}) {
                                 SurfaceMaterial material;
                                 material.pbr = factors;
                                 material.texture = &base;
-                                material.metallicRoughness = &mr;
-                                material.emissive = &emissive;
+                                material.maps[MapSlot::MetallicRoughness] = &mr;
+                                material.maps[MapSlot::Emissive] = &emissive;
                                 if (factors == &tinted) {
-                                    material.specularMap = &specularMap;
-                                    material.specularColour = &specularColour;
+                                    material.maps[MapSlot::Specular] = &specularMap;
+                                    material.maps[MapSlot::SpecularColour] = &specularColour;
+                                }
+                                if (factors == &glossy) {
+                                    material.maps[MapSlot::MetallicRoughness] = nullptr;
+                                    material.maps[MapSlot::SpecularColour] = &specularColour;
+                                    material.maps[MapSlot::Glossiness] = &glossiness;
                                 }
                                 for (const bool doubleSided : {true, false}) {
                                     DrawContext d{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
@@ -497,7 +508,7 @@ TEST_CASE("the pbr kernels (glTF BRDF, maps, physical lights) are bit-identical 
                                 }
                                 // Normal-mapped (random texels, random tangents and handedness among the varyings).
                                 SurfaceMaterial mapped = material;
-                                mapped.normalMap = &normals;
+                                mapped.maps[MapSlot::Normal] = &normals;
                                 DrawContext dn{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
                                                Specular{}, 1.0f, false, true, {}};
                                 dn.linear = linear;
@@ -552,7 +563,7 @@ TEST_CASE("the pbr and unlit kernels with vertex colours (COLOR_0) are bit-ident
                         SurfaceMaterial material;
                         material.pbr = &factors;
                         material.texture = &base;
-                        material.metallicRoughness = &mr;
+                        material.maps[MapSlot::MetallicRoughness] = &mr;
                         DrawContext d{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
                                       Specular{}, 1.0f, false, true, {}};
                         d.linear = linear;
@@ -560,7 +571,7 @@ TEST_CASE("the pbr and unlit kernels with vertex colours (COLOR_0) are bit-ident
                         compareKernel<PbrProgram<true, false, true>>(isa, key, [&] { return PbrProgram<true, false, true>(&d); }, rng,
                                                                      totals);
                         SurfaceMaterial mapped = material;
-                        mapped.normalMap = &normals;
+                        mapped.maps[MapSlot::Normal] = &normals;
                         DrawContext dn = d;
                         dn.material = &mapped;
                         compareKernel<PbrProgram<true, true, true>>(isa, key, [&] { return PbrProgram<true, true, true>(&dn); }, rng,
@@ -640,11 +651,11 @@ TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map 
                         SurfaceMaterial material;
                         material.pbr = factors;
                         material.texture = &base;
-                        material.metallicRoughness = &mr;
-                        material.occlusion = &occlusion;
+                        material.maps[MapSlot::MetallicRoughness] = &mr;
+                        material.maps[MapSlot::Occlusion] = &occlusion;
                         if (factors == &tinted) {
-                            material.specularMap = &specularMap;
-                            material.specularColour = &specularColour;
+                            material.maps[MapSlot::Specular] = &specularMap;
+                            material.maps[MapSlot::SpecularColour] = &specularColour;
                         }
                         DrawContext d{view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
                                       Specular{}, 1.0f, false, true, {}};
@@ -652,7 +663,7 @@ TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map 
                         d.material = &material;
                         compareKernel<PbrProgram<true>>(isa, key, [&] { return PbrProgram<true>(&d); }, rng, totals);
                         SurfaceMaterial mapped = material;
-                        mapped.normalMap = &normals;
+                        mapped.maps[MapSlot::Normal] = &normals;
                         DrawContext dn = d;
                         dn.material = &mapped;
                         compareKernel<PbrProgram<true, true>>(isa, key, [&] { return PbrProgram<true, true>(&dn); }, rng, totals);
@@ -792,10 +803,10 @@ TEST_CASE("the pbr kernels with a clear coat (KHR_materials_clearcoat) are bit-i
                             SurfaceMaterial material;
                             material.pbr = factors;
                             material.texture = &base;
-                            material.metallicRoughness = &mr;
-                            material.occlusion = &occlusion;
-                            material.clearcoatMap = &coatMap;
-                            material.clearcoatRoughnessMap = &coatRoughnessMap;
+                            material.maps[MapSlot::MetallicRoughness] = &mr;
+                            material.maps[MapSlot::Occlusion] = &occlusion;
+                            material.maps[MapSlot::Clearcoat] = &coatMap;
+                            material.maps[MapSlot::ClearcoatRoughness] = &coatRoughnessMap;
                             DrawContext d{*view, settings, mesh, mesh.indices.data(), &base, Color{1.0f, 1.0f, 1.0f, 1.0f},
                                           Specular{}, 1.0f, false, true, {}};
                             d.linear = linear;
@@ -803,12 +814,12 @@ TEST_CASE("the pbr kernels with a clear coat (KHR_materials_clearcoat) are bit-i
                             compareKernel<PbrProgram<true>>(isa, key, [&] { return PbrProgram<true>(&d); }, rng, totals);
                             // The coat's own normal map, alone and over the base's.
                             SurfaceMaterial coatMapped = material;
-                            coatMapped.clearcoatNormalMap = &coatNormals;
+                            coatMapped.maps[MapSlot::ClearcoatNormal] = &coatNormals;
                             DrawContext dc = d;
                             dc.material = &coatMapped;
                             compareKernel<PbrProgram<true, true>>(isa, key, [&] { return PbrProgram<true, true>(&dc); }, rng, totals);
                             SurfaceMaterial bothMapped = coatMapped;
-                            bothMapped.normalMap = &normals;
+                            bothMapped.maps[MapSlot::Normal] = &normals;
                             DrawContext db = d;
                             db.material = &bothMapped;
                             compareKernel<PbrProgram<true, true>>(isa, key, [&] { return PbrProgram<true, true>(&db); }, rng, totals);

@@ -20,6 +20,8 @@
 #include <cassert>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include "Raster/Fill/Kernels/KernelTable.hpp"
 #include "Raster/Fill/Kernels/SimdAvx512.hpp"

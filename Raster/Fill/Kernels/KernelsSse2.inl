@@ -8,6 +8,8 @@
 #include <cassert>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include "Raster/Fill/Kernels/KernelTable.hpp"
 #include "Raster/Fill/Kernels/SimdSse2.hpp"

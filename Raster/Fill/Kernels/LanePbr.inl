@@ -37,12 +37,14 @@ SR_SIMD_NOINLINE Rgb coatImageLightLanes(const ImageLight::Tables& t, F roughnes
 // pbrRadiance's loop over the lights (lightAt's direction and factor as lightsRgb computes
 // them, the shadow maps' lit fraction, brdfCosineTerms with brdfMultiScatter's k), the same
 // operations in the same order. Lanes whose light or half vector is off normalize's fast path lose `ok`.
-// kCoat: also coatRadiance's sum on the coat normal nc at coatRoughness, added to `coat` in the
-// same loop (the light's direction, factor and lit fraction computed once for both).
-template <bool kSpecular, bool kCoat>
+// kLobes (PbrLobe bits): with kLobeDielectricSpecular brdfCosineTerms reads the dielectric's F0
+// and weight; with kLobeClearcoat the loop also adds coatRadiance's sum on the coat normal nc at
+// coatRoughness to `coat` (the light's direction, factor and lit fraction computed once for both).
+template <unsigned kLobes>
 SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* shadows, const F f0[3], F weight, F baseR, F baseG,
                                F baseB, F metallic, F roughness, F nx, F ny, F nz, F px, F py, F pz, F vx, F vy, F vz, M& ok,
                                const V3& nc, F coatRoughness, Rgb& coat) {
+    constexpr bool kSpecular = (kLobes & kLobeDielectricSpecular) != 0, kCoat = (kLobes & kLobeClearcoat) != 0;
     if (lighting.lights.empty()) return {fzero(), fzero(), fzero()};
     const V3 n{nx, ny, nz}, p{px, py, pz}, v{vx, vy, vz};
     const F base[3] = {baseR, baseG, baseB};
@@ -102,6 +104,15 @@ SR_SIMD_NOINLINE Rgb pbrLights(const Lighting& lighting, const SceneShadows* sha
         }
     }
     return sum;
+}
+
+// fn(std::integral_constant<unsigned, kSet>) for the set kSet == lobes among kSets: the
+// instantiation for a draw's PbrLobe bits.
+template <class Fn, unsigned... kSets>
+SR_SIMD_INLINE Rgb withLobeSet(unsigned lobes, const Fn& fn, std::integer_sequence<unsigned, kSets...>) {
+    Rgb r{fzero(), fzero(), fzero()};
+    (void)((lobes == kSets && (r = fn(std::integral_constant<unsigned, kSets>{}), true)) || ...);
+    return r;
 }
 
 // robustLength (Vec.cpp) for the lanes whose vector is finite and non-zero: the largest
@@ -182,69 +193,82 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
         baseB = baseB * v[kC + 2];
     }
     if constexpr (Prog::kIsTextured) {
-        if (m.metallicRoughness) {
-            const Rgb c = mapLanes(*m.metallicRoughness, false);
+        if (const Texture* map = m.map(MapSlot::MetallicRoughness)) {
+            const Rgb c = mapLanes(*map, false);
             roughness = roughness * c.g;
             metallic = metallic * c.b;
         }
-        if (m.emissive && (k.emissive.x > 0.0f || k.emissive.y > 0.0f || k.emissive.z > 0.0f)) {
-            const Rgb c = mapLanes(*m.emissive, true);
+        if (const Texture* map = m.map(MapSlot::Emissive); map && (k.emissive.x > 0.0f || k.emissive.y > 0.0f || k.emissive.z > 0.0f)) {
+            const Rgb c = mapLanes(*map, true);
             eR = eR * c.r;
             eG = eG * c.g;
             eB = eB * c.b;
         }
-        if (d.view.ibl && m.occlusion) {
+        if (const Texture* map = m.map(MapSlot::Occlusion); d.view.ibl && map) {
             const F one = fset(1.0f);
-            occlusion = one + fset(k.occlusionStrength) * (mapLanes(*m.occlusion, false).r - one);
+            occlusion = one + fset(k.occlusionStrength) * (mapLanes(*map, false).r - one);
         }
         // KHR_materials_specular's maps (PbrProgram::fragment).
-        if (m.specularColour) {
-            const Rgb c = mapLanes(*m.specularColour, true);
+        if (const Texture* map = m.map(MapSlot::SpecularColour)) {
+            const Rgb c = mapLanes(*map, true);
             const F one = fset(1.0f);
             f0[0] = minOf(fset(k.specularColorF0.x) * c.r, one);
             f0[1] = minOf(fset(k.specularColorF0.y) * c.g, one);
             f0[2] = minOf(fset(k.specularColorF0.z) * c.b, one);
         }
-        if (m.specularMap) weight = weight * mapLanes(*m.specularMap, false).r; // (its alpha, held in red: SurfaceMaterial)
+        if (const Texture* map = m.map(MapSlot::Specular)) // (its alpha, held in red: MapSlot::Specular)
+            weight = weight * mapLanes(*map, false).r;
         if constexpr (Prog::kNormalMap) {
             constexpr int kT = Prog::kT;
-            if (m.normalMap) n = perturbNormalLanes(n, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.normalMap, false), k.normalScale);
+            if (const Texture* map = m.map(MapSlot::Normal))
+                n = perturbNormalLanes(n, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*map, false), k.normalScale);
         }
+    }
+    // KHR_materials_pbrSpecularGlossiness's per-pixel inputs (PbrProgram::fragment).
+    if (p.has(kLobeSpecularGlossiness)) {
+        F glossiness = fset(k.glossiness);
+        if constexpr (Prog::kIsTextured) {
+            if (const Texture* map = m.map(MapSlot::Glossiness)) glossiness = glossiness * mapLanes(*map, false).r; // (its alpha, in red)
+        }
+        roughness = fset(1.0f) - glossiness;
+        const F keep = fset(1.0f) - maxOf(maxOf(f0[0], f0[1]), f0[2]);
+        baseR = baseR * keep;
+        baseG = baseG * keep;
+        baseB = baseB * keep;
     }
     // The clear coat's weight, roughness and normal, each x its map (PbrProgram::fragment).
     F clearcoat = fset(k.clearcoat), coatRoughness = fset(k.clearcoatRoughness);
     V3 nc = geometric;
     if constexpr (Prog::kIsTextured) {
-        if (p.coat) {
-            if (m.clearcoatMap) clearcoat = clearcoat * mapLanes(*m.clearcoatMap, false).r;
-            if (m.clearcoatRoughnessMap) coatRoughness = coatRoughness * mapLanes(*m.clearcoatRoughnessMap, false).g;
+        if (p.has(kLobeClearcoat)) {
+            if (const Texture* map = m.map(MapSlot::Clearcoat)) clearcoat = clearcoat * mapLanes(*map, false).r;
+            if (const Texture* map = m.map(MapSlot::ClearcoatRoughness)) coatRoughness = coatRoughness * mapLanes(*map, false).g;
             if constexpr (Prog::kNormalMap) {
                 constexpr int kT = Prog::kT;
-                if (m.clearcoatNormalMap)
-                    nc = perturbNormalLanes(geometric, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*m.clearcoatNormalMap, false),
+                if (const Texture* map = m.map(MapSlot::ClearcoatNormal))
+                    nc = perturbNormalLanes(geometric, {v[kT], v[kT + 1], v[kT + 2]}, v[kT + 3], mapLanes(*map, false),
                                             k.clearcoatNormalScale);
             }
         }
     }
-    // A material without KHR_materials_ior / _specular values takes the shortcut (same bits), one
-    // without a clear coat the loop without it.
-    const bool specular = p.dielectricSpecular;
+    // The lights' loop for the material's lobes and no other (a material without KHR_materials_ior /
+    // _specular values takes brdfCosineTerms' shortcut: the same bits).
+    const bool specular = p.has(kLobeDielectricSpecular);
     Rgb coat{fzero(), fzero(), fzero()};
-    const auto lights = [&](auto kSpec, auto kCoat) SR_SIMD_LAMBDA {
-        return pbrLights<decltype(kSpec)::value, decltype(kCoat)::value>(d.view.lighting, d.view.shadows, f0, weight, baseR, baseG, baseB,
-                                                                          metallic, roughness, n.x, n.y, n.z, v[kP], v[kP + 1], v[kP + 2],
-                                                                          toEye.x, toEye.y, toEye.z, ok, nc, coatRoughness, coat);
-    };
-    using Yes = std::true_type;
-    using No = std::false_type;
-    Rgb r = specular ? (p.coat ? lights(Yes{}, Yes{}) : lights(Yes{}, No{})) : (p.coat ? lights(No{}, Yes{}) : lights(No{}, No{}));
+    Rgb r = withLobeSet(
+        p.lobes & kLightLobes,
+        [&](auto set) SR_SIMD_LAMBDA {
+            return pbrLights<decltype(set)::value>(d.view.lighting, d.view.shadows, f0, weight, baseR, baseG, baseB, metallic, roughness, n.x,
+                                                   n.y, n.z, v[kP], v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok, nc, coatRoughness, coat);
+        },
+        std::make_integer_sequence<unsigned, kLightLobes + 1>{});
     if (d.view.ibl) {
         const Rgb sky = specular ? imageLightLanes<true>(d.view.ibl->tables(), f0, weight, baseR, baseG, baseB, metallic, roughness, n, toEye)
                                  : imageLightLanes<false>(d.view.ibl->tables(), f0, weight, baseR, baseG, baseB, metallic, roughness, n, toEye);
         r = {r.r + sky.r * occlusion, r.g + sky.g * occlusion, r.b + sky.b * occlusion};
     }
     Rgb out{r.r + eR, r.g + eG, r.b + eB};
-    if (p.coat) {
+    if (p.has(kLobeClearcoat)) {
         if (d.view.ibl) {
             const Rgb sky = coatImageLightLanes(d.view.ibl->tables(), coatRoughness, nc, toEye);
             coat = {coat.r + sky.r * occlusion, coat.g + sky.g * occlusion, coat.b + sky.b * occlusion};
