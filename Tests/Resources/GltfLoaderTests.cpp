@@ -1246,7 +1246,7 @@ TEST_CASE("glTF KHR_materials_clearcoat: the coat's weight, roughness and normal
             "clearcoatTexture":{"index":0},"clearcoatNormalTexture":{"index":0,"scale":0.5}}}},
         {"extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":2,"clearcoatRoughnessFactor":-1,"clearcoatRoughnessTexture":{"index":0}}}},
         {"extensions":{"KHR_materials_clearcoat":{}}},
-        {}])";
+        {"extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":"x","clearcoatRoughnessFactor":[1],"clearcoatNormalTexture":7}}}])";
     a.extra = R"(,"images":[{"uri":"t.png"}],"textures":[{"source":0}],)"
               R"("extensionsUsed":["KHR_materials_clearcoat"],"extensionsRequired":["KHR_materials_clearcoat"])";
     auto r = load(dir, "clearcoat.gltf", a.embedded());
@@ -1267,7 +1267,9 @@ TEST_CASE("glTF KHR_materials_clearcoat: the coat's weight, roughness and normal
     CHECK(m.materials[1].maps[MapSlot::Clearcoat] == -1);
     CHECK(m.materials[2].pbr->clearcoat == 0.0f); // the extension's defaults: no coat
     CHECK(m.materials[2].pbr->clearcoatNormalScale == 1.0f);
-    CHECK(m.materials[3].pbr->clearcoat == 0.0f);
+    CHECK(m.materials[3].pbr->clearcoat == 0.0f); // malformed: the defaults
+    CHECK(m.materials[3].pbr->clearcoatRoughness == 0.0f);
+    CHECK(m.materials[3].maps[MapSlot::ClearcoatNormal] == -1);
     CHECK(m.warnings.empty());
 }
 
@@ -1292,14 +1294,15 @@ TEST_CASE("glTF KHR_materials_pbrSpecularGlossiness: diffuse, specular and gloss
         {"pbrMetallicRoughness":{"metallicFactor":1,"baseColorTexture":{"index":1}},
          "extensions":{"KHR_materials_pbrSpecularGlossiness":{"diffuseTexture":{"index":0},"specularGlossinessTexture":{"index":1},
             "specularFactor":[0.5,0.25,1],"glossinessFactor":0.9}}},
-        {"extensions":{"KHR_materials_pbrSpecularGlossiness":{}}}])";
+        {"extensions":{"KHR_materials_pbrSpecularGlossiness":{}}},
+        {"extensions":{"KHR_materials_pbrSpecularGlossiness":{"diffuseFactor":"red","specularFactor":[0.5],"glossinessFactor":7}}}])";
     a.extra = R"(,"images":[{"uri":"d.png"},{"uri":"sg.png"}],"textures":[{"source":0},{"source":1}],)"
               R"("extensionsUsed":["KHR_materials_pbrSpecularGlossiness"],"extensionsRequired":["KHR_materials_pbrSpecularGlossiness"])";
     auto r = load(dir, "specgloss.gltf", a.embedded());
     INFO((r.ok() ? std::string() : r.error()));
     REQUIRE(r.ok());
     const Model& m = r.value();
-    REQUIRE(m.materials.size() >= 3);
+    REQUIRE(m.materials.size() >= 4);
     const PbrFactors& k0 = *m.materials[0].pbr;
     // c_diff = diffuse x (1 - max(specular)) folded in; F0 = specular; roughness = 1 - glossiness.
     CHECK(k0.baseColor.r == float(0.8 * 0.8));
@@ -1330,7 +1333,18 @@ TEST_CASE("glTF KHR_materials_pbrSpecularGlossiness: diffuse, specular and gloss
     checkVec(k2.dielectricF0, 1.0f, 1.0f, 1.0f);
     CHECK(k2.baseColor.r == 0.0f); // specular 1 leaves no diffuse
     CHECK(k2.roughness == 0.0f);
+    // Malformed values read as their defaults, clamped: no crash, no NaN.
+    const PbrFactors& k3 = *m.materials[3].pbr;
+    checkVec(k3.dielectricF0, 0.5f, 1.0f, 1.0f); // the missing channels: 1
+    CHECK(k3.roughness == 0.0f);                 // glossiness 7, clamped to 1
+    CHECK(k3.baseColor.r == 0.0f);               // diffuse 1 x (1 - 1)
     CHECK(m.warnings.empty());
+    // An extension that is not an object is refused by the schema check, naming it.
+    Asset bad = a;
+    bad.materials = R"([{"extensions":{"KHR_materials_pbrSpecularGlossiness":[1,2]}}])";
+    auto refused = load(dir, "bad.gltf", bad.embedded());
+    REQUIRE_FALSE(refused.ok());
+    CHECK(contains(refused.error(), "KHR_materials_pbrSpecularGlossiness: expected an object"));
 }
 
 TEST_CASE("glTF: a primitive without a material gets the specification's default material", "[resources][gltf][pbr]") {

@@ -149,9 +149,10 @@ SR_SIMD_NOINLINE V3 perturbNormalLanes(const V3& n, const V3& t0, F w, const Rgb
 
 // PbrProgram::fragment for the lanes: the interpolated normal and view vector (the normal
 // flipped toward the viewer on a double-sided surface), the factors times the maps, the lights,
-// the emission, encoded.
-template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
-SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
+// the emission, encoded. kLobes false: the material has none of the PbrLobe parts (the code for
+// them is not compiled in); true: each is tested (p.has) and run where the material has it.
+template <bool kLobes, class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
+SR_SIMD_INLINE Rgb shadePbrBody(const Prog& p, const F* v, F invW, M& ok) {
     const DrawContext& d = *p.d;
     const SurfaceMaterial& m = *d.material;
     const PbrFactors& k = *m.pbr;
@@ -208,16 +209,18 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
             const F one = fset(1.0f);
             occlusion = one + fset(k.occlusionStrength) * (mapLanes(*map, false).r - one);
         }
-        // KHR_materials_specular's maps (PbrProgram::fragment).
-        if (const Texture* map = m.map(MapSlot::SpecularColour)) {
-            const Rgb c = mapLanes(*map, true);
-            const F one = fset(1.0f);
-            f0[0] = minOf(fset(k.specularColorF0.x) * c.r, one);
-            f0[1] = minOf(fset(k.specularColorF0.y) * c.g, one);
-            f0[2] = minOf(fset(k.specularColorF0.z) * c.b, one);
+        // KHR_materials_specular's maps (PbrProgram::fragment; a material with either has kLobeDielectricSpecular).
+        if constexpr (kLobes) {
+            if (const Texture* map = m.map(MapSlot::SpecularColour)) {
+                const Rgb c = mapLanes(*map, true);
+                const F one = fset(1.0f);
+                f0[0] = minOf(fset(k.specularColorF0.x) * c.r, one);
+                f0[1] = minOf(fset(k.specularColorF0.y) * c.g, one);
+                f0[2] = minOf(fset(k.specularColorF0.z) * c.b, one);
+            }
+            if (const Texture* map = m.map(MapSlot::Specular)) // (its alpha, held in red: MapSlot::Specular)
+                weight = weight * mapLanes(*map, false).r;
         }
-        if (const Texture* map = m.map(MapSlot::Specular)) // (its alpha, held in red: MapSlot::Specular)
-            weight = weight * mapLanes(*map, false).r;
         if constexpr (Prog::kNormalMap) {
             constexpr int kT = Prog::kT;
             if (const Texture* map = m.map(MapSlot::Normal))
@@ -225,7 +228,7 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
         }
     }
     // KHR_materials_pbrSpecularGlossiness's per-pixel inputs (PbrProgram::fragment).
-    if (p.has(kLobeSpecularGlossiness)) {
+    if (kLobes && p.has(kLobeSpecularGlossiness)) {
         F glossiness = fset(k.glossiness);
         if constexpr (Prog::kIsTextured) {
             if (const Texture* map = m.map(MapSlot::Glossiness)) glossiness = glossiness * mapLanes(*map, false).r; // (its alpha, in red)
@@ -240,7 +243,7 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
     F clearcoat = fset(k.clearcoat), coatRoughness = fset(k.clearcoatRoughness);
     V3 nc = geometric;
     if constexpr (Prog::kIsTextured) {
-        if (p.has(kLobeClearcoat)) {
+        if (kLobes && p.has(kLobeClearcoat)) {
             if (const Texture* map = m.map(MapSlot::Clearcoat)) clearcoat = clearcoat * mapLanes(*map, false).r;
             if (const Texture* map = m.map(MapSlot::ClearcoatRoughness)) coatRoughness = coatRoughness * mapLanes(*map, false).g;
             if constexpr (Prog::kNormalMap) {
@@ -253,22 +256,22 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
     }
     // The lights' loop for the material's lobes and no other (a material without KHR_materials_ior /
     // _specular values takes brdfCosineTerms' shortcut: the same bits).
-    const bool specular = p.has(kLobeDielectricSpecular);
+    const bool specular = kLobes && p.has(kLobeDielectricSpecular);
     Rgb coat{fzero(), fzero(), fzero()};
-    Rgb r = withLobeSet(
-        p.lobes & kLightLobes,
-        [&](auto set) SR_SIMD_LAMBDA {
-            return pbrLights<decltype(set)::value>(d.view.lighting, d.view.shadows, f0, weight, baseR, baseG, baseB, metallic, roughness, n.x,
-                                                   n.y, n.z, v[kP], v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok, nc, coatRoughness, coat);
-        },
-        std::make_integer_sequence<unsigned, kLightLobes + 1>{});
+    const auto lights = [&](auto set) SR_SIMD_LAMBDA {
+        return pbrLights<decltype(set)::value>(d.view.lighting, d.view.shadows, f0, weight, baseR, baseG, baseB, metallic, roughness, n.x,
+                                               n.y, n.z, v[kP], v[kP + 1], v[kP + 2], toEye.x, toEye.y, toEye.z, ok, nc, coatRoughness, coat);
+    };
+    Rgb r;
+    if constexpr (kLobes) r = withLobeSet(p.lobes & kLightLobes, lights, std::make_integer_sequence<unsigned, kLightLobes + 1>{});
+    else r = lights(std::integral_constant<unsigned, 0>{});
     if (d.view.ibl) {
         const Rgb sky = specular ? imageLightLanes<true>(d.view.ibl->tables(), f0, weight, baseR, baseG, baseB, metallic, roughness, n, toEye)
                                  : imageLightLanes<false>(d.view.ibl->tables(), f0, weight, baseR, baseG, baseB, metallic, roughness, n, toEye);
         r = {r.r + sky.r * occlusion, r.g + sky.g * occlusion, r.b + sky.b * occlusion};
     }
     Rgb out{r.r + eR, r.g + eG, r.b + eB};
-    if (p.has(kLobeClearcoat)) {
+    if (kLobes && p.has(kLobeClearcoat)) {
         if (d.view.ibl) {
             const Rgb sky = coatImageLightLanes(d.view.ibl->tables(), coatRoughness, nc, toEye);
             coat = {coat.r + sky.r * occlusion, coat.g + sky.g * occlusion, coat.b + sky.b * occlusion};
@@ -278,4 +281,16 @@ SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
         out = {out.r * keep + coat.r * w, out.g * keep + coat.g * w, out.b * keep + coat.b * w};
     }
     return out;
+}
+
+// A material with any PbrLobe part shades out of line (shadePbrBody<true>), so that the span
+// loop of one without keeps the base program's code alone.
+template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
+SR_SIMD_NOINLINE Rgb shadePbrLobes(const Prog& p, const F* v, F invW, M& ok) {
+    return shadePbrBody<true, Prog, kPersp, kFilter>(p, v, invW, ok);
+}
+template <class Prog, PerspectiveMode kPersp, TextureFilter kFilter>
+SR_SIMD_INLINE Rgb shadePbr(const Prog& p, const F* v, F invW, M& ok) {
+    if (p.lobes != 0) return shadePbrLobes<Prog, kPersp, kFilter>(p, v, invW, ok);
+    return shadePbrBody<false, Prog, kPersp, kFilter>(p, v, invW, ok);
 }
