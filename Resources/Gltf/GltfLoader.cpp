@@ -2,6 +2,7 @@
 #include "Resources/Gltf/GltfLoader.hpp"
 
 #include <algorithm>
+#include <cstdio>
 #include <set>
 
 #include "Resources/FileIO.hpp"
@@ -13,6 +14,29 @@ namespace sr {
 namespace {
 
 using R = Result<Model>;
+
+// A message that quotes the file's own strings (property names, extension names), kept on one
+// line: its control characters written as \n, \r, \t or \xNN.
+std::string oneLine(const std::string& s) {
+    std::string out;
+    out.reserve(s.size());
+    for (const char ch : s) {
+        const unsigned char c = static_cast<unsigned char>(ch);
+        if (c == '\n') out += "\\n";
+        else if (c == '\r') out += "\\r";
+        else if (c == '\t') out += "\\t";
+        else if (c < 0x20 || c == 0x7F) {
+            char hex[5];
+            std::snprintf(hex, sizeof hex, "\\x%02X", unsigned(c));
+            out += hex;
+        } else {
+            out += ch;
+        }
+    }
+    return out;
+}
+
+Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const std::string& path, const LoadOptions& options);
 
 // The extensions a file may require: those read here, and the image formats whose textures
 // fall back to another image (Textures.cpp).
@@ -69,6 +93,15 @@ Result<Model> loadGltf(const std::string& path, const LoadOptions& options) {
 
 Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, const std::string& path,
                                  const LoadOptions& options) {
+    Result<Model> r = loadFromMemory(data, size, path, options);
+    if (!r) return R::failure(oneLine(r.error()));
+    for (std::string& w : r.value().warnings) w = oneLine(w);
+    return r;
+}
+
+namespace {
+
+Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const std::string& path, const LoadOptions& options) {
     using namespace gltfimport;
     const LoadLimits& limits = options.limits;
     if (size > limits.maxFileBytes)
@@ -257,5 +290,7 @@ Result<Model> loadGltfFromMemory(const unsigned char* data, std::size_t size, co
     for (const LineSet& l : model.lineSets) grow(l.positions);
     return R(std::move(model));
 }
+
+} // namespace
 
 } // namespace sr

@@ -191,6 +191,19 @@ TEST_CASE("fuzz: an array of glTF objects holding something else is refused nami
     CHECK(load(asset + R"("accessors":[],"materials":[{"doubleSided":true}],"extensionsUsed":["KHR_materials_unlit"]})").ok());
 }
 
+TEST_CASE("fuzz: a glTF property name with control characters in it is quoted on one line", "[resources][gltf][fuzz]") {
+    // The schema check names the property's path; a name holding a newline (JSON's "\n" escape)
+    // broke the one-line error.
+    const std::string json = "{\"asset\":{\"version\":\"2.0\"},\"bufferViews\":[{\"buffer\":0,\"byteLength\":4,"
+                             "\"ext\\nsions\":{\"x\\r\\t\\u0001\":{\"mode\":\"bad\"}}}]}";
+    const auto r = loadGltfFromMemory(reinterpret_cast<const unsigned char*>(json.data()), json.size(), "fuzz.gltf");
+    REQUIRE_FALSE(r.ok());
+    INFO(r.error());
+    CHECK(r.error().find('\n') == std::string::npos);
+    CHECK(r.error().find('\r') == std::string::npos);
+    CHECK(r.error() == "fuzz.gltf: bufferViews[0].ext\\nsions.x\\r\\t\\x01.mode: expected an unsigned integer (glTF 2.0 schema)");
+}
+
 TEST_CASE("fuzz: malformed material extensions and texture references load with their defaults, never a throw",
           "[resources][gltf][fuzz]") {
     const auto load = [](const std::string& json) {
