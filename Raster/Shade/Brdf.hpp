@@ -42,8 +42,9 @@ struct PbrFactors {
 };
 
 // The parts of the pbr model a material may add to appendix B's, one bit each: a draw evaluates
-// those its material has and no other (PbrProgram::lobes; the span kernels are instantiated for
-// every set, so a material without a part runs the code without it).
+// those its material has and no other (PbrProgram::lobes; in the span kernels a material with
+// none shades with the base program's code alone, and the lights' loop is instantiated for each
+// set of the bits it reads).
 enum PbrLobe : unsigned {
     kLobeDielectricSpecular = 1u, // KHR_materials_ior / _specular values (brdfCosineTerms' kSpecular)
     kLobeClearcoat = 2u,          // KHR_materials_clearcoat (BrdfTerms.inl's coatWeight)
