@@ -102,6 +102,29 @@ inline Vec3 brdfCosine(const PbrSurface& s, Vec3 n, Vec3 l, Vec3 v, float multiS
     return {out[0], out[1], out[2]};
 }
 
+// The sum over the lights that reach p and that the normal `facing` faces of f(l) x colour x
+// the light's factor (lightAt's, times the lit fraction visible(i, p, n, l)), per channel: the
+// loop pbrRadiance and coatRadiance share. f(l) returns the lobe's cosine-weighted value (Vec3).
+template <class Visibility, class Lobe>
+inline Vec3 sumOverLights(const Lighting& lighting, Vec3 facing, Vec3 n, Vec3 p, const Visibility& visible, const Lobe& f) {
+    Vec3 sum{0.0f, 0.0f, 0.0f};
+    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
+        const Light& light = lighting.lights[i];
+        Vec3 l;
+        float a = lightAt(light, p, l);
+        if (!(a > 0.0f) || !(dot(facing, l) > 0.0f)) continue;
+        if constexpr (!std::is_same_v<Visibility, AllVisible>) {
+            const float seen = visible(i, p, n, l);
+            if (seen < 1.0f) a = a * seen;
+        }
+        const Vec3 c = f(l);
+        sum.x += c.x * light.colour.r * a;
+        sum.y += c.y * light.colour.g * a;
+        sum.z += c.z * light.colour.b * a;
+    }
+    return sum;
+}
+
 // The radiance leaving world point p toward the eye (unit v) under every light of `lighting`
 // (KHR_lights_punctual units: a directional light's colour x intensity is lux, a point or spot
 // light's is candela, falling off as lightAt says), with no ambient term: the specification has
@@ -110,22 +133,7 @@ inline Vec3 brdfCosine(const PbrSurface& s, Vec3 n, Vec3 l, Vec3 v, float multiS
 template <class Visibility = AllVisible>
 inline Vec3 pbrRadiance(const Lighting& lighting, const PbrSurface& s, Vec3 n, Vec3 p, Vec3 v, float multiScatter = 0.0f,
                         const Visibility& visible = {}) {
-    Vec3 sum{0.0f, 0.0f, 0.0f};
-    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
-        const Light& light = lighting.lights[i];
-        Vec3 l;
-        float a = lightAt(light, p, l);
-        if (!(a > 0.0f) || !(dot(n, l) > 0.0f)) continue;
-        if constexpr (!std::is_same_v<Visibility, AllVisible>) {
-            const float seen = visible(i, p, n, l);
-            if (seen < 1.0f) a = a * seen;
-        }
-        const Vec3 f = brdfCosine(s, n, l, v, multiScatter);
-        sum.x += f.x * light.colour.r * a;
-        sum.y += f.y * light.colour.g * a;
-        sum.z += f.z * light.colour.b * a;
-    }
-    return sum;
+    return sumOverLights(lighting, n, n, p, visible, [&](Vec3 l) { return brdfCosine(s, n, l, v, multiScatter); });
 }
 
 // The clear coat's lobe under every light (KHR_materials_clearcoat; BrdfTerms.inl's
@@ -134,24 +142,12 @@ inline Vec3 pbrRadiance(const Lighting& lighting, const PbrSurface& s, Vec3 n, V
 template <class Visibility = AllVisible>
 inline Vec3 coatRadiance(const Lighting& lighting, Vec3 nc, float coatRoughness, Vec3 n, Vec3 p, Vec3 v,
                          const Visibility& visible = {}) {
-    Vec3 sum{0.0f, 0.0f, 0.0f};
-    for (std::size_t i = 0; i < lighting.lights.size(); ++i) {
-        const Light& light = lighting.lights[i];
-        Vec3 l;
-        float a = lightAt(light, p, l);
-        if (!(a > 0.0f) || !(dot(nc, l) > 0.0f)) continue;
-        if constexpr (!std::is_same_v<Visibility, AllVisible>) {
-            const float seen = visible(i, p, n, l);
-            if (seen < 1.0f) a = a * seen;
-        }
+    return sumOverLights(lighting, nc, n, p, visible, [&](Vec3 l) {
         const Vec3 h = normalize(l + v);
         const Vec3 nxh = cross(nc, h);
         const float f = coatCosineTerm(dot(nc, l), dot(nc, v), dot(nc, h), dot(nxh, nxh), coatRoughness);
-        sum.x += f * light.colour.r * a;
-        sum.y += f * light.colour.g * a;
-        sum.z += f * light.colour.b * a;
-    }
-    return sum;
+        return Vec3{f, f, f};
+    });
 }
 
 } // namespace sr

@@ -414,16 +414,25 @@ TEST_CASE("KHR_materials_clearcoat: the coat's lobe and weight against their clo
     CHECK(coatWeight(std::nanf(""), 0.5f) == 0.0f);
 }
 
+namespace {
+
+// A sky of radiance 1 in every direction: the white furnace.
+Sky uniformWhiteSky() {
+    Sky white;
+    white.kind = Sky::Kind::Gradient;
+    white.gradient.zenith = white.gradient.horizon = white.gradient.ground = Color{1.0f, 1.0f, 1.0f, 1.0f};
+    return white;
+}
+
+} // namespace
+
 TEST_CASE("KHR_materials_clearcoat in a white furnace: a coat never adds light; a smooth coat over a white metal returns the sky",
           "[render][brdf][pbr][clearcoat][furnace]") {
     // Under a uniform sky of radiance 1: (1 - w) x the base's sky light + w x the coat's, with
     // w = coatWeight. A white metal returns 1 (compensated); the coat's lobe returns its albedo
     // a + b, at most 1, so the coated surface returns 1 - w (1 - (a + b)) <= 1: equal to 1 within
     // 1% for a smooth coat, below it by w (1 - (a + b)) for a rough one.
-    Sky white;
-    white.kind = Sky::Kind::Gradient;
-    white.gradient.zenith = white.gradient.horizon = white.gradient.ground = Color{1.0f, 1.0f, 1.0f, 1.0f};
-    const ImageLight ibl(white);
+    const ImageLight ibl(uniformWhiteSky());
     PbrSurface metal;
     metal.baseColor = {1.0f, 1.0f, 1.0f};
     metal.metallic = 1.0f;
@@ -1055,10 +1064,7 @@ TEST_CASE("linear light resolves in linear light: SSAA and MSAA average decoded 
 
 TEST_CASE("image-based light: a uniform sky gives E = pi, unit prefiltered radiance, and no energy gained",
           "[render][ibl][pbr]") {
-    Sky white;
-    white.kind = Sky::Kind::Gradient;
-    white.gradient.zenith = white.gradient.horizon = white.gradient.ground = Color{1.0f, 1.0f, 1.0f, 1.0f};
-    const ImageLight ibl(white);
+    const ImageLight ibl(uniformWhiteSky());
     for (const Vec3& n : {Vec3{0, 1, 0}, Vec3{0, -1, 0}, normalize(Vec3{1, 2, 3}), Vec3{-1, 0, 0}}) {
         CHECK(ibl.diffuse(n).x == Approx(1.0f).margin(0.01)); // E / pi
         for (float r : {0.0f, 0.3f, 0.7f, 1.0f}) CHECK(ibl.specular(n, r).y == Approx(1.0f).margin(0.01));

@@ -596,11 +596,10 @@ TEST_CASE("the pbr and unlit kernels with vertex colours (COLOR_0) are bit-ident
     CHECK(totals.pixels > 10000 * long(ran));
 }
 
-TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map are bit-identical to the scalar program",
-          "[threads][simd][kernels][pbr][ibl]") {
-    std::mt19937 rng(41u);
-    const Mesh mesh = oneTriangle();
-    // A sky of random texels: every lookup of the levels reads something different.
+namespace {
+
+// A cube-map sky of random 8 x 8 faces: every lookup of the image light's levels reads something different.
+Sky randomCubeSky(std::mt19937& rng) {
     constexpr int kN = 8;
     std::vector<std::uint8_t> faces[kCubeFaces];
     for (auto& f : faces) {
@@ -611,7 +610,16 @@ TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map 
     sky.kind = Sky::Kind::Cube;
     sky.cube = std::make_shared<const CubeMap>(CubeMap::fromRgba8(
         kN, {faces[0].data(), faces[1].data(), faces[2].data(), faces[3].data(), faces[4].data(), faces[5].data()}));
-    const ImageLight ibl(sky);
+    return sky;
+}
+
+} // namespace
+
+TEST_CASE("the pbr kernels with light from the sky (--ibl) and an occlusion map are bit-identical to the scalar program",
+          "[threads][simd][kernels][pbr][ibl]") {
+    std::mt19937 rng(41u);
+    const Mesh mesh = oneTriangle();
+    const ImageLight ibl(randomCubeSky(rng));
     FrameView view;
     view.eye = {0.3f, 0.4f, 3.0f};
     view.lighting.physical = true;
@@ -745,17 +753,7 @@ TEST_CASE("the pbr kernels with a clear coat (KHR_materials_clearcoat) are bit-i
           "[threads][simd][kernels][pbr][clearcoat]") {
     std::mt19937 rng(43u);
     const Mesh mesh = oneTriangle();
-    constexpr int kN = 8;
-    std::vector<std::uint8_t> faces[kCubeFaces];
-    for (auto& f : faces) {
-        f.resize(std::size_t(kN) * kN * 4);
-        for (auto& b : f) b = std::uint8_t(rng() & 0xFFu);
-    }
-    Sky sky;
-    sky.kind = Sky::Kind::Cube;
-    sky.cube = std::make_shared<const CubeMap>(CubeMap::fromRgba8(
-        kN, {faces[0].data(), faces[1].data(), faces[2].data(), faces[3].data(), faces[4].data(), faces[5].data()}));
-    const ImageLight ibl(sky);
+    const ImageLight ibl(randomCubeSky(rng));
     FrameView lightsOnly;
     lightsOnly.eye = {0.3f, 0.4f, 3.0f};
     lightsOnly.lighting.physical = true;
