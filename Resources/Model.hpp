@@ -40,15 +40,20 @@ struct Material {
     // has alpha (Raster/Fill/Blend.hpp; `alpha` above is then the rule for an opaque texture).
     TexelAlpha texelAlpha;
     bool doubleSided = true; // glTF doubleSided (its default: false, back faces culled whatever --cull says); OBJ: true
-    // glTF: the base colour texture's sampler, where it says (the draw's wrap and filter unless
-    // --wrap / --filter chose them: RenderSettings::wrapFromFile, filterFromFile). OBJ: unset.
-    std::optional<WrapMode> wrap;
+    // glTF: the sampler of its maps (its first map's, the base colour texture first), where it
+    // says (the draw's wrap and filter unless --wrap / --filter chose them:
+    // RenderSettings::wrapFromFile, filterFromFile). OBJ: unset.
+    std::optional<WrapModes> wrap;
     std::optional<TextureFilter> filter;
     // glTF: the metallic-roughness material as the specification defines it (the pbr shading
     // model's input; kd, ks and shininess above are its Blinn-Phong mapping), and its other maps
     // (indices into Model::textures, -1 = none; sampled with the base colour texture's sampler).
     std::optional<PbrFactors> pbr;
     MaterialMaps<int> maps;
+    // glTF: each map's own uv set, transform and sampler, for a material whose maps do not share
+    // them (Mesh::uvSets then holds the raw sets); unset where they do (the maps read Mesh::uvs
+    // with `wrap` and `filter`).
+    std::optional<MapAddressing> addressing;
 };
 
 // The triangles of one material: one draw call. One range per material (faces without one form

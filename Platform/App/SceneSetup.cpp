@@ -103,6 +103,7 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
             d.alpha = m->alpha;
             d.texelAlpha = m->texelAlpha;
             d.pbr = m->pbr;
+            d.addressing = m->addressing;
             if (model.hasUvs) {
                 for (const MapSlot s : kAllMapSlots) d.maps[s] = readsAlpha(s) ? alphaTexture(m->maps[s]) : m->maps[s];
             }
@@ -157,6 +158,8 @@ std::uint32_t appendRange(Mesh& part, const Mesh& src, std::uint32_t firstIndex,
             if (src.hasUvs()) part.uvs.push_back(src.uvs[v]);
             if (src.hasTangents()) part.tangents.push_back(src.tangents[v]);
             if (src.hasColours()) part.colours.push_back(src.colours[v]);
+            if (src.hasUvSets())
+                for (int s = 0; s < 2; ++s) part.uvSets[s].push_back(src.uvSets[s][v]);
             if (origins) origins->push_back(v);
         }
         part.indices.push_back(remap[v]);

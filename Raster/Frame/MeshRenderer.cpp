@@ -54,13 +54,23 @@ bool kernelsCoverSpecular(const Specular& s) {
     return !s.on() || (s.shininess <= 1024.0f && s.shininess == float(int(s.shininess)));
 }
 
+// Whether a program reads each map at its own address (PbrProgram's kAddressed): no span kernel
+// has it, and its uvs are not rebased (a shift by whole periods of the raw set is not one of the
+// transformed uvs).
+template <class Program, class = void>
+struct AddressedMaps : std::false_type {};
+template <class Program>
+struct AddressedMaps<Program, std::void_t<decltype(Program::kAddressedMaps)>> : std::bool_constant<Program::kAddressedMaps> {};
+
 template <class Program>
 void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, Program program) {
-    const DrawState state = programs::drawStateFor(d);
+    DrawState state = programs::drawStateFor(d);
+    if constexpr (AddressedMaps<Program>::value) state.rebase = {};
     KernelProgram<Program> withKernel{program};
     // Phong kernels test the shadow maps per pixel as the scalar program does (Kernels.inl's
     // shadowVisibility); flat and Gouraud light per triangle / vertex, unshadowed (Shadow.hpp).
-    if (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular)) {
+    if constexpr (AddressedMaps<Program>::value) {
+    } else if (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular)) {
         const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
         withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
@@ -105,10 +115,33 @@ struct DrawInputs final : RenderContext::Kept {
 };
 
 // The pbr program for the draw's maps, with or without the mesh's vertex colours.
-template <bool kMaps, bool kTangents>
+template <bool kMaps, bool kTangents, bool kAddressed = false>
 void drawPbrWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount) {
-    if (d.mesh.hasColours()) drawWith(ctx, d, indexCount, PbrProgram<kMaps, kTangents, true>(&d));
-    else drawWith(ctx, d, indexCount, PbrProgram<kMaps, kTangents>(&d));
+    if (d.mesh.hasColours()) drawWith(ctx, d, indexCount, PbrProgram<kMaps, kTangents, true, kAddressed>(&d));
+    else drawWith(ctx, d, indexCount, PbrProgram<kMaps, kTangents, false, kAddressed>(&d));
+}
+
+bool sameAddress(const MapAddress& a, const MapAddress& b) {
+    for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 3; ++c)
+            if (a.m[r][c] != b.m[r][c]) return false;
+    return a.uvSet == b.uvSet && a.wrap == b.wrap && a.filter == b.filter;
+}
+
+// Whether the maps a draw reads (`read`) have addresses of their own: not all the address of the
+// material's first map (the base colour texture, else its first slot), whose uvs and sampler
+// the draw has (Mesh::uvs, SurfaceMaterial::wrap / filter).
+template <class Read>
+bool ownAddresses(const SurfaceMaterial& material, const Read& read) {
+    const MapAddressing& a = *material.addressing;
+    const MapAddress* first = material.texture ? &a.base : nullptr;
+    for (const MapSlot s : kAllMapSlots)
+        if (!first && material.maps.has(s)) first = &a[s];
+    if (!first) return false;
+    if (material.texture && !sameAddress(a.base, *first)) return true;
+    for (const MapSlot s : kAllMapSlots)
+        if (read(s) && !sameAddress(a[s], *first)) return true;
+    return false;
 }
 
 // A glTF material under ShadingMode::Pbr: the maps it has (with uvs), the tangents its normal
@@ -129,8 +162,14 @@ void drawPbr(RenderContext& ctx, DrawInputs& in, std::size_t indexCount) {
     const bool maps = anyMap != nullptr && mesh.hasUvs();
     DrawContext& d = in.pbrDraw.emplace(base);
     d.texture = maps ? anyMap : nullptr; // the uv varyings' rebase (drawStateFor)
+    const bool tangents = (read(MapSlot::Normal) || read(MapSlot::ClearcoatNormal)) && mesh.hasTangents();
     if (!maps) drawPbrWith<false, false>(ctx, d, indexCount);
-    else if ((read(MapSlot::Normal) || read(MapSlot::ClearcoatNormal)) && mesh.hasTangents()) drawPbrWith<true, true>(ctx, d, indexCount);
+    else if (material.addressing && mesh.hasUvSets() && ownAddresses(material, read)) {
+        // Each map at its own address. With a normal map the vertex colours would make 17
+        // varyings, one more than a draw interpolates: they are left out (the loader says so).
+        if (tangents) drawWith(ctx, d, indexCount, PbrProgram<true, true, false, true>(&d));
+        else drawPbrWith<true, false, true>(ctx, d, indexCount);
+    } else if (tangents) drawPbrWith<true, true>(ctx, d, indexCount);
     else drawPbrWith<true, false>(ctx, d, indexCount);
 }
 
@@ -146,8 +185,12 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& f
     // The texture's own sampler where the settings let the file choose (glTF).
     RenderSettings& settings = in.settings;
     settings = frameSettings;
-    if (textured && material.wrap && settings.wrapFromFile) settings.wrap = *material.wrap;
-    if (textured && material.filter && settings.filterFromFile) settings.filter = *material.filter;
+    const bool mapped = mesh.hasUvs() && (material.texture != nullptr || material.maps.any());
+    if (mapped && material.wrap && settings.wrapFromFile) {
+        settings.wrap = material.wrap->u;
+        if (material.wrap->v != material.wrap->u) settings.wrapV = material.wrap->v;
+    }
+    if (mapped && material.filter && settings.filterFromFile) settings.filter = *material.filter;
     ShadingMode mode = settings.shading;
     if (!mesh.hasNormals() && (mode == ShadingMode::Gouraud || mode == ShadingMode::Phong || mode == ShadingMode::Pbr))
         mode = ShadingMode::Flat;

@@ -44,6 +44,9 @@ struct RenderSettings {
     CullMode cull = CullMode::None;
     TextureFilter filter = TextureFilter::Bilinear;
     WrapMode wrap = WrapMode::Repeat;
+    // A draw's wrap along v where it differs from `wrap` (a glTF sampler's wrapT apart from its
+    // wrapS, set by drawMesh); unset: `wrap` on both axes (wrapModesOf).
+    std::optional<WrapMode> wrapV;
     PerspectiveMode perspective = PerspectiveMode::Exact;
     // Anisotropic filtering: at most this many trilinear taps along a pixel's footprint
     // (1, 2, 4, 8 or 16; TextureLod.hpp's sampleAnisotropic). Only with the trilinear filter and
@@ -73,6 +76,9 @@ struct RenderSettings {
     ToneMap toneMap = ToneMap::None;
     float exposure = 0.0f; // EV: the linear colour is scaled by 2^exposure before tone mapping
 };
+
+// The draw's wrap along u and v.
+inline WrapModes wrapModesOf(const RenderSettings& s) { return {s.wrap, s.wrapV.value_or(s.wrap)}; }
 
 // What every draw of one frame shares.
 struct FrameView {
@@ -106,13 +112,16 @@ struct SurfaceMaterial {
     bool doubleSided = true; // false: back faces (clockwise on screen) are culled whatever RenderSettings::cull says
     // The texture's own sampler (glTF), where it says: the draw's wrap and filter when the
     // settings let the file choose (RenderSettings::wrapFromFile / filterFromFile).
-    std::optional<WrapMode> wrap;
+    std::optional<WrapModes> wrap;
     std::optional<TextureFilter> filter;
     // A glTF material's metallic-roughness input (the pbr shading model's; null for OBJ/MTL and
     // the built-in scene) and its other maps (null: none; used when the mesh has uvs).
     const PbrFactors* pbr = nullptr;
     MaterialMaps<const Texture*> maps;
     const Texture* map(MapSlot slot) const { return maps[slot]; }
+    // Each map's uv set, transform and sampler, where they are not one for all (the pbr program
+    // then reads Mesh::uvSets); null: every map reads the draw's uvs under its wrap and filter.
+    const MapAddressing* addressing = nullptr;
 };
 
 } // namespace sr

@@ -27,6 +27,7 @@ SurfaceMaterial materialOf(const Scene& scene, const SceneDraw& d, const Texture
     else if (d.texture >= 0) material.texture = &scene.textures[std::size_t(d.texture)];
     if (d.pbr) {
         material.pbr = &*d.pbr;
+        if (d.addressing) material.addressing = &*d.addressing;
         for (const MapSlot slot : kAllMapSlots)
             if (d.maps.has(slot)) material.maps[slot] = &scene.textures[std::size_t(d.maps[slot])];
     }

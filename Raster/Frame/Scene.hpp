@@ -25,12 +25,13 @@ struct SceneDraw {
     float alpha = 1.0f;                  // opacity (MTL d, glTF BLEND); below 1: drawn after the opaque draws
     TexelAlpha texelAlpha;               // glTF MASK / BLEND with the texture's alpha (SurfaceMaterial)
     bool doubleSided = true;             // false (a glTF single-sided material): back faces culled whatever the cull mode
-    std::optional<WrapMode> wrap;        // the texture's sampler (glTF), where it says (SurfaceMaterial)
+    std::optional<WrapModes> wrap;       // the maps' sampler (glTF), where it says (SurfaceMaterial)
     std::optional<TextureFilter> filter;
     // A glTF material's metallic-roughness input and maps (indices into Scene::textures, -1 =
     // none): what the pbr shading model reads (SurfaceMaterial::pbr).
     std::optional<PbrFactors> pbr;
     MaterialMaps<int> maps; // (a slot that readsAlpha: the alpha copy)
+    std::optional<MapAddressing> addressing; // each map's own uv set, transform and sampler (SurfaceMaterial)
 };
 
 // World-space line segments (index pairs) or points, in one flat colour (lines are unlit).

@@ -22,6 +22,10 @@ struct Mesh {
     // Vertex colours in linear light (glTF COLOR_0, RGBA; alpha 1 where the file gives RGB): a
     // factor of the base colour. Empty, or one per position.
     std::vector<Color> colours;
+    // The file's TEXCOORD_0 and TEXCOORD_1 as stored (u, 1 - v), without any texture transform:
+    // for the draws of a material whose maps have addresses of their own (MapAddressing). Both
+    // empty, or both one per position.
+    std::vector<Vec2> uvSets[2];
     std::vector<std::uint32_t> indices; // 3 per triangle
 
     std::size_t vertexCount() const { return positions.size(); }
@@ -30,6 +34,9 @@ struct Mesh {
     bool hasUvs() const { return !uvs.empty() && uvs.size() == positions.size(); }
     bool hasTangents() const { return !tangents.empty() && tangents.size() == positions.size(); }
     bool hasColours() const { return !colours.empty() && colours.size() == positions.size(); }
+    bool hasUvSets() const {
+        return !uvSets[0].empty() && uvSets[0].size() == positions.size() && uvSets[1].size() == positions.size();
+    }
 };
 
 // Every index refers to an existing vertex and the index count is a multiple of 3. Loaders

@@ -4,6 +4,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+
+#include "Math/Vec.hpp"
+#include "Raster/Texture/Texture.hpp" // TextureFilter, WrapModes
 
 namespace sr {
 
@@ -64,5 +68,28 @@ struct MaterialMaps {
 inline constexpr std::array<MapSlot, kMapSlots> kAllMapSlots = {
     MapSlot::MetallicRoughness, MapSlot::Emissive,  MapSlot::Normal,             MapSlot::Specular,        MapSlot::SpecularColour,
     MapSlot::Glossiness,        MapSlot::Clearcoat, MapSlot::ClearcoatRoughness, MapSlot::ClearcoatNormal, MapSlot::Occlusion};
+
+// Where a material reads one map (a glTF texture reference with its sampler and
+// KHR_texture_transform): its uv set (TEXCOORD_<uvSet>, Mesh::uvSets), the affine map m from
+// that set's stored uvs (u, 1 - v) to the texture's (the transform, restated on stored uvs), the
+// wrap along u and v, and the filter (unset: the draw's).
+struct MapAddress {
+    int uvSet = 0;
+    float m[2][3] = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+    WrapModes wrap;
+    std::optional<TextureFilter> filter;
+    Vec2 apply(Vec2 uv) const { return {m[0][0] * uv.x + m[0][1] * uv.y + m[0][2], m[1][0] * uv.x + m[1][1] * uv.y + m[1][2]}; }
+};
+
+// Every map's address, the base colour texture's included, for a material whose maps do not all
+// read one uv set through one transform with one sampler; a material whose maps do has none, and
+// its draws read the uvs baked with that transform (Mesh::uvs) under the draw's wrap and filter.
+struct MapAddressing {
+    static constexpr int kUvSets = 2; // TEXCOORD_0 and TEXCOORD_1
+    MapAddress base;                  // the base colour texture's
+    std::array<MapAddress, kMapSlots> maps;
+    const MapAddress& operator[](MapSlot s) const { return maps[std::size_t(s)]; }
+    MapAddress& operator[](MapSlot s) { return maps[std::size_t(s)]; }
+};
 
 } // namespace sr

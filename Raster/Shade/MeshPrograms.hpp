@@ -85,11 +85,39 @@ inline Color sampleTextureAt(const DrawContext& d, const TriangleSetup* setup, c
         const UvDerivatives g = affine ? UvDerivatives{float(setup->ddx[kU]), float(setup->ddx[kV]), float(setup->ddy[kU]),
                                                        float(setup->ddy[kV])}
                                        : uvDerivatives(*setup, kU, kV, f.invW, uv.x, uv.y);
-        if (d.settings.aniso > 1 && !affine) return sampleAnisotropic(texture, uv, g, d.settings.aniso, d.settings.wrap, decode);
+        if (d.settings.aniso > 1 && !affine) return sampleAnisotropic(texture, uv, g, d.settings.aniso, wrapModesOf(d.settings), decode);
         lod = mipLevel(g.dudx, g.dvdx, g.dudy, g.dvdy, texture.width(), texture.height());
     }
-    return decode ? texture.sampleSrgb(uv, lod, d.settings.filter, d.settings.wrap)
-                  : texture.sample(uv, lod, d.settings.filter, d.settings.wrap);
+    return decode ? texture.sampleSrgb(uv, lod, d.settings.filter, wrapModesOf(d.settings))
+                  : texture.sample(uv, lod, d.settings.filter, wrapModesOf(d.settings));
+}
+
+// sampleTextureAt for a map with its own address (MapAddress): its uv set in varyings 2 s and
+// 2 s + 1 through its transform, its sampler's wrap on each axis and its filter (the draw's
+// where the settings do not let the file choose, or the sampler names none), its level of detail
+// from that set's derivatives through the transform's linear part (the chain rule: the transform
+// is affine, so the transformed uv interpolates as the raw one does).
+template <int kVaryings>
+inline Color sampleAddressedAt(const DrawContext& d, const TriangleSetup* setup, const Fragment<kVaryings>& f, const Texture& texture,
+                               bool decode, const MapAddress& a) {
+    const int s = a.uvSet;
+    const Vec2 raw{f.varyings[2 * s], f.varyings[2 * s + 1]};
+    const Vec2 uv = a.apply(raw);
+    const WrapModes wrap = d.settings.wrapFromFile ? a.wrap : wrapModesOf(d.settings);
+    const TextureFilter filter = d.settings.filterFromFile && a.filter ? *a.filter : d.settings.filter;
+    float lod = 0.0f;
+    if (filter == TextureFilter::Trilinear) {
+        const int kU = kPlaneVarying0 + 2 * s, kV = kU + 1;
+        const bool affine = d.settings.perspective == PerspectiveMode::Affine;
+        const UvDerivatives g = affine ? UvDerivatives{float(setup->ddx[kU]), float(setup->ddx[kV]), float(setup->ddy[kU]),
+                                                       float(setup->ddy[kV])}
+                                       : uvDerivatives(*setup, kU, kV, f.invW, raw.x, raw.y);
+        const UvDerivatives t{a.m[0][0] * g.dudx + a.m[0][1] * g.dvdx, a.m[1][0] * g.dudx + a.m[1][1] * g.dvdx,
+                              a.m[0][0] * g.dudy + a.m[0][1] * g.dvdy, a.m[1][0] * g.dudy + a.m[1][1] * g.dvdy};
+        if (d.settings.aniso > 1 && !affine) return sampleAnisotropic(texture, uv, t, d.settings.aniso, wrap, decode);
+        lod = mipLevel(t.dudx, t.dvdx, t.dudy, t.dvdy, texture.width(), texture.height());
+    }
+    return decode ? texture.sampleSrgb(uv, lod, filter, wrap) : texture.sample(uv, lod, filter, wrap);
 }
 
 // The draw's texture (a colour map: decoded in linear light).
@@ -115,7 +143,11 @@ inline DrawState drawStateFor(const DrawContext& d) {
     s.stopAfter = d.settings.stopAfter;
     s.perspective = d.settings.perspective;
     s.isa = d.settings.isa;
-    if (d.texture != nullptr) s.rebase = {2, wrapPeriod(d.settings.wrap)}; // varyings 0-1 are the uv
+    if (d.texture != nullptr) { // varyings 0-1 are the uv: a shift by a period of both axes' modes (none if one clamps)
+        const WrapModes w = wrapModesOf(d.settings);
+        const double pu = wrapPeriod(w.u), pv = wrapPeriod(w.v);
+        s.rebase = {2, pu > 0.0 && pv > 0.0 ? std::max(pu, pv) : 0.0};
+    }
     if (d.texelAlpha.on()) {
         // Per-fragment alpha (Pipeline.hpp: the fill tests depth, the fragment decides): Blend
         // never writes depth, Mask writes it for the fragments it keeps.

@@ -67,15 +67,20 @@ inline Vec3 coatImageLight(const ImageLight& light, float coatRoughness, Vec3 nc
 // A material with a clear coat (KHR_materials_clearcoat, clearcoat > 0) layers it over all of
 // that as BrdfTerms.inl's coatWeight says: its lobe on the interpolated normal, or on its own
 // normal map (kTangents; the base's normal map does not bend it), in direct and sky light.
-// The span kernels (Raster/Fill/Kernels/Kernels*Pbr.cpp, Kernels*PbrColours.cpp) cover all six variants.
-template <bool kMaps, bool kTangents = false, bool kColours = false>
+// With kAddressed (a material with a MapAddressing) each map reads its own uv set, transform and
+// sampler: the raw sets TEXCOORD_0 and _1 (Mesh::uvSets) in varyings 0-3, sampleAddressedAt.
+// The span kernels (Raster/Fill/Kernels/Kernels*Pbr.cpp, Kernels*PbrColours.cpp) cover the six
+// variants without kAddressed; the addressed ones are filled by this program alone.
+template <bool kMaps, bool kTangents = false, bool kColours = false, bool kAddressed = false>
 struct PbrProgram {
     static_assert(kMaps || !kTangents, "a normal map needs uvs");
+    static_assert(kMaps || !kAddressed, "addressed maps need uvs");
     static constexpr ShadingMode kMode = ShadingMode::Pbr;
     static constexpr bool kIsTextured = kMaps;
     static constexpr bool kNormalMap = kTangents;
     static constexpr bool kVertexColours = kColours;
-    static constexpr int kP = kMaps ? 2 : 0; // position kP..kP+2, normal kP+3..kP+5
+    static constexpr bool kAddressedMaps = kAddressed;
+    static constexpr int kP = kMaps ? (kAddressed ? 4 : 2) : 0; // position kP..kP+2, normal kP+3..kP+5
     static constexpr int kT = kP + 6;        // tangent kT..kT+3 (kTangents)
     static constexpr int kC = kT + (kTangents ? 4 : 0); // vertex colour kC..kC+2 (kColours)
     static constexpr int kVaryings = kC + (kColours ? 3 : 0);
@@ -89,6 +94,12 @@ struct PbrProgram {
 
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kMaps>(*d, i, out);
+        if constexpr (kAddressed) {
+            for (int set = 0; set < 2; ++set) {
+                out.varyings[2 * set] = d->mesh.uvSets[set][i].x;
+                out.varyings[2 * set + 1] = d->mesh.uvSets[set][i].y;
+            }
+        }
         const Vec3 p = d->mesh.positions[i], n = d->mesh.normals[i];
         const float values[6] = {p.x, p.y, p.z, n.x, n.y, n.z};
         for (int k = 0; k < 6; ++k) out.varyings[kP + k] = values[k];
@@ -108,10 +119,17 @@ struct PbrProgram {
     }
     void triangle(std::size_t, const TriangleSetup& s) { setup = &s; }
 
-    // One map at this fragment (its own level of detail); colour maps decoded in linear light.
+    // One map at this fragment (its own level of detail; its own address with kAddressed);
+    // colour maps decoded in linear light. The base colour texture: sampleBase.
     template <int kV>
-    Color sampleMap(const Texture& map, bool colour, const Fragment<kV>& f) const {
-        return sampleTextureAt(*d, setup, f, map, colour && d->linear);
+    Color sampleMap(MapSlot slot, const Texture& map, bool colour, const Fragment<kV>& f) const {
+        if constexpr (kAddressed) return sampleAddressedAt(*d, setup, f, map, colour && d->linear, (*d->material->addressing)[slot]);
+        else return sampleTextureAt(*d, setup, f, map, colour && d->linear);
+    }
+    template <int kV>
+    Color sampleBase(const Texture& map, bool colour, const Fragment<kV>& f) const {
+        if constexpr (kAddressed) return sampleAddressedAt(*d, setup, f, map, colour && d->linear, d->material->addressing->base);
+        else return sampleTextureAt(*d, setup, f, map, colour && d->linear);
     }
 
     Pixel fragment(const Fragment<kVaryings>& f) const {
@@ -131,7 +149,7 @@ struct PbrProgram {
         Vec3 emissive = k.emissive;
         if constexpr (kMaps) {
             if (m.texture) {
-                const Color c = sampleMap(*m.texture, true, f);
+                const Color c = sampleBase(*m.texture, true, f);
                 s.baseColor = {s.baseColor.x * c.r, s.baseColor.y * c.g, s.baseColor.z * c.b};
             }
         }
@@ -139,27 +157,28 @@ struct PbrProgram {
             s.baseColor = {s.baseColor.x * f.varyings[kC], s.baseColor.y * f.varyings[kC + 1], s.baseColor.z * f.varyings[kC + 2]};
         if constexpr (kMaps) {
             if (const Texture* map = m.map(MapSlot::MetallicRoughness)) {
-                const Color c = sampleMap(*map, false, f);
+                const Color c = sampleMap(MapSlot::MetallicRoughness, *map, false, f);
                 s.roughness *= c.g;
                 s.metallic *= c.b;
             }
             if (const Texture* map = m.map(MapSlot::Emissive); map && (emissive.x > 0.0f || emissive.y > 0.0f || emissive.z > 0.0f)) {
-                const Color c = sampleMap(*map, true, f);
+                const Color c = sampleMap(MapSlot::Emissive, *map, true, f);
                 emissive = {emissive.x * c.r, emissive.y * c.g, emissive.z * c.b};
             }
             // KHR_materials_specular's maps: F0 = min(specularColorF0 x texel, 1), the weight x its alpha.
             if (const Texture* map = m.map(MapSlot::SpecularColour)) {
-                const Color c = sampleMap(*map, true, f);
+                const Color c = sampleMap(MapSlot::SpecularColour, *map, true, f);
                 s.dielectricF0 = {std::min(k.specularColorF0.x * c.r, 1.0f), std::min(k.specularColorF0.y * c.g, 1.0f),
                                   std::min(k.specularColorF0.z * c.b, 1.0f)};
             }
             if (const Texture* map = m.map(MapSlot::Specular)) // (its alpha, in red)
-                s.specularWeight = k.specularWeight * sampleMap(*map, false, f).r;
+                s.specularWeight = k.specularWeight * sampleMap(MapSlot::Specular, *map, false, f).r;
         }
         if (has(kLobeSpecularGlossiness)) { // roughness 1 - glossiness, c_diff = diffuse x (1 - max(F0))
             float glossiness = k.glossiness;
             if constexpr (kMaps) {
-                if (const Texture* map = m.map(MapSlot::Glossiness)) glossiness *= sampleMap(*map, false, f).r; // (its alpha, in red)
+                if (const Texture* map = m.map(MapSlot::Glossiness)) // (its alpha, in red)
+                    glossiness *= sampleMap(MapSlot::Glossiness, *map, false, f).r;
             }
             s.roughness = 1.0f - glossiness;
             const float keep = 1.0f - std::max(std::max(s.dielectricF0.x, s.dielectricF0.y), s.dielectricF0.z);
@@ -168,7 +187,8 @@ struct PbrProgram {
         if constexpr (kMaps) {
             if constexpr (kTangents) {
                 const Vec4 t{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], f.varyings[kT + 3]};
-                if (const Texture* map = m.map(MapSlot::Normal)) n = perturbNormal(n, t, sampleMap(*map, false, f), k.normalScale);
+                if (const Texture* map = m.map(MapSlot::Normal))
+                    n = perturbNormal(n, t, sampleMap(MapSlot::Normal, *map, false, f), k.normalScale);
             }
         }
         // The clear coat's weight, roughness and normal, each x its map.
@@ -176,12 +196,13 @@ struct PbrProgram {
         Vec3 nc = geometric;
         if constexpr (kMaps) {
             if (has(kLobeClearcoat)) {
-                if (const Texture* map = m.map(MapSlot::Clearcoat)) clearcoat *= sampleMap(*map, false, f).r;
-                if (const Texture* map = m.map(MapSlot::ClearcoatRoughness)) coatRoughness *= sampleMap(*map, false, f).g;
+                if (const Texture* map = m.map(MapSlot::Clearcoat)) clearcoat *= sampleMap(MapSlot::Clearcoat, *map, false, f).r;
+                if (const Texture* map = m.map(MapSlot::ClearcoatRoughness))
+                    coatRoughness *= sampleMap(MapSlot::ClearcoatRoughness, *map, false, f).g;
                 if constexpr (kTangents) {
                     const Vec4 t{f.varyings[kT], f.varyings[kT + 1], f.varyings[kT + 2], f.varyings[kT + 3]};
                     if (const Texture* map = m.map(MapSlot::ClearcoatNormal))
-                        nc = perturbNormal(geometric, t, sampleMap(*map, false, f), k.clearcoatNormalScale);
+                        nc = perturbNormal(geometric, t, sampleMap(MapSlot::ClearcoatNormal, *map, false, f), k.clearcoatNormalScale);
                 }
             }
         }
@@ -196,7 +217,7 @@ struct PbrProgram {
         if (d->view.ibl) {
             if constexpr (kMaps) {
                 if (const Texture* map = m.map(MapSlot::Occlusion))
-                    occlusion = 1.0f + k.occlusionStrength * (sampleMap(*map, false, f).r - 1.0f);
+                    occlusion = 1.0f + k.occlusionStrength * (sampleMap(MapSlot::Occlusion, *map, false, f).r - 1.0f);
             }
             const Vec3 sky = imageLight(*d->view.ibl, s, n, v) * occlusion;
             r = r + sky;
@@ -216,7 +237,7 @@ struct PbrProgram {
     }
     template <bool kM = kMaps, std::enable_if_t<kM, int> = 0> // textured programs only (HasFragmentAlpha)
     float fragmentAlpha(const Fragment<kVaryings>& f) const {
-        return d->material->texture ? sampleMap(*d->material->texture, false, f).a : 1.0f;
+        return d->material->texture ? sampleBase(*d->material->texture, false, f).a : 1.0f;
     }
 };
 

@@ -22,6 +22,12 @@ enum class TextureFilter { Nearest, Bilinear, Trilinear };
 // Wrap modes (OpenGL 4.5 core section 8.14.2, coordinate wrapping and texel selection):
 //  Repeat = GL_REPEAT, Clamp = GL_CLAMP_TO_EDGE, Mirror = GL_MIRRORED_REPEAT.
 enum class WrapMode { Repeat, Clamp, Mirror };
+// A wrap mode per axis: u (a glTF sampler's wrapS) and v (its wrapT).
+struct WrapModes {
+    WrapMode u = WrapMode::Repeat, v = WrapMode::Repeat;
+    bool operator==(const WrapModes& o) const { return u == o.u && v == o.v; }
+    bool operator!=(const WrapModes& o) const { return !(*this == o); }
+};
 
 // The uv period of a wrap mode: 1 for Repeat, 2 for Mirror, 0 for Clamp (not periodic).
 constexpr double wrapPeriod(WrapMode wrap) {
@@ -124,6 +130,9 @@ public:
     // General entry: Nearest and Bilinear read the base level and ignore lod; Trilinear uses lod
     // (see mipLevel() in TextureLod.hpp). Dispatches to the specialised paths below.
     Color sample(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const;
+    // The same with its own wrap mode on each axis: each axis's taps wrapped by its mode (the
+    // same operations: {w, w} returns exactly sample(..., w)).
+    Color sample(Vec2 uv, float lod, TextureFilter filter, WrapModes wrap) const;
 
     // Specialised paths (one loop per wrap mode, power-of-two masks, a byte -> float table).
     // GL_NEAREST on the base level: texel floor(u * W), floor(v * H), wrapped.
@@ -152,6 +161,7 @@ public:
     // Trilinear: the two levels' results mixed in float, c0 + (c1 - c0) wl / 256. The mip levels
     // are those of the stored bytes, decoded.
     Color sampleSrgb(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const;
+    Color sampleSrgb(Vec2 uv, float lod, TextureFilter filter, WrapModes wrap) const;
 
     // The fast paths above are tested bit-identical to a straightforward reference of sample()
     // (generic per-texel wrap and fetch through this public API, no specialisation): the test-only

@@ -49,6 +49,10 @@ AnisoFootprint anisoFootprint(const UvDerivatives& d, int width, int height, int
 }
 
 Color sampleAnisotropic(const Texture& texture, Vec2 uv, const UvDerivatives& d, int maxAniso, WrapMode wrap, bool decode) {
+    return sampleAnisotropic(texture, uv, d, maxAniso, WrapModes{wrap, wrap}, decode);
+}
+
+Color sampleAnisotropic(const Texture& texture, Vec2 uv, const UvDerivatives& d, int maxAniso, WrapModes wrap, bool decode) {
     const AnisoFootprint f = anisoFootprint(d, texture.width(), texture.height(), maxAniso);
     auto tap = [&](Vec2 at) {
         return decode ? texture.sampleSrgb(at, f.lod, TextureFilter::Trilinear, wrap)

@@ -104,5 +104,7 @@ struct AnisoFootprint {
 AnisoFootprint anisoFootprint(const UvDerivatives& d, int width, int height, int maxAniso);
 // The filtered colour (all four channels averaged); `decode`: sRGB-decoded texels (sampleSrgb).
 Color sampleAnisotropic(const Texture& texture, Vec2 uv, const UvDerivatives& d, int maxAniso, WrapMode wrap, bool decode);
+// The same with a wrap mode per axis (Texture::sample's WrapModes).
+Color sampleAnisotropic(const Texture& texture, Vec2 uv, const UvDerivatives& d, int maxAniso, WrapModes wrap, bool decode);
 
 } // namespace sr

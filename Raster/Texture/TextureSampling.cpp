@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <type_traits>
 
 namespace sr {
 
@@ -180,47 +181,57 @@ inline int lodWeight(float frac) { return int(frac * 256.0f); }
 // The specialised GL_LINEAR / GL_NEAREST loops live in a struct with access to Level.
 struct TextureSampling {
     // GL_LINEAR's 2x2 texels of a level (wrapped columns x0, x1 and rows y0, y1) and the 8-bit
-    // weights of x1 and y1.
+    // weights of x1 and y1; columns wrapped by kU, rows by kV.
     struct Taps {
         int x0, x1, y0, y1, wx, wy;
     };
-    template <WrapMode kWrap, class Level>
+    template <WrapMode kU, WrapMode kV, class Level>
     static Taps bilinearTaps(const Level& l, Vec2 uv) {
-        const LinearTaps tx = linearTaps(uv.x, l.width, kWrap);
-        const LinearTaps ty = linearTaps(uv.y, l.height, kWrap);
+        const LinearTaps tx = linearTaps(uv.x, l.width, kU);
+        const LinearTaps ty = linearTaps(uv.y, l.height, kV);
         Taps t;
-        Wrap<kWrap>::pair(tx.i0, l.width, l.maskX, t.x0, t.x1);
-        Wrap<kWrap>::pair(ty.i0, l.height, l.maskY, t.y0, t.y1);
+        Wrap<kU>::pair(tx.i0, l.width, l.maskX, t.x0, t.x1);
+        Wrap<kV>::pair(ty.i0, l.height, l.maskY, t.y0, t.y1);
         t.wx = tx.w;
         t.wy = ty.w;
         return t;
     }
 
-    template <WrapMode kWrap, class Level>
+    template <WrapMode kU, WrapMode kV, class Level>
     static Raw bilinear(const Level& l, Vec2 uv) {
-        const Taps t = bilinearTaps<kWrap>(l, uv);
+        const Taps t = bilinearTaps<kU, kV>(l, uv);
         const std::uint32_t* row0 = l.row(t.y0);
         const std::uint32_t* row1 = l.row(t.y1);
         return blend2x2(row0[t.x0], row0[t.x1], row1[t.x0], row1[t.x1], t.wx, t.wy);
     }
 
-    template <WrapMode kWrap, class Level>
+    template <WrapMode kU, WrapMode kV, class Level>
     static Color nearest(const Level& l, Vec2 uv) {
-        const int x = Wrap<kWrap>::one(nearestTap(uv.x, l.width, kWrap), l.width, l.maskX);
-        const int y = Wrap<kWrap>::one(nearestTap(uv.y, l.height, kWrap), l.height, l.maskY);
+        const int x = Wrap<kU>::one(nearestTap(uv.x, l.width, kU), l.width, l.maskX);
+        const int y = Wrap<kV>::one(nearestTap(uv.y, l.height, kV), l.height, l.maskY);
         return unpackColor(l.row(y)[x]);
     }
 
-    template <WrapMode kWrap, class Levels>
+    template <WrapMode kU, WrapMode kV, class Levels>
     static Raw trilinear(const Levels& levels, Vec2 uv, float lod) {
         const int last = int(levels.size()) - 1;
         if (!(lod > 0.0f)) lod = 0.0f; // NaN and magnification -> base level
-        if (lod >= float(last)) return bilinear<kWrap>(levels[std::size_t(last)], uv);
+        if (lod >= float(last)) return bilinear<kU, kV>(levels[std::size_t(last)], uv);
         const int level = int(lod); // floor: 0 <= lod < last
         const int wl = lodWeight(lod - float(level));
-        const Raw c0 = bilinear<kWrap>(levels[std::size_t(level)], uv);
+        const Raw c0 = bilinear<kU, kV>(levels[std::size_t(level)], uv);
         if (wl == 0) return c0; // == blendLevels(c0, c1, 0) exactly
-        return blendLevels(c0, bilinear<kWrap>(levels[std::size_t(level) + 1], uv), wl);
+        return blendLevels(c0, bilinear<kU, kV>(levels[std::size_t(level) + 1], uv), wl);
+    }
+
+    template <WrapMode kU, WrapMode kV, class Levels>
+    static Color filtered(const Levels& levels, Vec2 uv, float lod, TextureFilter filter) {
+        switch (filter) {
+        case TextureFilter::Nearest: return nearest<kU, kV>(levels[0], uv);
+        case TextureFilter::Bilinear: return toColor(bilinear<kU, kV>(levels[0], uv));
+        case TextureFilter::Trilinear: return toColor(trilinear<kU, kV>(levels, uv, lod));
+        }
+        return {};
     }
 
     // The decoded twins (sampleSrgb): the same taps and weights on the decoded storage
@@ -230,9 +241,9 @@ struct TextureSampling {
         return {float(t[0] & 0xFFFFu) / 65535.0f, float(t[0] >> 16) / 65535.0f, float(t[1] & 0xFFFFu) / 65535.0f,
                 float(t[1] >> 16) / 65535.0f};
     }
-    template <WrapMode kWrap>
+    template <WrapMode kU, WrapMode kV>
     static Color bilinearDecoded(const Texture::LevelView& l, Vec2 uv) {
-        const Taps t = bilinearTaps<kWrap>(l, uv);
+        const Taps t = bilinearTaps<kU, kV>(l, uv);
         auto at = [&](int x, int y) { return l.decoded + 2 * (std::size_t(y) * std::size_t(l.stride) + std::size_t(x)); };
         const std::uint32_t *t00 = at(t.x0, t.y0), *t10 = at(t.x1, t.y0), *t01 = at(t.x0, t.y1), *t11 = at(t.x1, t.y1);
         const std::uint32_t ax = std::uint32_t(256 - t.wx), bx = std::uint32_t(t.wx);
@@ -246,43 +257,68 @@ struct TextureSampling {
         }
         return {c[0], c[1], c[2], c[3]};
     }
-    template <WrapMode kWrap>
+    template <WrapMode kU, WrapMode kV>
     static Color sampleDecoded(const Texture& texture, Vec2 uv, float lod, TextureFilter filter) {
         if (filter == TextureFilter::Nearest) {
             const Texture::LevelView base = texture.decodedLevelView(0);
-            const int x = Wrap<kWrap>::one(nearestTap(uv.x, base.width, kWrap), base.width, base.maskX);
-            const int y = Wrap<kWrap>::one(nearestTap(uv.y, base.height, kWrap), base.height, base.maskY);
+            const int x = Wrap<kU>::one(nearestTap(uv.x, base.width, kU), base.width, base.maskX);
+            const int y = Wrap<kV>::one(nearestTap(uv.y, base.height, kV), base.height, base.maskY);
             return decoded(base, x, y);
         }
-        if (filter == TextureFilter::Bilinear) return bilinearDecoded<kWrap>(texture.decodedLevelView(0), uv);
+        if (filter == TextureFilter::Bilinear) return bilinearDecoded<kU, kV>(texture.decodedLevelView(0), uv);
         const int last = texture.levelCount() - 1;
         if (!(lod > 0.0f)) lod = 0.0f;
-        if (lod >= float(last)) return bilinearDecoded<kWrap>(texture.decodedLevelView(last), uv);
+        if (lod >= float(last)) return bilinearDecoded<kU, kV>(texture.decodedLevelView(last), uv);
         const int level = int(lod);
         const int wl = lodWeight(lod - float(level));
-        const Color c0 = bilinearDecoded<kWrap>(texture.decodedLevelView(level), uv);
+        const Color c0 = bilinearDecoded<kU, kV>(texture.decodedLevelView(level), uv);
         if (wl == 0) return c0;
-        const Color c1 = bilinearDecoded<kWrap>(texture.decodedLevelView(level + 1), uv);
+        const Color c1 = bilinearDecoded<kU, kV>(texture.decodedLevelView(level + 1), uv);
         const float w = float(wl) / 256.0f;
         return {c0.r + (c1.r - c0.r) * w, c0.g + (c1.g - c0.g) * w, c0.b + (c1.b - c0.b) * w, c0.a + (c1.a - c0.a) * w};
+    }
+
+    // fn(kU, kV) for the modes of `wrap` (nine instantiations).
+    template <class Fn>
+    static Color withWraps(WrapModes wrap, const Fn& fn) {
+        const auto along = [&](auto u) {
+            switch (wrap.v) {
+            case WrapMode::Repeat: return fn(u, std::integral_constant<WrapMode, WrapMode::Repeat>{});
+            case WrapMode::Clamp: return fn(u, std::integral_constant<WrapMode, WrapMode::Clamp>{});
+            case WrapMode::Mirror: return fn(u, std::integral_constant<WrapMode, WrapMode::Mirror>{});
+            }
+            return Color{};
+        };
+        switch (wrap.u) {
+        case WrapMode::Repeat: return along(std::integral_constant<WrapMode, WrapMode::Repeat>{});
+        case WrapMode::Clamp: return along(std::integral_constant<WrapMode, WrapMode::Clamp>{});
+        case WrapMode::Mirror: return along(std::integral_constant<WrapMode, WrapMode::Mirror>{});
+        }
+        return {};
     }
 };
 
 Color Texture::sampleSrgb(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) const {
     switch (wrap) {
-    case WrapMode::Repeat: return TextureSampling::sampleDecoded<WrapMode::Repeat>(*this, uv, lod, filter);
-    case WrapMode::Clamp: return TextureSampling::sampleDecoded<WrapMode::Clamp>(*this, uv, lod, filter);
-    case WrapMode::Mirror: return TextureSampling::sampleDecoded<WrapMode::Mirror>(*this, uv, lod, filter);
+    case WrapMode::Repeat: return TextureSampling::sampleDecoded<WrapMode::Repeat, WrapMode::Repeat>(*this, uv, lod, filter);
+    case WrapMode::Clamp: return TextureSampling::sampleDecoded<WrapMode::Clamp, WrapMode::Clamp>(*this, uv, lod, filter);
+    case WrapMode::Mirror: return TextureSampling::sampleDecoded<WrapMode::Mirror, WrapMode::Mirror>(*this, uv, lod, filter);
     }
     return {};
+}
+
+Color Texture::sampleSrgb(Vec2 uv, float lod, TextureFilter filter, WrapModes wrap) const {
+    return TextureSampling::withWraps(wrap, [&](auto u, auto v) {
+        return TextureSampling::sampleDecoded<decltype(u)::value, decltype(v)::value>(*this, uv, lod, filter);
+    });
 }
 
 Color Texture::sampleNearest(Vec2 uv, WrapMode wrap) const {
     const Level& l = levels_[0];
     switch (wrap) {
-    case WrapMode::Repeat: return TextureSampling::nearest<WrapMode::Repeat>(l, uv);
-    case WrapMode::Clamp: return TextureSampling::nearest<WrapMode::Clamp>(l, uv);
-    case WrapMode::Mirror: return TextureSampling::nearest<WrapMode::Mirror>(l, uv);
+    case WrapMode::Repeat: return TextureSampling::nearest<WrapMode::Repeat, WrapMode::Repeat>(l, uv);
+    case WrapMode::Clamp: return TextureSampling::nearest<WrapMode::Clamp, WrapMode::Clamp>(l, uv);
+    case WrapMode::Mirror: return TextureSampling::nearest<WrapMode::Mirror, WrapMode::Mirror>(l, uv);
     }
     return {};
 }
@@ -290,18 +326,18 @@ Color Texture::sampleNearest(Vec2 uv, WrapMode wrap) const {
 Color Texture::sampleBilinear(Vec2 uv, WrapMode wrap) const {
     const Level& l = levels_[0];
     switch (wrap) {
-    case WrapMode::Repeat: return toColor(TextureSampling::bilinear<WrapMode::Repeat>(l, uv));
-    case WrapMode::Clamp: return toColor(TextureSampling::bilinear<WrapMode::Clamp>(l, uv));
-    case WrapMode::Mirror: return toColor(TextureSampling::bilinear<WrapMode::Mirror>(l, uv));
+    case WrapMode::Repeat: return toColor(TextureSampling::bilinear<WrapMode::Repeat, WrapMode::Repeat>(l, uv));
+    case WrapMode::Clamp: return toColor(TextureSampling::bilinear<WrapMode::Clamp, WrapMode::Clamp>(l, uv));
+    case WrapMode::Mirror: return toColor(TextureSampling::bilinear<WrapMode::Mirror, WrapMode::Mirror>(l, uv));
     }
     return {};
 }
 
 Color Texture::sampleTrilinear(Vec2 uv, float lod, WrapMode wrap) const {
     switch (wrap) {
-    case WrapMode::Repeat: return toColor(TextureSampling::trilinear<WrapMode::Repeat>(levels_, uv, lod));
-    case WrapMode::Clamp: return toColor(TextureSampling::trilinear<WrapMode::Clamp>(levels_, uv, lod));
-    case WrapMode::Mirror: return toColor(TextureSampling::trilinear<WrapMode::Mirror>(levels_, uv, lod));
+    case WrapMode::Repeat: return toColor(TextureSampling::trilinear<WrapMode::Repeat, WrapMode::Repeat>(levels_, uv, lod));
+    case WrapMode::Clamp: return toColor(TextureSampling::trilinear<WrapMode::Clamp, WrapMode::Clamp>(levels_, uv, lod));
+    case WrapMode::Mirror: return toColor(TextureSampling::trilinear<WrapMode::Mirror, WrapMode::Mirror>(levels_, uv, lod));
     }
     return {};
 }
@@ -313,6 +349,13 @@ Color Texture::sample(Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) c
     case TextureFilter::Trilinear: return sampleTrilinear(uv, lod, wrap);
     }
     return {};
+}
+
+Color Texture::sample(Vec2 uv, float lod, TextureFilter filter, WrapModes wrap) const {
+    if (wrap.u == wrap.v) return sample(uv, lod, filter, wrap.u);
+    return TextureSampling::withWraps(wrap, [&](auto u, auto v) {
+        return TextureSampling::filtered<decltype(u)::value, decltype(v)::value>(levels_, uv, lod, filter);
+    });
 }
 
 // --- One texel, read as the samplers read it (kUnorm8) ---------------------------------------------

@@ -234,7 +234,7 @@ Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const 
     for (std::size_t i = 0; i < g.materials.size(); ++i) {
         model.materials.push_back(materialFrom(g.materials[i]));
         std::string problem;
-        materialUvSource(g.materials[i], &problem);
+        materialAddressing(g, g.materials[i], &problem);
         if (!problem.empty()) model.warnings.push_back(path + ": material " + std::to_string(i) + ": " + problem);
     }
     const Status textures = addTextures(b, options, dir);

@@ -56,11 +56,11 @@ Material materialFrom(const gltf::Material& gm);
 
 // The reference of a material's map in a slot: its texture, uv set and transform.
 const gltf::TextureInfo& textureInfoOf(const gltf::Material& gm, MapSlot slot);
-// A glTF sampler as SoftRaster's wrap mode and filter (see Materials.cpp).
+// A glTF sampler as SoftRaster's wrap modes and filter (see Materials.cpp).
 struct SamplerModes {
-    WrapMode wrap = WrapMode::Repeat;
+    WrapModes wrap;
     std::optional<TextureFilter> filter;
-    std::string problem, note;
+    std::string problem;
 };
 SamplerModes samplerModes(const gltf::Sampler& s);
 // KHR_texture_transform of one texture reference, as the 2x3 matrix uv' = M (u, v, 1) in glTF's
@@ -76,7 +76,9 @@ struct UvSource {
     int texCoord = 0; // TEXCOORD_<texCoord>
     UvTransform transform;
 };
-UvSource materialUvSource(const gltf::Material& gm, std::string* problem);
+UvSource materialUvSource(const gltf::Material& gm);
+SamplerModes materialSampler(const gltf::Document& g, const gltf::Material& gm);
+std::optional<MapAddressing> materialAddressing(const gltf::Document& g, const gltf::Material& gm, std::string* problem);
 
 // Tangents.cpp: per-vertex tangents of vertices [base, end) from their triangles.
 void addTangents(Mesh& mesh, std::uint32_t base, const std::vector<std::uint32_t>& tris);

@@ -1,7 +1,9 @@
 // gltfimport materials: metallic-roughness as the renderer's Material, samplers as wrap modes and filters, KHR_texture_transform.
 #include <algorithm>
 #include <cmath>
+#include <array>
 #include <cstdint>
+#include <optional>
 
 #include "Resources/Gltf/Import.hpp"
 
@@ -140,10 +142,10 @@ Material materialFrom(const gltf::Material& gm) {
     return m;
 }
 
-// A glTF sampler as SoftRaster's one wrap mode and one filter per draw. Wrap: REPEAT (the
-// default), CLAMP_TO_EDGE, MIRRORED_REPEAT; when wrapS and wrapT differ, wrapS serves both (a
-// note says so). Filter, from minFilter: NEAREST -> nearest, LINEAR -> bilinear, any *_MIPMAP_*
-// -> trilinear; without a minFilter, a NEAREST magFilter -> nearest, else unset (the settings').
+// A glTF sampler as SoftRaster's wrap modes and filter. Wrap, along u (wrapS) and v (wrapT):
+// REPEAT (the default), CLAMP_TO_EDGE, MIRRORED_REPEAT. Filter, from minFilter: NEAREST ->
+// nearest, LINEAR -> bilinear, any *_MIPMAP_* -> trilinear; without a minFilter, a NEAREST
+// magFilter -> nearest, else unset (the settings').
 SamplerModes samplerModes(const gltf::Sampler& s) {
     SamplerModes out;
     const auto wrapOf = [&](int gl, const char* axis) -> WrapMode {
@@ -154,11 +156,8 @@ SamplerModes samplerModes(const gltf::Sampler& s) {
         default: out.problem = std::string(axis) + " " + std::to_string(gl) + " is not a glTF wrap mode"; return WrapMode::Repeat;
         }
     };
-    out.wrap = wrapOf(s.wrapS, "wrapS");
-    const WrapMode t = wrapOf(s.wrapT, "wrapT");
-    if (out.problem.empty() && t != out.wrap)
-        out.note = std::string("wrapS (") + wrapName(out.wrap) + ") and wrapT (" + wrapName(t) + ") differ: " + wrapName(out.wrap) +
-                   " is used for both";
+    out.wrap.u = wrapOf(s.wrapS, "wrapS");
+    out.wrap.v = wrapOf(s.wrapT, "wrapT");
     switch (s.minFilter) {
     case -1: break;
     case 9728: out.filter = TextureFilter::Nearest; break;
@@ -206,36 +205,117 @@ UvTransform uvTransformOf(const gltf::Json& extensions) {
     return t;
 }
 
-// The uv set and transform a material's maps are drawn with: its base colour texture's (else
-// that of its first other map, in MapSlot's order).
-// One per material, baked into the vertices of its primitives (every vertex of a glTF primitive
-// is its own: no other material reads it); a map that reads another set or transform is named
-// in `problem`. A reference's set is its texCoord, or its KHR_texture_transform's texCoord.
-UvSource materialUvSource(const gltf::Material& gm, std::string* problem) {
-    std::pair<const gltf::TextureInfo*, const char*> maps[1 + kMapSlots];
-    maps[0] = {&gm.pbrMetallicRoughness.baseColorTexture, "base colour"};
-    for (const MapSlot s : kAllMapSlots) maps[1 + std::size_t(s)] = {&textureInfoOf(gm, s), kMapSlotNames[std::size_t(s)]};
-    UvSource chosen;
-    const char* chosenName = nullptr;
-    for (const auto& [info, name] : maps) {
-        if (info->index < 0) continue;
-        UvSource here;
-        here.transform = uvTransformOf(info->extensions);
-        here.texCoord = info->texCoord;
-        if (const auto ext = info->extensions.find("KHR_texture_transform"); ext != info->extensions.end() && ext->is_object())
-            if (const auto tc = ext->find("texCoord"); tc != ext->end() && tc->is_number_unsigned() && tc->get<std::uint64_t>() < 64)
-                here.texCoord = int(tc->get<std::uint64_t>());
-        if (!chosenName) {
-            chosen = here;
-            chosenName = name;
-        } else if (problem && problem->empty() && (here.texCoord != chosen.texCoord || !(here.transform == chosen.transform))) {
-            *problem = std::string("its ") + name + " texture reads TEXCOORD_" + std::to_string(here.texCoord) +
-                       (here.transform.found ? " with a KHR_texture_transform" : "") + ", its " + chosenName + " texture TEXCOORD_" +
-                       std::to_string(chosen.texCoord) + (chosen.transform.found ? " with a KHR_texture_transform" : "") +
-                       ": the " + chosenName + " texture's uvs serve every map";
+namespace {
+
+// A texture reference's uv set (its texCoord, or its KHR_texture_transform's texCoord) and transform.
+UvSource sourceOf(const gltf::TextureInfo& info) {
+    UvSource out;
+    out.transform = uvTransformOf(info.extensions);
+    out.texCoord = info.texCoord;
+    if (const auto ext = info.extensions.find("KHR_texture_transform"); ext != info.extensions.end() && ext->is_object())
+        if (const auto tc = ext->find("texCoord"); tc != ext->end() && tc->is_number_unsigned() && tc->get<std::uint64_t>() < 64)
+            out.texCoord = int(tc->get<std::uint64_t>());
+    return out;
+}
+
+// One texture reference of a material: its uv set, transform and sampler (a sampler that does
+// not exist or says nothing valid reads as the default: addTextures refuses the file for it).
+struct Reference {
+    const char* name = nullptr;
+    UvSource source;
+    SamplerModes sampler;
+};
+Reference referenceOf(const gltf::Document& g, const gltf::TextureInfo& info, const char* name) {
+    Reference r;
+    r.name = name;
+    r.source = sourceOf(info);
+    if (info.index >= 0 && std::size_t(info.index) < g.textures.size()) {
+        const int sampler = g.textures[std::size_t(info.index)].sampler;
+        if (sampler >= 0 && std::size_t(sampler) < g.samplers.size()) {
+            r.sampler = samplerModes(g.samplers[std::size_t(sampler)]);
+            if (!r.sampler.problem.empty()) r.sampler = {};
         }
     }
-    return chosen;
+    return r;
+}
+
+// The base colour texture's reference, then each slot's (MapSlot's order); null info: none.
+std::array<std::pair<const gltf::TextureInfo*, const char*>, 1 + kMapSlots> referencesOf(const gltf::Material& gm) {
+    std::array<std::pair<const gltf::TextureInfo*, const char*>, 1 + kMapSlots> maps;
+    maps[0] = {&gm.pbrMetallicRoughness.baseColorTexture, "base colour"};
+    for (const MapSlot s : kAllMapSlots) maps[1 + std::size_t(s)] = {&textureInfoOf(gm, s), kMapSlotNames[std::size_t(s)]};
+    return maps;
+}
+
+// KHR_texture_transform's matrix (on glTF's uvs) restated on stored uvs (u, 1 - v): with s = u
+// and t = 1 - v, s' = m00 s - m01 t + (m01 + m02), t' = -m10 s + m11 t + (1 - m11 - m12).
+void storedTransform(const UvTransform& t, float out[2][3]) {
+    const double(&m)[2][3] = t.m;
+    out[0][0] = float(m[0][0]);
+    out[0][1] = float(-m[0][1]);
+    out[0][2] = float(m[0][1] + m[0][2]);
+    out[1][0] = float(-m[1][0]);
+    out[1][1] = float(m[1][1]);
+    out[1][2] = float(1.0 - m[1][1] - m[1][2]);
+}
+
+} // namespace
+
+// The uv set and transform a material's maps are drawn with when they share them: its base
+// colour texture's (else that of its first other map, in MapSlot's order), baked into the
+// vertices of its primitives (every vertex of a glTF primitive is its own: no other material
+// reads it).
+UvSource materialUvSource(const gltf::Material& gm) {
+    for (const auto& [info, name] : referencesOf(gm))
+        if (info->index >= 0) return sourceOf(*info);
+    return {};
+}
+
+// The sampler of the material's first map (materialUvSource's order): the draw's wrap and filter
+// where the maps share one.
+SamplerModes materialSampler(const gltf::Document& g, const gltf::Material& gm) {
+    for (const auto& [info, name] : referencesOf(gm))
+        if (info->index >= 0) return referenceOf(g, *info, name).sampler;
+    return {};
+}
+
+// Each map's address when the material's maps do not all read one uv set through one transform
+// with one sampler: otherwise none (materialUvSource's uvs and the sampler serve them all). Only
+// TEXCOORD_0 and _1 are read per map: a map on a later set is named in `problem` and reads
+// TEXCOORD_0.
+std::optional<MapAddressing> materialAddressing(const gltf::Document& g, const gltf::Material& gm, std::string* problem) {
+    const auto maps = referencesOf(gm);
+    std::optional<Reference> first;
+    bool shared = true;
+    for (const auto& [info, name] : maps) {
+        if (info->index < 0) continue;
+        const Reference r = referenceOf(g, *info, name);
+        if (!first) {
+            first = r;
+        } else if (r.source.texCoord != first->source.texCoord || !(r.source.transform == first->source.transform) ||
+                   r.sampler.wrap != first->sampler.wrap || r.sampler.filter != first->sampler.filter) {
+            shared = false;
+        }
+    }
+    if (!first || shared) return std::nullopt;
+    MapAddressing out;
+    for (std::size_t k = 0; k < maps.size(); ++k) {
+        const auto& [info, name] = maps[k];
+        if (info->index < 0) continue;
+        const Reference r = referenceOf(g, *info, name);
+        MapAddress& a = k == 0 ? out.base : out.maps[k - 1];
+        a.uvSet = r.source.texCoord;
+        if (a.uvSet >= MapAddressing::kUvSets) {
+            if (problem && problem->empty())
+                *problem = std::string("its ") + name + " texture reads TEXCOORD_" + std::to_string(a.uvSet) +
+                           ": a material whose maps read different uv sets reads TEXCOORD_0 and _1 only; it reads TEXCOORD_0";
+            a.uvSet = 0;
+        }
+        storedTransform(r.source.transform, a.m);
+        a.wrap = r.sampler.wrap;
+        a.filter = r.sampler.filter;
+    }
+    return out;
 }
 
 } // namespace sr::gltfimport

@@ -1,4 +1,5 @@
 // gltfimport primitives: one primitive of a node as world-space triangles (strips and fans unrolled, flat normals where none are given, tangents) or as lines and points.
+#include <algorithm>
 #include <cmath>
 
 #include "Resources/Gltf/Codecs.hpp"
@@ -107,20 +108,34 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
         if (v.value().count != count) return Status::failure(what + " NORMAL: count differs from POSITION's");
         normals = v.value();
     }
-    // The uv set the material's maps read (materialUvSource), with its transform.
+    // The uv set the material's maps read (materialUvSource), with its transform; where its maps
+    // have addresses of their own (materialAddressing), also the raw sets TEXCOORD_0 and _1.
     UvSource uvSource;
-    if (prim.material >= 0 && std::size_t(prim.material) < g.materials.size())
-        uvSource = materialUvSource(g.materials[std::size_t(prim.material)], nullptr);
-    const std::string uvName = "TEXCOORD_" + std::to_string(uvSource.texCoord);
-    if (const int ti = attribute(uvName.c_str()); ti >= 0) {
+    bool addressed = false;
+    if (prim.material >= 0 && std::size_t(prim.material) < g.materials.size()) {
+        uvSource = materialUvSource(g.materials[std::size_t(prim.material)]);
+        addressed = materialAddressing(g, g.materials[std::size_t(prim.material)], nullptr).has_value();
+    }
+    const auto uvSet = [&](int set) -> Result<std::optional<View>> {
+        const std::string uvName = "TEXCOORD_" + std::to_string(set);
+        const int ti = attribute(uvName.c_str());
+        if (ti < 0) return std::optional<View>();
         auto v = b.accessors->view(ti, what + " " + uvName);
-        if (!v) return Status::failure(v.error());
+        if (!v) return Result<std::optional<View>>::failure(v.error());
         const View& t = v.value();
         // Float, normalised unsigned byte/short, and under KHR_mesh_quantization any byte or short.
         const bool ok = t.components == 2 && (t.componentType == gltf::kFloat || quantized(t));
-        if (!ok) return Status::failure(what + " " + uvName + ": must be float, byte or short VEC2");
-        if (t.count != count) return Status::failure(what + " " + uvName + ": count differs from POSITION's");
-        uvs = t;
+        if (!ok) return Result<std::optional<View>>::failure(what + " " + uvName + ": must be float, byte or short VEC2");
+        if (t.count != count) return Result<std::optional<View>>::failure(what + " " + uvName + ": count differs from POSITION's");
+        return std::optional<View>(t);
+    };
+    if (auto v = uvSet(uvSource.texCoord); !v) return Status::failure(v.error());
+    else uvs = v.value();
+    std::optional<View> rawSets[MapAddressing::kUvSets];
+    for (int set = 0; uvs && addressed && set < MapAddressing::kUvSets; ++set) {
+        auto v = uvSet(set);
+        if (!v) return Status::failure(v.error());
+        rawSets[set] = v.value();
     }
     // COLOR_0 (glTF "Meshes"): RGB or RGBA, float or normalised unsigned byte/short, linear.
     std::optional<View> colours;
@@ -256,6 +271,18 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
     } else if (b.model.hasUvs) {
         mesh.uvs.resize(mesh.positions.size(), Vec2{});
     }
+    // The raw sets, once any primitive has them: (0, 0) where a primitive has none.
+    if ((uvs && addressed) || !mesh.uvSets[0].empty()) {
+        for (int set = 0; set < MapAddressing::kUvSets; ++set) {
+            std::vector<Vec2>& out = mesh.uvSets[set];
+            out.resize(base, Vec2{});
+            for (std::size_t i = 0; rawSets[set] && i < vertices; ++i) {
+                const float u = readFloat(*rawSets[set], src(i), 0), v = readFloat(*rawSets[set], src(i), 1);
+                out.emplace_back(std::isfinite(u) ? u : 0.0f, std::isfinite(v) ? 1.0f - v : 0.0f);
+            }
+            out.resize(mesh.positions.size(), Vec2{});
+        }
+    }
     // Vertex colours: once one primitive has them, every vertex does (white where none is given,
     // which multiplies the base colour by 1). A non-finite component reads as 1.
     if (colours || !mesh.colours.empty()) {
@@ -276,6 +303,15 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
     const bool normalMapped = uvs && prim.material >= 0 && std::size_t(prim.material) < g.materials.size() &&
                               (textureInfoOf(g.materials[std::size_t(prim.material)], MapSlot::Normal).index >= 0 ||
                                textureInfoOf(g.materials[std::size_t(prim.material)], MapSlot::ClearcoatNormal).index >= 0);
+    if (addressed && normalMapped && colours) {
+        const auto white = [](const Color& c) { return c.r == 1.0f && c.g == 1.0f && c.b == 1.0f; };
+        const std::string note = b.path + ": material " + std::to_string(prim.material) +
+                                 ": its maps read their own uv sets or transforms and it has a normal map: its primitives' "
+                                 "vertex colours (COLOR_0) are not drawn (one varying more than a draw interpolates)";
+        if (!std::all_of(mesh.colours.begin() + base, mesh.colours.end(), white) &&
+            std::find(b.model.warnings.begin(), b.model.warnings.end(), note) == b.model.warnings.end())
+            b.model.warnings.push_back(note);
+    }
     if (normalMapped || !mesh.tangents.empty()) {
         mesh.tangents.resize(base, Vec4{1.0f, 0.0f, 0.0f, 1.0f});
         if (normalMapped && tangents && normals) {

@@ -86,17 +86,31 @@ Status addTextures(Builder& b, const LoadOptions& options, const std::string& di
                 for (const MapSlot s : kAllMapSlots) mat.maps[s] = slotForTexture(textureInfoOf(gm, s).index);
                 mat.texture = slotForTexture(textureIndex);
                 if (!failure.empty()) return Status::failure(path + ": " + failure);
-                if (mat.texture < 0) continue;
-                const int sampler = g.textures[std::size_t(textureIndex)].sampler;
-                if (sampler < 0) continue; // none: repeat, and the filter of the settings
-                if (std::size_t(sampler) >= g.samplers.size())
-                    return Status::failure(path + ": texture " + std::to_string(textureIndex) + ": sampler " + std::to_string(sampler) +
-                                           " does not exist");
-                const SamplerModes modes = samplerModes(g.samplers[std::size_t(sampler)]);
-                if (!modes.problem.empty()) return Status::failure(path + ": sampler " + std::to_string(sampler) + ": " + modes.problem);
-                if (!modes.note.empty()) model.warnings.push_back(path + ": sampler " + std::to_string(sampler) + ": " + modes.note);
-                mat.wrap = modes.wrap;
-                mat.filter = modes.filter;
+                if (mat.texture < 0 && !mat.maps.any()) continue;
+                // Every map's sampler, checked; the first map's is the draw's (materialSampler),
+                // and where the maps do not share one each reads its own (materialAddressing).
+                bool sampled = false;
+                const auto check = [&](int texture) -> Status {
+                    if (texture < 0) return success();
+                    const int sampler = g.textures[std::size_t(texture)].sampler;
+                    if (sampler < 0) return success(); // none: repeat, and the filter of the settings
+                    if (std::size_t(sampler) >= g.samplers.size())
+                        return Status::failure(path + ": texture " + std::to_string(texture) + ": sampler " + std::to_string(sampler) +
+                                               " does not exist");
+                    const SamplerModes modes = samplerModes(g.samplers[std::size_t(sampler)]);
+                    if (!modes.problem.empty()) return Status::failure(path + ": sampler " + std::to_string(sampler) + ": " + modes.problem);
+                    sampled = true;
+                    return success();
+                };
+                if (Status s = check(textureIndex); !s) return s;
+                for (const MapSlot slot : kAllMapSlots)
+                    if (Status s = check(textureInfoOf(gm, slot).index); !s) return s;
+                if (sampled) {
+                    const SamplerModes modes = materialSampler(g, gm);
+                    mat.wrap = modes.wrap;
+                    mat.filter = modes.filter;
+                }
+                mat.addressing = materialAddressing(g, gm, nullptr);
             }
             for (int image : imageOfSlot) {
                 const gltf::Image& img = g.images[std::size_t(image)];

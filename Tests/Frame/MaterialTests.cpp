@@ -165,7 +165,7 @@ TEST_CASE("a material's own sampler (glTF) sets its draw's wrap and filter unles
     view.eye = {0.0f, 0.0f, 50.0f};
     view.viewProj = perspectiveInfinite(radians(1.5f), 1.0f, 1.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
     view.finiteFar = false;
-    auto render = [&](RenderSettings settings, std::optional<WrapMode> wrap, std::optional<TextureFilter> filter) {
+    auto render = [&](RenderSettings settings, std::optional<WrapModes> wrap, std::optional<TextureFilter> filter) {
         SurfaceMaterial material;
         material.texture = &texture;
         material.wrap = wrap;
@@ -183,21 +183,26 @@ TEST_CASE("a material's own sampler (glTF) sets its draw's wrap and filter unles
     clampNearest.filter = TextureFilter::Nearest;
     REQUIRE(render(frame, std::nullopt, std::nullopt) != render(clampNearest, std::nullopt, std::nullopt));
     // The file's sampler applies by default...
-    CHECK(render(frame, WrapMode::Clamp, TextureFilter::Nearest) == render(clampNearest, std::nullopt, std::nullopt));
+    const WrapModes clamp{WrapMode::Clamp, WrapMode::Clamp};
+    CHECK(render(frame, clamp, TextureFilter::Nearest) == render(clampNearest, std::nullopt, std::nullopt));
     // ... each half on its own ...
     RenderSettings clampOnly = frame;
     clampOnly.wrap = WrapMode::Clamp;
-    CHECK(render(frame, WrapMode::Clamp, std::nullopt) == render(clampOnly, std::nullopt, std::nullopt));
+    CHECK(render(frame, clamp, std::nullopt) == render(clampOnly, std::nullopt, std::nullopt));
+    // ... each axis its own mode (wrapS clamps u, wrapT repeats v): neither mode on both axes ...
+    const auto apart = render(frame, WrapModes{WrapMode::Clamp, WrapMode::Repeat}, std::nullopt);
+    CHECK(apart != render(frame, clamp, std::nullopt));
+    CHECK(apart != render(frame, WrapModes{WrapMode::Repeat, WrapMode::Repeat}, std::nullopt));
     // ... and not where the user chose (--wrap / --filter, the demo's T key, the report).
     RenderSettings chosen = frame;
     chosen.wrapFromFile = false;
     chosen.filterFromFile = false;
-    CHECK(render(chosen, WrapMode::Clamp, TextureFilter::Nearest) == render(frame, std::nullopt, std::nullopt));
+    CHECK(render(chosen, clamp, TextureFilter::Nearest) == render(frame, std::nullopt, std::nullopt));
     RenderSettings wrapChosen = frame;
     wrapChosen.wrapFromFile = false;
     RenderSettings nearestOnly = frame;
     nearestOnly.filter = TextureFilter::Nearest;
-    CHECK(render(wrapChosen, WrapMode::Clamp, TextureFilter::Nearest) == render(nearestOnly, std::nullopt, std::nullopt));
+    CHECK(render(wrapChosen, clamp, TextureFilter::Nearest) == render(nearestOnly, std::nullopt, std::nullopt));
 }
 
 TEST_CASE("--wrap and --filter given on the command line win over a file's samplers; --quality's filter does not",

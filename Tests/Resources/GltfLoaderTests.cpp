@@ -436,7 +436,8 @@ TEST_CASE("glTF texCoord: a material's maps read the uv set they name (TEXCOORD_
     a.nodes = "[{\"mesh\":0}]";
     // 0: an occlusion map alone on TEXCOORD_1. 1: base colour on TEXCOORD_1, emissive too.
     // 2: KHR_texture_transform's texCoord 1 overrides the reference's 0, with a scale of 2.
-    // 3: base colour on TEXCOORD_0, occlusion on TEXCOORD_1: the base colour's set, and a warning.
+    // 3: base colour on TEXCOORD_0, occlusion on TEXCOORD_1: the base colour's set baked, and
+    // each map's own address (the raw sets kept beside).
     a.materials = R"([{"occlusionTexture":{"index":0,"texCoord":1}},
         {"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"texCoord":1}},"emissiveTexture":{"index":0,"texCoord":1}},
         {"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"texCoord":1,"scale":[2,2]}}}}},
@@ -464,12 +465,99 @@ TEST_CASE("glTF texCoord: a material's maps read the uv set they name (TEXCOORD_
     check(9, 0.0f, 0.0f);
     check(10, 1.0f, 0.0f);
     check(11, 0.0f, 1.0f);
-    std::string warnings;
-    for (const std::string& w : m.warnings) warnings += w + "\n";
-    INFO(warnings);
-    CHECK(m.warnings.size() == 1);
-    CHECK(contains(warnings, "material 3: its occlusion texture reads TEXCOORD_1, its base colour texture TEXCOORD_0: the base "
-                             "colour texture's uvs serve every map"));
+    CHECK(m.warnings.empty());
+    // Materials 0-2 read one set each: no addresses. Material 3: the base colour on set 0, the
+    // occlusion on set 1, and every vertex carries both raw sets (zeros for none: all have them here).
+    for (std::size_t k = 0; k < 3; ++k) CHECK_FALSE(m.materials[k].addressing.has_value());
+    REQUIRE(m.materials[3].addressing.has_value());
+    const MapAddressing& addressing = *m.materials[3].addressing;
+    CHECK(addressing.base.uvSet == 0);
+    CHECK(addressing[MapSlot::Occlusion].uvSet == 1);
+    REQUIRE(m.mesh.hasUvSets());
+    for (std::size_t k = 0; k < 12; ++k) {
+        INFO("vertex " << k);
+        const std::size_t i = k % 3;
+        const float u0[3] = {0, 1, 0}, v0[3] = {0, 0, 1}, u1[3] = {0.5f, 0.75f, 0.125f}, v1[3] = {0.25f, 0.5f, 1};
+        CHECK(m.mesh.uvSets[0][k].x == (k < 9 ? 0.0f : u0[i]));
+        CHECK(m.mesh.uvSets[0][k].y == (k < 9 ? 0.0f : 1.0f - v0[i]));
+        CHECK(m.mesh.uvSets[1][k].x == (k < 9 ? 0.0f : u1[i]));
+        CHECK(m.mesh.uvSets[1][k].y == (k < 9 ? 0.0f : 1.0f - v1[i]));
+    }
+}
+
+TEST_CASE("glTF per texture reference: each map's transform and sampler where the maps do not share them",
+          "[resources][gltf][pbr][addressing]") {
+    const std::string dir = freshDir("gltf-addressing");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {200, 100, 50, 255};
+    REQUIRE(writeImage(dir + "/t.png", one).ok());
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv0 = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    const int red = a.floats({1, 0, 0, 1, 0, 0, 1, 0, 0}, "VEC3");
+    std::string prims;
+    for (int k = 0; k < 5; ++k)
+        prims += std::string(k ? "," : "") + "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" +
+                 std::to_string(uv0) + (k == 4 ? ",\"COLOR_0\":" + std::to_string(red) : std::string()) +
+                 "},\"material\":" + std::to_string(k) + "}";
+    a.meshes = "[{\"primitives\":[" + prims + "]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    // 0: the emissive map offset (0.5, 0.25) and scaled (2, 3), the base colour not.
+    // 1: the normal map through another sampler (clamp / mirror, NEAREST) than the base colour's.
+    // 2: one map, wrapS and wrapT apart (the draw's, each axis its own). 3: two maps through one
+    // transform and one sampler (shared). 4: material 1 again, on a primitive with red vertex
+    // colours: left out beside the normal map (one varying too many), with a warning.
+    a.materials = R"([{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},
+          "emissiveTexture":{"index":0,"extensions":{"KHR_texture_transform":{"offset":[0.5,0.25],"scale":[2,3]}}}},
+        {"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},"normalTexture":{"index":1}},
+        {"pbrMetallicRoughness":{"baseColorTexture":{"index":2}}},
+        {"pbrMetallicRoughness":{"baseColorTexture":{"index":3}},"occlusionTexture":{"index":3}},
+        {"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},"normalTexture":{"index":1}}])";
+    a.extra = ",\"extensionsUsed\":[\"KHR_texture_transform\"],\"images\":[{\"uri\":\"t.png\"}],"
+              "\"textures\":[{\"source\":0},{\"source\":0,\"sampler\":0},{\"source\":0,\"sampler\":1},"
+              "{\"source\":0,\"sampler\":2}],\"samplers\":[{\"wrapS\":33071,\"wrapT\":33648,\"minFilter\":9728},"
+              "{\"wrapS\":33071,\"wrapT\":10497},{\"wrapS\":33071,\"wrapT\":33071,\"minFilter\":9728}]";
+    auto r = load(dir, "addressing.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.warnings.size() == 1);
+    CHECK(contains(m.warnings[0], "material 4: its maps read their own uv sets or transforms and it has a normal map: its "
+                                  "primitives' vertex colours (COLOR_0) are not drawn"));
+    REQUIRE(m.materials.size() == 5);
+    CHECK(m.materials[4].addressing.has_value());
+    // 0: glTF (u, v) -> (2 u + 0.5, 3 v + 0.25); on stored uvs (s, t) = (u, 1 - v):
+    // s' = 2 s + 0.5, t' = 1 - (3 (1 - t) + 0.25) = 3 t - 2.25.
+    REQUIRE(m.materials[0].addressing.has_value());
+    const MapAddressing& t = *m.materials[0].addressing;
+    const float expected[2][3] = {{2, 0, 0.5f}, {0, 3, -2.25f}}, identity[2][3] = {{1, 0, 0}, {0, 1, 0}};
+    for (int row = 0; row < 2; ++row)
+        for (int col = 0; col < 3; ++col) {
+            CHECK(t[MapSlot::Emissive].m[row][col] == Approx(expected[row][col]).margin(1e-6));
+            CHECK(t.base.m[row][col] == identity[row][col]);
+        }
+    const Vec2 moved = t[MapSlot::Emissive].apply({0.1f, 0.8f}); // glTF (0.1, 0.2) -> (0.7, 0.85): stored (0.7, 0.15)
+    CHECK(moved.x == Approx(0.7f).margin(1e-6));
+    CHECK(moved.y == Approx(0.15f).margin(1e-6));
+    // 1: the base colour repeats (no sampler), the normal map clamps on u and mirrors on v, nearest.
+    REQUIRE(m.materials[1].addressing.has_value());
+    const MapAddressing& s = *m.materials[1].addressing;
+    CHECK(s.base.wrap == WrapModes{WrapMode::Repeat, WrapMode::Repeat});
+    CHECK_FALSE(s.base.filter.has_value());
+    CHECK(s[MapSlot::Normal].wrap == WrapModes{WrapMode::Clamp, WrapMode::Mirror});
+    CHECK(s[MapSlot::Normal].filter == TextureFilter::Nearest);
+    // 2: wrapS clamp and wrapT repeat on its one map: the draw's wrap.
+    CHECK_FALSE(m.materials[2].addressing.has_value());
+    CHECK(m.materials[2].wrap == WrapModes{WrapMode::Clamp, WrapMode::Repeat});
+    // 3: shared: the draw's sampler is theirs, no addresses.
+    CHECK_FALSE(m.materials[3].addressing.has_value());
+    CHECK(m.materials[3].wrap == WrapModes{WrapMode::Clamp, WrapMode::Clamp});
+    CHECK(m.materials[3].filter == TextureFilter::Nearest);
+    // The raw sets are kept (TEXCOORD_1 absent: zeros).
+    REQUIRE(m.mesh.hasUvSets());
+    CHECK(m.mesh.uvSets[0][1].x == 1.0f);
+    CHECK(m.mesh.uvSets[1][1].x == 0.0f);
 }
 
 TEST_CASE("glTF tangents for a normal map: generated from the uvs, or the file's through the node", "[resources][gltf][pbr]") {
@@ -708,7 +796,7 @@ TEST_CASE("glTF samplers: wrap and filter per material, as one wrap mode and one
         a.extra = ",\"images\":[{\"uri\":\"t.png\"}],\"textures\":[" + textures + "],\"samplers\":" + samplers;
         return a;
     };
-    // 0: clamp both, NEAREST; 1: mirror / repeat (differ: wrapS for both, a note), LINEAR_MIPMAP_LINEAR;
+    // 0: clamp both, NEAREST; 1: mirror / repeat (each axis its own), LINEAR_MIPMAP_LINEAR;
     // 2: magFilter NEAREST only; 3: nothing said (repeat, the settings' filter); 4: no sampler.
     const Asset a = asset("[{\"wrapS\":33071,\"wrapT\":33071,\"minFilter\":9728},"
                           "{\"wrapS\":33648,\"wrapT\":10497,\"minFilter\":9987,\"magFilter\":9729},"
@@ -720,18 +808,18 @@ TEST_CASE("glTF samplers: wrap and filter per material, as one wrap mode and one
     const std::vector<Material>& m = r.value().materials;
     REQUIRE(m.size() == 5);
     for (const Material& mat : m) CHECK(mat.texture == 0);
-    CHECK(m[0].wrap == WrapMode::Clamp);
+    CHECK(m[0].wrap == WrapModes{WrapMode::Clamp, WrapMode::Clamp});
     CHECK(m[0].filter == TextureFilter::Nearest);
-    CHECK(m[1].wrap == WrapMode::Mirror);
+    CHECK(m[1].wrap == WrapModes{WrapMode::Mirror, WrapMode::Repeat});
     CHECK(m[1].filter == TextureFilter::Trilinear);
-    CHECK(m[2].wrap == WrapMode::Repeat);
+    CHECK(m[2].wrap == WrapModes{WrapMode::Repeat, WrapMode::Repeat});
     CHECK(m[2].filter == TextureFilter::Nearest);
-    CHECK(m[3].wrap == WrapMode::Repeat);
+    CHECK(m[3].wrap == WrapModes{WrapMode::Repeat, WrapMode::Repeat});
     CHECK_FALSE(m[3].filter.has_value());
     CHECK_FALSE(m[4].wrap.has_value());
     CHECK_FALSE(m[4].filter.has_value());
-    REQUIRE(r.value().warnings.size() == 1);
-    CHECK(contains(r.value().warnings[0], "sampler 1: wrapS (mirror) and wrapT (repeat) differ"));
+    CHECK(r.value().warnings.empty());
+    for (const Material& mat : m) CHECK_FALSE(mat.addressing.has_value()); // one map each: the draw's sampler
 
     CHECK(contains(errorOf(dir, "badwrap.gltf", asset("[{\"wrapS\":1234},{}]", 2).embedded()), "sampler 0: wrapS 1234"));
     CHECK(contains(errorOf(dir, "badfilter.gltf", asset("[{\"minFilter\":7},{}]", 2).embedded()), "sampler 0: minFilter 7"));

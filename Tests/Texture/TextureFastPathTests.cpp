@@ -86,6 +86,58 @@ TEST_CASE("fast samplers are bit-identical to the reference on random uvs, lods,
     REQUIRE(compared == 8L * 6000 * 9);
 }
 
+TEST_CASE("a wrap mode per axis: each axis wrapped by its own mode, bit-identical to the reference (sampled, fixed seed)",
+          "[texture][fastpath]") {
+    std::mt19937 rng(20261205u);
+    const int sizes[][2] = {{1, 7}, {3, 5}, {4, 4}, {16, 8}, {33, 17}};
+    const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror};
+    const TextureFilter filters[] = {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear};
+    long compared = 0, unlike = 0;
+    for (const auto& s : sizes) {
+        const Texture t = randomTexture(s[0], s[1], rng);
+        for (int i = 0; i < 1500; ++i) {
+            const Vec2 uv{randomCoordinate(rng, s[0]), randomCoordinate(rng, s[1])};
+            const float lod = std::uniform_real_distribution<float>(-1.0f, float(t.levelCount()) + 1.0f)(rng);
+            for (WrapMode wu : wraps)
+                for (WrapMode wv : wraps)
+                    for (TextureFilter f : filters) {
+                        const Color ref = sampleReference(t, uv, lod, f, WrapModes{wu, wv});
+                        const Color fast = t.sample(uv, lod, f, WrapModes{wu, wv});
+                        if (!bitEqual(ref, fast)) {
+                            INFO(s[0] << "x" << s[1] << " uv (" << uv.x << ", " << uv.y << ") lod " << lod << " " << filterName(f)
+                                      << " " << wrapName(wu) << "/" << wrapName(wv));
+                            REQUIRE(fast == ref);
+                        }
+                        if (wu == wv) REQUIRE(bitEqual(fast, t.sample(uv, lod, f, wu)));
+                        else if (!bitEqual(fast, t.sample(uv, lod, f, wu))) ++unlike;
+                        ++compared;
+                    }
+        }
+    }
+    REQUIRE(compared == 5L * 1500 * 27);
+    CHECK(unlike > compared / 10); // the second axis's mode matters (a wrong one would change nothing)
+}
+
+TEST_CASE("a wrap mode per axis on decoded texels: u's mode decides the columns, v's the rows", "[texture][fastpath][srgb]") {
+    // Red varies with the column only, green with the row only: under modes (a, b) red is what a
+    // alone gives and green what b alone gives, in every filter (to float rounding: the other
+    // axis's weights multiply equal rows; a wrong tap is off by at least one 16-bit step).
+    const Texture t = makeTexture(5, 3, [](int x, int y) { return Rgba8{std::uint8_t(40 * x + 7), std::uint8_t(90 * y + 11), 0, 255}; });
+    std::mt19937 rng(99u);
+    const WrapMode wraps[] = {WrapMode::Repeat, WrapMode::Clamp, WrapMode::Mirror};
+    for (int i = 0; i < 3000; ++i) {
+        const Vec2 uv{std::uniform_real_distribution<float>(-2.5f, 2.5f)(rng), std::uniform_real_distribution<float>(-2.5f, 2.5f)(rng)};
+        const float lod = std::uniform_real_distribution<float>(0.0f, 2.0f)(rng);
+        for (WrapMode a : wraps)
+            for (WrapMode b : wraps)
+                for (TextureFilter f : {TextureFilter::Nearest, TextureFilter::Bilinear, TextureFilter::Trilinear}) {
+                    const Color both = t.sampleSrgb(uv, lod, f, WrapModes{a, b});
+                    REQUIRE(both.r == Approx(t.sampleSrgb(uv, lod, f, a).r).margin(1e-6));
+                    REQUIRE(both.g == Approx(t.sampleSrgb(uv, lod, f, b).g).margin(1e-6));
+                }
+    }
+}
+
 TEST_CASE("a region of equal texels samples to exactly that texel at any uv and lod", "[texture][fastpath]") {
     std::mt19937 rng(7u);
     const Texture t = makeTexture(6, 10, [](int, int) { return Rgba8{201, 3, 77, 128}; });

@@ -71,25 +71,25 @@ int wrapReference(int i, int size, WrapMode wrap) {
     return 0;
 }
 
-Color nearestReference(const Texture& t, int level, Vec2 uv, WrapMode wrap) {
+Color nearestReference(const Texture& t, int level, Vec2 uv, WrapModes wrap) {
     const int w = t.levelWidth(level), h = t.levelHeight(level);
-    const int x = wrapReference(nearestTap(uv.x, w, wrap), w, wrap);
-    const int y = wrapReference(nearestTap(uv.y, h, wrap), h, wrap);
+    const int x = wrapReference(nearestTap(uv.x, w, wrap.u), w, wrap.u);
+    const int y = wrapReference(nearestTap(uv.y, h, wrap.v), h, wrap.v);
     return t.texelColor(level, x, y);
 }
 
 // Straightforward GL_LINEAR: each of the 2x2 texels wrapped and fetched on its own, with the
 // weights as fractions k / 256 in double. raw = 65536 * sum(texel * weight) is the integer blend
 // (exact in double: every term is a small dyadic rational).
-void bilinearReferenceRaw(const Texture& t, int level, Vec2 uv, WrapMode wrap, double raw[4]) {
+void bilinearReferenceRaw(const Texture& t, int level, Vec2 uv, WrapModes wrap, double raw[4]) {
     const int w = t.levelWidth(level), h = t.levelHeight(level);
-    const LinearTaps tx = linearTaps(uv.x, w, wrap);
-    const LinearTaps ty = linearTaps(uv.y, h, wrap);
+    const LinearTaps tx = linearTaps(uv.x, w, wrap.u);
+    const LinearTaps ty = linearTaps(uv.y, h, wrap.v);
     const double fx = tx.w / 256.0, fy = ty.w / 256.0;
     for (int c = 0; c < 4; ++c) raw[c] = 0.0;
     for (int j = 0; j < 2; ++j)
         for (int i = 0; i < 2; ++i) {
-            const int x = wrapReference(tx.i0 + i, w, wrap), y = wrapReference(ty.i0 + j, h, wrap);
+            const int x = wrapReference(tx.i0 + i, w, wrap.u), y = wrapReference(ty.i0 + j, h, wrap.v);
             const std::uint32_t texel = t.texel(level, x, y);
             const double weight = (i ? fx : 1.0 - fx) * (j ? fy : 1.0 - fy);
             for (int c = 0; c < 4; ++c) raw[c] += double((texel >> (8 * c)) & 0xFFu) * weight * 65536.0;
@@ -99,6 +99,10 @@ void bilinearReferenceRaw(const Texture& t, int level, Vec2 uv, WrapMode wrap, d
 } // namespace
 
 Color sampleReference(const Texture& texture, Vec2 uv, float lod, TextureFilter filter, WrapMode wrap) {
+    return sampleReference(texture, uv, lod, filter, WrapModes{wrap, wrap});
+}
+
+Color sampleReference(const Texture& texture, Vec2 uv, float lod, TextureFilter filter, WrapModes wrap) {
     // raw / (255 * 65536) per channel, rounded once to float.
     auto toColorRef = [](const double raw[4]) {
         return Color{float(raw[0]) / (255.0f * 65536.0f), float(raw[1]) / (255.0f * 65536.0f),

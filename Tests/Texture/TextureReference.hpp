@@ -13,5 +13,7 @@ namespace sr::test {
 // paths (sample / sampleNearest / sampleBilinear / sampleTrilinear) are tested to be
 // bit-identical to it (TextureFastPathTests.cpp, TextureSamplingTests.cpp, TextureMipTests.cpp).
 Color sampleReference(const Texture& texture, Vec2 uv, float lod, TextureFilter filter, WrapMode wrap);
+// The same with a wrap mode per axis (a glTF sampler's wrapS and wrapT): each axis wrapped by its own.
+Color sampleReference(const Texture& texture, Vec2 uv, float lod, TextureFilter filter, WrapModes wrap);
 
 } // namespace sr::test

@@ -126,13 +126,13 @@ struct RawRgb {
 // them; the vertical blend is per channel in 32 bits. fixedU, fixedV: the 8-bit X of u and v on
 // this level (levelX), of uv on the vector path. Each row's two texels come from one 64-bit
 // load per lane (adjacentPair).
-template <WrapMode kWrap>
+template <WrapMode kU, WrapMode kV>
 SR_SIMD_INLINE RawRgb bilinearRaw(const Texture::LevelView& l, I fixedU, I fixedV) {
     I x0, x1, wxTaps, y0, y1, wy;
-    linearAxis<kWrap>(fixedU, l.width, l.maskX, x0, x1, wxTaps);
-    linearAxis<kWrap>(fixedV, l.height, l.maskY, y0, y1, wy);
+    linearAxis<kU>(fixedU, l.width, l.maskX, x0, x1, wxTaps);
+    linearAxis<kV>(fixedV, l.height, l.maskY, y0, y1, wy);
     I x, wx;
-    adjacentPair<kWrap>(x0, x1, wxTaps, x, wx);
+    adjacentPair<kU>(x0, x1, wxTaps, x, wx);
     const I stride = iset(l.stride);
     I t00, t10, t01, t11;
     gatherPair(l.texels, mulLow(y0, stride) + x, t00, t10);
@@ -154,11 +154,11 @@ SR_SIMD_INLINE RawRgb bilinearRaw(const Texture::LevelView& l, I fixedU, I fixed
 // weights of bilinearRaw on the level's decoded storage (l.decoded: two words per texel,
 // r | g << 16 and b | a << 16, one 64-bit load per tap and lane); per channel the rows
 // t0 (256 - wx) + t1 wx in integers, then (row0 (256 - wy) + row1 wy) / (65535 * 65536) in float.
-template <WrapMode kWrap>
+template <WrapMode kU, WrapMode kV>
 SR_SIMD_INLINE Rgb bilinearDecoded(const Texture::LevelView& l, I fixedU, I fixedV) {
     I x0, x1, wx, y0, y1, wy;
-    linearAxis<kWrap>(fixedU, l.width, l.maskX, x0, x1, wx);
-    linearAxis<kWrap>(fixedV, l.height, l.maskY, y0, y1, wy);
+    linearAxis<kU>(fixedU, l.width, l.maskX, x0, x1, wx);
+    linearAxis<kV>(fixedV, l.height, l.maskY, y0, y1, wy);
     const I stride = iset(l.stride);
     const I row0 = mulLow(y0, stride), row1 = mulLow(y1, stride);
     I rg00, ba00, rg10, ba10, rg01, ba01, rg11, ba11;
@@ -243,7 +243,7 @@ SR_SIMD_INLINE F mipLevels(const Prog& p, const Texture& texture, F u, F v, F in
 // fetched here, blended in 8-bit fixed point with the same integer arithmetic (the sum is below
 // 2^32: raw < 255 * 65536, times 256). The lanes of a group usually share their level; a group
 // that straddles a level boundary runs once per distinct level.
-template <WrapMode kWrap>
+template <WrapMode kU, WrapMode kV>
 SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
     const int last = texture.levelCount() - 1;
     lod = select(lod > fzero(), lod, fzero()); // magnification (and NaN) -> the base level
@@ -258,15 +258,15 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
     // The base level's fixed-point coordinates, from which the levels that halve it take theirs
     // (levelX; an axis of size 1 reads its one texel whatever the coordinate: 0); other levels
     // convert u and v at their own size.
-    const I zu = texelFixed<kWrap>(u, texture.width()), zv = texelFixed<kWrap>(v, texture.height());
+    const I zu = texelFixed<kU>(u, texture.width()), zv = texelFixed<kV>(v, texture.height());
     const int halving = texture.halvingLevels();
     auto coordinates = [&](const Texture::LevelView& l, int k, I& x, I& y) SR_SIMD_LAMBDA {
         if (k < halving) {
             x = l.width == 1 ? iset(0) : levelX(zu, k);
             y = l.height == 1 ? iset(0) : levelX(zv, k);
         } else {
-            x = linearX<kWrap>(u, l.width);
-            y = linearX<kWrap>(v, l.height);
+            x = linearX<kU>(u, l.width);
+            y = linearX<kV>(v, l.height);
         }
     };
     I r = iset(0), g = iset(0), b = iset(0);
@@ -276,7 +276,7 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
         const Texture::LevelView here = texture.levelView(k);
         I fixedU, fixedV;
         coordinates(here, k, fixedU, fixedV);
-        const RawRgb c0 = bilinearRaw<kWrap>(here, fixedU, fixedV);
+        const RawRgb c0 = bilinearRaw<kU, kV>(here, fixedU, fixedV);
         I r0 = c0.r, g0 = c0.g, b0 = c0.b;
         // The next level only where a lane blends it in (wl > 0): magnified lanes (lod <= 0) and
         // whole-number lods read one level, exactly what the blend with wl = 0 returns.
@@ -284,7 +284,7 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
             const Texture::LevelView next = texture.levelView(k + 1);
             I nextU, nextV;
             coordinates(next, k + 1, nextU, nextV);
-            const RawRgb c1 = bilinearRaw<kWrap>(next, nextU, nextV);
+            const RawRgb c1 = bilinearRaw<kU, kV>(next, nextU, nextV);
             const I half = iset(128);
             r0 = shiftRightLogical<8>(mulLow(r0, keep) + mulLow(c1.r, wl) + half);
             g0 = shiftRightLogical<8>(mulLow(g0, keep) + mulLow(c1.g, wl) + half);
@@ -300,7 +300,7 @@ SR_SIMD_INLINE Rgb trilinearLanes(const Texture& texture, F u, F v, F lod) {
 
 // trilinearLanes on decoded texels (Texture::sampleSrgb's trilinear): each level's
 // bilinearDecoded, the levels mixed in float by wl / 256 where wl > 0.
-template <WrapMode kWrap>
+template <WrapMode kU, WrapMode kV>
 SR_SIMD_INLINE Rgb trilinearDecodedLanes(const Texture& texture, F u, F v, F lod) {
     const int last = texture.levelCount() - 1;
     lod = select(lod > fzero(), lod, fzero());
@@ -311,15 +311,15 @@ SR_SIMD_INLINE Rgb trilinearDecodedLanes(const Texture& texture, F u, F v, F lod
     const int first = firstLane(level);
     const bool oneLevel = bits(level == iset(first)) == bits(mAll());
     const int lo = oneLevel ? first : reduceMin(level), hi = oneLevel ? first : reduceMax(level);
-    const I zu = texelFixed<kWrap>(u, texture.width()), zv = texelFixed<kWrap>(v, texture.height());
+    const I zu = texelFixed<kU>(u, texture.width()), zv = texelFixed<kV>(v, texture.height());
     const int halving = texture.halvingLevels();
     auto coordinates = [&](const Texture::LevelView& l, int k, I& x, I& y) SR_SIMD_LAMBDA {
         if (k < halving) {
             x = l.width == 1 ? iset(0) : levelX(zu, k);
             y = l.height == 1 ? iset(0) : levelX(zv, k);
         } else {
-            x = linearX<kWrap>(u, l.width);
-            y = linearX<kWrap>(v, l.height);
+            x = linearX<kU>(u, l.width);
+            y = linearX<kV>(v, l.height);
         }
     };
     Rgb out{fzero(), fzero(), fzero()};
@@ -329,13 +329,13 @@ SR_SIMD_INLINE Rgb trilinearDecodedLanes(const Texture& texture, F u, F v, F lod
         const Texture::LevelView here = texture.decodedLevelView(k);
         I fixedU, fixedV;
         coordinates(here, k, fixedU, fixedV);
-        Rgb c = bilinearDecoded<kWrap>(here, fixedU, fixedV);
+        Rgb c = bilinearDecoded<kU, kV>(here, fixedU, fixedV);
         const M blend = mine & (wl > iset(0));
         if (k < last && bits(blend) != 0) {
             const Texture::LevelView next = texture.decodedLevelView(k + 1);
             I nextU, nextV;
             coordinates(next, k + 1, nextU, nextV);
-            const Rgb c1 = bilinearDecoded<kWrap>(next, nextU, nextV);
+            const Rgb c1 = bilinearDecoded<kU, kV>(next, nextU, nextV);
             c = {select(blend, c.r + (c1.r - c.r) * w, c.r), select(blend, c.g + (c1.g - c.g) * w, c.g),
                  select(blend, c.b + (c1.b - c.b) * w, c.b)};
         }
@@ -346,7 +346,7 @@ SR_SIMD_INLINE Rgb trilinearDecodedLanes(const Texture& texture, F u, F v, F lod
 
 // The lanes off the vector path (NaN / Inf / huge uv) of a sample, redone by the scalar sampler:
 // rare, so out of line (one copy per filter and wrap).
-template <TextureFilter kFilter, WrapMode kWrap>
+template <TextureFilter kFilter, WrapMode kU, WrapMode kV>
 SR_SIMD_NOINLINE void redoOffPathLanes(const Texture& texture, bool linear, F u, F v, F lod, M good, Rgb& kd) {
     alignas(64) float us[kLanes], vs[kLanes], lods[kLanes], r[kLanes], g[kLanes], b[kLanes];
     fstore(us, u);
@@ -357,7 +357,7 @@ SR_SIMD_NOINLINE void redoOffPathLanes(const Texture& texture, bool linear, F u,
     fstore(b, kd.b);
     for (int i = 0, m = bits(good); i < kLanes; ++i) {
         if (m & (1 << i)) continue;
-        const Color c = linear ? texture.sampleSrgb({us[i], vs[i]}, lods[i], kFilter, kWrap) : texture.sample({us[i], vs[i]}, lods[i], kFilter, kWrap);
+        const Color c = linear ? texture.sampleSrgb({us[i], vs[i]}, lods[i], kFilter, WrapModes{kU, kV}) : texture.sample({us[i], vs[i]}, lods[i], kFilter, WrapModes{kU, kV});
         r[i] = c.r;
         g[i] = c.g;
         b[i] = c.b;
@@ -367,15 +367,15 @@ SR_SIMD_NOINLINE void redoOffPathLanes(const Texture& texture, bool linear, F u,
 
 // The colour of the lanes from `texture` with the filter and wrap at level of detail `lod`
 // (trilinear only); `linear`: texels decoded from sRGB (Texture::sampleSrgb).
-template <TextureFilter kFilter, WrapMode kWrap>
+template <TextureFilter kFilter, WrapMode kU, WrapMode kV>
 SR_SIMD_INLINE Rgb sampleLanes(const Texture& texture, bool linear, F u, F v, F lod) {
     const M good = onVectorPath(u) & onVectorPath(v);
     const F uSafe = select(good, u, fzero()), vSafe = select(good, v, fzero());
     Rgb kd;
     if constexpr (kFilter == TextureFilter::Nearest) {
         const Texture::LevelView l = linear ? texture.decodedLevelView(0) : texture.levelView(0);
-        const I x = nearestAxis<kWrap>(uSafe, l.width, l.maskX);
-        const I y = nearestAxis<kWrap>(vSafe, l.height, l.maskY);
+        const I x = nearestAxis<kU>(uSafe, l.width, l.maskX);
+        const I y = nearestAxis<kV>(vSafe, l.height, l.maskY);
         const I i = mulLow(y, iset(l.stride)) + x;
         if (linear) {
             I rg, ba;
@@ -392,16 +392,16 @@ SR_SIMD_INLINE Rgb sampleLanes(const Texture& texture, bool linear, F u, F v, F 
         const Texture::LevelView l = texture.levelView(0);
         if (linear) {
             const Texture::LevelView dl = texture.decodedLevelView(0);
-            kd = bilinearDecoded<kWrap>(dl, linearX<kWrap>(uSafe, l.width), linearX<kWrap>(vSafe, l.height));
+            kd = bilinearDecoded<kU, kV>(dl, linearX<kU>(uSafe, l.width), linearX<kV>(vSafe, l.height));
         } else {
-            const RawRgb raw = bilinearRaw<kWrap>(l, linearX<kWrap>(uSafe, l.width), linearX<kWrap>(vSafe, l.height));
+            const RawRgb raw = bilinearRaw<kU, kV>(l, linearX<kU>(uSafe, l.width), linearX<kV>(vSafe, l.height));
             const F scale = fset(255.0f * 65536.0f); // then raw / (255 * 65536)
             kd = {toFloat(raw.r) / scale, toFloat(raw.g) / scale, toFloat(raw.b) / scale};
         }
     } else {
-        kd = linear ? trilinearDecodedLanes<kWrap>(texture, uSafe, vSafe, lod) : trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
+        kd = linear ? trilinearDecodedLanes<kU, kV>(texture, uSafe, vSafe, lod) : trilinearLanes<kU, kV>(texture, uSafe, vSafe, lod);
     }
-    if (SR_UNLIKELY(bits(good) != bits(mAll()))) redoOffPathLanes<kFilter, kWrap>(texture, linear, u, v, lod, good, kd);
+    if (SR_UNLIKELY(bits(good) != bits(mAll()))) redoOffPathLanes<kFilter, kU, kV>(texture, linear, u, v, lod, good, kd);
     return kd;
 }
 
@@ -409,7 +409,7 @@ SR_SIMD_INLINE Rgb sampleLanes(const Texture& texture, bool linear, F u, F v, F 
 // operations, then the trilinear taps of every lane at once, as many rounds as the most any lane
 // takes (a lane past its own count keeps its sum), the sums divided by the counts. Lanes whose
 // centre or any tap is off the vector path are redone by the scalar function.
-template <WrapMode kWrap>
+template <WrapMode kU, WrapMode kV>
 SR_SIMD_NOINLINE Rgb anisotropicLanes(const Texture& texture, bool linear, F u, F v, const UvLanes& d, int maxAniso) {
     F rx, ry;
     squaredFootprintLanes(texture, d, rx, ry);
@@ -434,7 +434,7 @@ SR_SIMD_NOINLINE Rgb anisotropicLanes(const Texture& texture, bool linear, F u, 
         const M onPath = onVectorPath(ui) & onVectorPath(vi);
         good = good & (onPath | andNot(mAll(), active));
         const F uSafe = select(onPath, ui, fzero()), vSafe = select(onPath, vi, fzero());
-        const Rgb c = linear ? trilinearDecodedLanes<kWrap>(texture, uSafe, vSafe, lod) : trilinearLanes<kWrap>(texture, uSafe, vSafe, lod);
+        const Rgb c = linear ? trilinearDecodedLanes<kU, kV>(texture, uSafe, vSafe, lod) : trilinearLanes<kU, kV>(texture, uSafe, vSafe, lod);
         sum = {select(active, sum.r + c.r, sum.r), select(active, sum.g + c.g, sum.g), select(active, sum.b + c.b, sum.b)};
     }
     Rgb kd{select(multi, sum.r / n, sum.r), select(multi, sum.g / n, sum.g), select(multi, sum.b / n, sum.b)};
@@ -452,7 +452,7 @@ SR_SIMD_NOINLINE Rgb anisotropicLanes(const Texture& texture, bool linear, F u, 
         for (int i = 0, m = bits(good); i < kLanes; ++i) {
             if (m & (1 << i)) continue;
             const Color c = sampleAnisotropic(texture, {us[i], vs[i]}, UvDerivatives{g[0][i], g[1][i], g[2][i], g[3][i]}, maxAniso,
-                                              kWrap, linear);
+                                              WrapModes{kU, kV}, linear);
             r[0][i] = c.r;
             r[1][i] = c.g;
             r[2][i] = c.b;
@@ -466,15 +466,46 @@ SR_SIMD_NOINLINE Rgb anisotropicLanes(const Texture& texture, bool linear, F u, 
 // kernel would otherwise copy for each map, wrap and colour mode. Only the Blinn-Phong programs'
 // nearest and bilinear on display values are inlined (sampleMap): the cheapest filters, where a
 // call (every vector register is the caller's to save across it) costs most in proportion.
-template <TextureFilter kFilter, WrapMode kWrap>
+template <TextureFilter kFilter, WrapMode kU, WrapMode kV>
 SR_SIMD_NOINLINE Rgb sampleLanesOutOfLine(const Texture& texture, bool linear, F u, F v, F lod) {
-    return sampleLanes<kFilter, kWrap>(texture, linear, u, v, lod);
+    return sampleLanes<kFilter, kU, kV>(texture, linear, u, v, lod);
+}
+
+// fn(kU, kV) for a draw's wrap modes (wrapModesOf): one predictable branch per group of
+// lanes. Modes that differ between the axes (a glTF sampler's wrapS and wrapT) are rare: they
+// take their own branch.
+template <class Fn>
+SR_SIMD_INLINE Rgb withWrapModes(WrapModes w, const Fn& fn) {
+    using Repeat = std::integral_constant<WrapMode, WrapMode::Repeat>;
+    using Clamp = std::integral_constant<WrapMode, WrapMode::Clamp>;
+    using Mirror = std::integral_constant<WrapMode, WrapMode::Mirror>;
+    if (SR_UNLIKELY(w.u != w.v)) {
+        const auto along = [&](auto u) SR_SIMD_LAMBDA {
+            switch (w.v) {
+            case WrapMode::Clamp: return fn(u, Clamp{});
+            case WrapMode::Mirror: return fn(u, Mirror{});
+            case WrapMode::Repeat: break;
+            }
+            return fn(u, Repeat{});
+        };
+        switch (w.u) {
+        case WrapMode::Clamp: return along(Clamp{});
+        case WrapMode::Mirror: return along(Mirror{});
+        case WrapMode::Repeat: break;
+        }
+        return along(Repeat{});
+    }
+    switch (w.u) {
+    case WrapMode::Clamp: return fn(Clamp{}, Clamp{});
+    case WrapMode::Mirror: return fn(Mirror{}, Mirror{});
+    case WrapMode::Repeat: break;
+    }
+    return fn(Repeat{}, Repeat{});
 }
 
 // sampleLanes for the draw: the lanes' level of detail (trilinear: the affine triangle's
-// `triangleLod`, or per lane under exact perspective), then the draw's wrap mode, read here per
-// group of lanes rather than made a template parameter of the kernels (one predictable branch
-// per group).
+// `triangleLod`, or per lane under exact perspective), then the draw's wrap modes, read here per
+// group of lanes rather than made a template parameter of the kernels (withWrapModes).
 template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
 SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear, F u, F v, F invW, F triangleLod) {
     F lod = fzero();
@@ -484,12 +515,9 @@ SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear,
         } else {
             if (const int aniso = p.d->settings.aniso; aniso > 1) {
                 const UvLanes d = uvDerivativeLanes(p, u, v, invW);
-                switch (p.d->settings.wrap) {
-                case WrapMode::Clamp: return anisotropicLanes<WrapMode::Clamp>(texture, linear, u, v, d, aniso);
-                case WrapMode::Mirror: return anisotropicLanes<WrapMode::Mirror>(texture, linear, u, v, d, aniso);
-                case WrapMode::Repeat: break;
-                }
-                return anisotropicLanes<WrapMode::Repeat>(texture, linear, u, v, d, aniso);
+                return withWrapModes(wrapModesOf(p.d->settings), [&](auto wu, auto wv) SR_SIMD_LAMBDA {
+                    return anisotropicLanes<decltype(wu)::value, decltype(wv)::value>(texture, linear, u, v, d, aniso);
+                });
             }
             lod = mipLevels(p, texture, u, v, invW);
         }
@@ -497,19 +525,13 @@ SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear,
         (void)invW;
         (void)triangleLod;
     }
-    auto sample = [&](auto wrap) SR_SIMD_LAMBDA {
-        constexpr WrapMode kWrap = decltype(wrap)::value;
-        if constexpr (kFilter != TextureFilter::Trilinear && Prog::kMode != ShadingMode::Pbr) {
-            if (!linear) return sampleLanes<kFilter, kWrap>(texture, false, u, v, lod);
+    return withWrapModes(wrapModesOf(p.d->settings), [&](auto wu, auto wv) SR_SIMD_LAMBDA {
+        constexpr WrapMode kU = decltype(wu)::value, kV = decltype(wv)::value;
+        if constexpr (kU == kV && kFilter != TextureFilter::Trilinear && Prog::kMode != ShadingMode::Pbr) {
+            if (!linear) return sampleLanes<kFilter, kU, kV>(texture, false, u, v, lod);
         }
-        return sampleLanesOutOfLine<kFilter, kWrap>(texture, linear, u, v, lod);
-    };
-    switch (p.d->settings.wrap) {
-    case WrapMode::Clamp: return sample(std::integral_constant<WrapMode, WrapMode::Clamp>{});
-    case WrapMode::Mirror: return sample(std::integral_constant<WrapMode, WrapMode::Mirror>{});
-    case WrapMode::Repeat: break;
-    }
-    return sample(std::integral_constant<WrapMode, WrapMode::Repeat>{});
+        return sampleLanesOutOfLine<kFilter, kU, kV>(texture, linear, u, v, lod);
+    });
 }
 // The draw's texture (programs::sampleTexel).
 template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
