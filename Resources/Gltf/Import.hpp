@@ -80,8 +80,9 @@ UvSource materialUvSource(const gltf::Material& gm);
 SamplerModes materialSampler(const gltf::Document& g, const gltf::Material& gm);
 std::optional<MapAddressing> materialAddressing(const gltf::Document& g, const gltf::Material& gm, std::string* problem);
 
-// Tangents.cpp: per-vertex tangents of vertices [base, end) from their triangles.
-void addTangents(Mesh& mesh, std::uint32_t base, const std::vector<std::uint32_t>& tris);
+// Tangents.cpp: per-vertex tangents of vertices [base, end) from their triangles, along the
+// mesh's uvs or `uvs` (vertex base + k reads (*uvs)[k]: a normal map's own).
+void addTangents(Mesh& mesh, std::uint32_t base, const std::vector<std::uint32_t>& tris, const std::vector<Vec2>* uvs = nullptr);
 
 // Primitives.cpp: one primitive of a node, its triangles (or lines and points) in world space.
 Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world, const std::string& what, const LoadLimits& limits);

@@ -332,7 +332,17 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
                 mesh.tangents.emplace_back(float(tn.x), float(tn.y), float(tn.z), float(sign));
             }
         } else if (normalMapped) {
-            addTangents(mesh, base, tris);
+            // Along the normal map's uvs: its own set and transform where the material's maps
+            // have addresses of their own (the base's normal map, else the coat's).
+            std::vector<Vec2> mapUvs;
+            if (addressed) {
+                const gltf::Material& gm = g.materials[std::size_t(prim.material)];
+                const auto addressing = materialAddressing(g, gm, nullptr);
+                const MapSlot slot = textureInfoOf(gm, MapSlot::Normal).index >= 0 ? MapSlot::Normal : MapSlot::ClearcoatNormal;
+                const MapAddress& a = (*addressing)[slot];
+                for (std::size_t k = base; k < mesh.positions.size(); ++k) mapUvs.push_back(a.apply(mesh.uvSets[a.uvSet][k]));
+            }
+            addTangents(mesh, base, tris, mapUvs.empty() ? nullptr : &mapUvs);
         } else {
             mesh.tangents.resize(mesh.positions.size(), Vec4{1.0f, 0.0f, 0.0f, 1.0f});
         }

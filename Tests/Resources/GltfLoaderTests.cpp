@@ -607,6 +607,51 @@ TEST_CASE("glTF tangents for a normal map: generated from the uvs, or the file's
     }
 }
 
+TEST_CASE("glTF tangents for a normal map at its own address: along its own uv set and transform",
+          "[resources][gltf][pbr][addressing]") {
+    const std::string dir = freshDir("gltf-tangents-addressed");
+    Image one;
+    one.width = one.height = 1;
+    one.rgba = {128, 128, 255, 255};
+    REQUIRE(writeImage(dir + "/n.png", one).ok());
+    // The quad of the tangents test (z = 0, facing +z). TEXCOORD_0: u along +x (tangent +x).
+    // TEXCOORD_1: u along +y, v along +x (glTF v grows down the image; ours, 1 - v, along -x):
+    // tangent +y, and n x t = -x along our dp/dv: w = +1.
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3");
+    const int nrm = a.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+    const int uv0 = a.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2");
+    const int uv1 = a.floats({0, 0, 0, 1, 1, 1, 1, 0}, "VEC2");
+    const int idx = a.indices({0, 1, 2, 0, 2, 3}, 5123);
+    const auto prim = [&](int material) {
+        return "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"NORMAL\":" + std::to_string(nrm) +
+               ",\"TEXCOORD_0\":" + std::to_string(uv0) + ",\"TEXCOORD_1\":" + std::to_string(uv1) +
+               "},\"indices\":" + std::to_string(idx) + ",\"material\":" + std::to_string(material) + "}";
+    };
+    a.meshes = "[{\"primitives\":[" + prim(0) + "," + prim(1) + "]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    // 0: the normal map on TEXCOORD_1 beside a base colour on TEXCOORD_0. 1: the normal map
+    // turned a quarter by its transform (u' = v, along -y: tangent -y; v' = -u, ours along +x:
+    // n x t = +x, w = +1) beside an untransformed base colour.
+    a.materials = R"([{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},"normalTexture":{"index":0,"texCoord":1}},
+        {"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},
+         "normalTexture":{"index":0,"extensions":{"KHR_texture_transform":{"rotation":1.5707963267948966}}}}])";
+    a.extra = ",\"extensionsUsed\":[\"KHR_texture_transform\"],\"images\":[{\"uri\":\"n.png\"}],\"textures\":[{\"source\":0}]";
+    auto r = load(dir, "tangents-addressed.gltf", a.embedded());
+    INFO((r.ok() ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model& m = r.value();
+    REQUIRE(m.materials[0].addressing.has_value());
+    REQUIRE(m.materials[1].addressing.has_value());
+    REQUIRE(m.mesh.tangents.size() == 8);
+    for (std::size_t k = 0; k < 8; ++k) {
+        INFO("vertex " << k);
+        const Vec4 t = m.mesh.tangents[k];
+        checkVec(Vec3{t.x, t.y, t.z}, 0, k < 4 ? 1 : -1, 0);
+        CHECK(t.w == 1.0f);
+    }
+}
+
 TEST_CASE("glTF KHR_texture_transform: offset, rotation and scale baked into the material's uvs", "[resources][gltf][pbr]") {
     const std::string dir = freshDir("gltf-uvtransform");
     Image one;

@@ -471,43 +471,51 @@ SR_SIMD_NOINLINE Rgb sampleLanesOutOfLine(const Texture& texture, bool linear, F
     return sampleLanes<kFilter, kU, kV>(texture, linear, u, v, lod);
 }
 
-// fn(kU, kV) for a draw's wrap modes (wrapModesOf): one predictable branch per group of
-// lanes. Modes that differ between the axes (a glTF sampler's wrapS and wrapT) are rare: they
-// take their own branch.
+// Wrap modes apart on u and v (a glTF sampler's wrapS and wrapT, RenderSettings::wrapV): rare,
+// so out of line and compiled once per ISA, in the kernel unit that defines
+// SR_KERNEL_SAMPLERS_APART (every other unit calls it): sampleLanes and anisotropicLanes for
+// the pair `wrap` (w.u != w.v).
+Rgb sampleLanesApart(const Texture& texture, bool linear, F u, F v, F lod, TextureFilter filter, WrapModes wrap);
+Rgb anisotropicLanesApart(const Texture& texture, bool linear, F u, F v, const UvLanes& d, int maxAniso, WrapModes wrap);
+#ifdef SR_KERNEL_SAMPLERS_APART
+// fn(kU, kV) for each pair of different modes.
 template <class Fn>
-SR_SIMD_INLINE Rgb withWrapModes(WrapModes w, const Fn& fn) {
+Rgb withWrapsApart(WrapModes w, const Fn& fn) {
     using Repeat = std::integral_constant<WrapMode, WrapMode::Repeat>;
     using Clamp = std::integral_constant<WrapMode, WrapMode::Clamp>;
     using Mirror = std::integral_constant<WrapMode, WrapMode::Mirror>;
-    if (SR_UNLIKELY(w.u != w.v)) {
-        const auto along = [&](auto u) SR_SIMD_LAMBDA {
-            switch (w.v) {
-            case WrapMode::Clamp: return fn(u, Clamp{});
-            case WrapMode::Mirror: return fn(u, Mirror{});
-            case WrapMode::Repeat: break;
-            }
-            return fn(u, Repeat{});
-        };
-        switch (w.u) {
-        case WrapMode::Clamp: return along(Clamp{});
-        case WrapMode::Mirror: return along(Mirror{});
-        case WrapMode::Repeat: break;
-        }
-        return along(Repeat{});
-    }
     switch (w.u) {
-    case WrapMode::Clamp: return fn(Clamp{}, Clamp{});
-    case WrapMode::Mirror: return fn(Mirror{}, Mirror{});
-    case WrapMode::Repeat: break;
+    case WrapMode::Repeat: return w.v == WrapMode::Clamp ? fn(Repeat{}, Clamp{}) : fn(Repeat{}, Mirror{});
+    case WrapMode::Clamp: return w.v == WrapMode::Repeat ? fn(Clamp{}, Repeat{}) : fn(Clamp{}, Mirror{});
+    case WrapMode::Mirror: break;
     }
-    return fn(Repeat{}, Repeat{});
+    return w.v == WrapMode::Repeat ? fn(Mirror{}, Repeat{}) : fn(Mirror{}, Clamp{});
 }
+Rgb sampleLanesApart(const Texture& texture, bool linear, F u, F v, F lod, TextureFilter filter, WrapModes wrap) {
+    return withWrapsApart(wrap, [&](auto wu, auto wv) {
+        constexpr WrapMode kU = decltype(wu)::value, kV = decltype(wv)::value;
+        switch (filter) {
+        case TextureFilter::Nearest: return sampleLanes<TextureFilter::Nearest, kU, kV>(texture, linear, u, v, lod);
+        case TextureFilter::Bilinear: return sampleLanes<TextureFilter::Bilinear, kU, kV>(texture, linear, u, v, lod);
+        case TextureFilter::Trilinear: break;
+        }
+        return sampleLanes<TextureFilter::Trilinear, kU, kV>(texture, linear, u, v, lod);
+    });
+}
+Rgb anisotropicLanesApart(const Texture& texture, bool linear, F u, F v, const UvLanes& d, int maxAniso, WrapModes wrap) {
+    return withWrapsApart(wrap, [&](auto wu, auto wv) {
+        return anisotropicLanes<decltype(wu)::value, decltype(wv)::value>(texture, linear, u, v, d, maxAniso);
+    });
+}
+#endif
 
 // sampleLanes for the draw: the lanes' level of detail (trilinear: the affine triangle's
 // `triangleLod`, or per lane under exact perspective), then the draw's wrap modes, read here per
-// group of lanes rather than made a template parameter of the kernels (withWrapModes).
+// group of lanes rather than made a template parameter of the kernels (one predictable branch
+// per group; modes apart on the two axes: sampleLanesApart).
 template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
 SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear, F u, F v, F invW, F triangleLod) {
+    const WrapModes wrap = wrapModesOf(p.d->settings);
     F lod = fzero();
     if constexpr (kFilter == TextureFilter::Trilinear) {
         if constexpr (kPersp == PerspectiveMode::Affine) {
@@ -515,9 +523,13 @@ SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear,
         } else {
             if (const int aniso = p.d->settings.aniso; aniso > 1) {
                 const UvLanes d = uvDerivativeLanes(p, u, v, invW);
-                return withWrapModes(wrapModesOf(p.d->settings), [&](auto wu, auto wv) SR_SIMD_LAMBDA {
-                    return anisotropicLanes<decltype(wu)::value, decltype(wv)::value>(texture, linear, u, v, d, aniso);
-                });
+                if (SR_UNLIKELY(wrap.u != wrap.v)) return anisotropicLanesApart(texture, linear, u, v, d, aniso, wrap);
+                switch (wrap.u) {
+                case WrapMode::Clamp: return anisotropicLanes<WrapMode::Clamp, WrapMode::Clamp>(texture, linear, u, v, d, aniso);
+                case WrapMode::Mirror: return anisotropicLanes<WrapMode::Mirror, WrapMode::Mirror>(texture, linear, u, v, d, aniso);
+                case WrapMode::Repeat: break;
+                }
+                return anisotropicLanes<WrapMode::Repeat, WrapMode::Repeat>(texture, linear, u, v, d, aniso);
             }
             lod = mipLevels(p, texture, u, v, invW);
         }
@@ -525,13 +537,20 @@ SR_SIMD_INLINE Rgb sampleMap(const Prog& p, const Texture& texture, bool linear,
         (void)invW;
         (void)triangleLod;
     }
-    return withWrapModes(wrapModesOf(p.d->settings), [&](auto wu, auto wv) SR_SIMD_LAMBDA {
-        constexpr WrapMode kU = decltype(wu)::value, kV = decltype(wv)::value;
-        if constexpr (kU == kV && kFilter != TextureFilter::Trilinear && Prog::kMode != ShadingMode::Pbr) {
-            if (!linear) return sampleLanes<kFilter, kU, kV>(texture, false, u, v, lod);
+    if (SR_UNLIKELY(wrap.u != wrap.v)) return sampleLanesApart(texture, linear, u, v, lod, kFilter, wrap);
+    auto sample = [&](auto mode) SR_SIMD_LAMBDA {
+        constexpr WrapMode kWrap = decltype(mode)::value;
+        if constexpr (kFilter != TextureFilter::Trilinear && Prog::kMode != ShadingMode::Pbr) {
+            if (!linear) return sampleLanes<kFilter, kWrap, kWrap>(texture, false, u, v, lod);
         }
-        return sampleLanesOutOfLine<kFilter, kU, kV>(texture, linear, u, v, lod);
-    });
+        return sampleLanesOutOfLine<kFilter, kWrap, kWrap>(texture, linear, u, v, lod);
+    };
+    switch (wrap.u) {
+    case WrapMode::Clamp: return sample(std::integral_constant<WrapMode, WrapMode::Clamp>{});
+    case WrapMode::Mirror: return sample(std::integral_constant<WrapMode, WrapMode::Mirror>{});
+    case WrapMode::Repeat: break;
+    }
+    return sample(std::integral_constant<WrapMode, WrapMode::Repeat>{});
 }
 // The draw's texture (programs::sampleTexel).
 template <PerspectiveMode kPersp, TextureFilter kFilter, class Prog>
