@@ -3,6 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
+#include <string>
+#include <utility>
+
+#include "Math/Conventions.hpp"
 
 namespace sr {
 namespace {
@@ -252,6 +257,194 @@ void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
             }
         }
     }
+}
+
+} // namespace sr
+
+namespace sr {
+
+PropertyOwner ownerOf(AnimatedProperty p) {
+    if (p >= AnimatedProperty::CameraYfov) return PropertyOwner::Camera;
+    if (p >= AnimatedProperty::LightColor) return PropertyOwner::Light;
+    return PropertyOwner::Material;
+}
+
+int componentsOf(AnimatedProperty p) {
+    switch (p) {
+    case AnimatedProperty::BaseColor: return 4;
+    case AnimatedProperty::Emissive:
+    case AnimatedProperty::SpecularColor:
+    case AnimatedProperty::LightColor: return 3;
+    default: return 1;
+    }
+}
+
+bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int& target) {
+    struct Owner {
+        const char* prefix;
+        std::initializer_list<std::pair<const char*, AnimatedProperty>> paths;
+    };
+    using P = AnimatedProperty;
+    static const Owner kOwners[] = {
+        {"/materials/",
+         {{"pbrMetallicRoughness/baseColorFactor", P::BaseColor},
+          {"pbrMetallicRoughness/metallicFactor", P::Metallic},
+          {"pbrMetallicRoughness/roughnessFactor", P::Roughness},
+          {"emissiveFactor", P::Emissive},
+          {"extensions/KHR_materials_emissive_strength/emissiveStrength", P::EmissiveStrength},
+          {"normalTexture/scale", P::NormalScale},
+          {"occlusionTexture/strength", P::OcclusionStrength},
+          {"alphaCutoff", P::AlphaCutoff},
+          {"extensions/KHR_materials_ior/ior", P::Ior},
+          {"extensions/KHR_materials_specular/specularFactor", P::SpecularFactor},
+          {"extensions/KHR_materials_specular/specularColorFactor", P::SpecularColor},
+          {"extensions/KHR_materials_clearcoat/clearcoatFactor", P::Clearcoat},
+          {"extensions/KHR_materials_clearcoat/clearcoatRoughnessFactor", P::ClearcoatRoughness},
+          {"extensions/KHR_materials_clearcoat/clearcoatNormalTexture/scale", P::ClearcoatNormalScale}}},
+        {"/extensions/KHR_lights_punctual/lights/",
+         {{"color", P::LightColor},
+          {"intensity", P::LightIntensity},
+          {"range", P::LightRange},
+          {"spot/innerConeAngle", P::SpotInnerCone},
+          {"spot/outerConeAngle", P::SpotOuterCone}}},
+        {"/cameras/", {{"perspective/yfov", P::CameraYfov}, {"perspective/znear", P::CameraZnear}, {"perspective/zfar", P::CameraZfar}}},
+    };
+    for (const Owner& owner : kOwners) {
+        const std::size_t n = std::char_traits<char>::length(owner.prefix);
+        if (pointer.compare(0, n, owner.prefix) != 0) continue;
+        std::size_t i = n;
+        long long index = 0;
+        while (i < pointer.size() && pointer[i] >= '0' && pointer[i] <= '9' && index <= 2147483647) index = index * 10 + (pointer[i++] - '0');
+        if (i == n || i >= pointer.size() || pointer[i] != '/' || index > 2147483647) return false;
+        const std::string rest = pointer.substr(i + 1);
+        for (const auto& [path, p] : owner.paths)
+            if (rest == path) {
+                property = p;
+                target = int(index);
+                return true;
+            }
+        return false;
+    }
+    return false;
+}
+
+bool ModelAnimation::animatesProperties() const {
+    for (const AnimationClip& c : clips)
+        if (!c.properties.empty()) return true;
+    return false;
+}
+
+bool ModelAnimation::animatesMaterial(int material) const {
+    for (const AnimationClip& c : clips)
+        for (const PropertyChannel& ch : c.properties)
+            if (ownerOf(ch.property) == PropertyOwner::Material && ch.target == material) return true;
+    return false;
+}
+
+PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
+    PosedProperties out;
+    // The file's numbers, then the channels over them.
+    std::vector<MaterialFactors> factors;
+    std::vector<std::uint8_t> materialAnimated(materials.size(), 0);
+    struct LightValues {
+        std::array<double, 3> colour;
+        double intensity, range, inner, outer;
+    };
+    std::vector<LightValues> lightValues; // per LightSource
+    std::vector<CameraSource> cameraValues;
+    double v[4];
+    for (std::size_t c = 0; c < clips.size(); ++c) {
+        if (clip >= 0 && std::size_t(clip) != c) continue;
+        const double duration = clips[c].duration;
+        const double local = duration > 0.0 ? t - std::floor(t / duration) * duration : t; // looped, as pose
+        for (const PropertyChannel& ch : clips[c].properties) {
+            clips[c].samplers[std::size_t(ch.sampler)].evaluate(local, v);
+            const std::size_t target = std::size_t(ch.target);
+            switch (ownerOf(ch.property)) {
+            case PropertyOwner::Material: {
+                if (target >= materials.size()) break;
+                if (factors.empty()) factors = materials;
+                materialAnimated[target] = 1;
+                MaterialFactors& f = factors[target];
+                switch (ch.property) {
+                case AnimatedProperty::BaseColor: std::copy(v, v + 4, f.baseColor.begin()); break;
+                case AnimatedProperty::Metallic: f.metallic = v[0]; break;
+                case AnimatedProperty::Roughness: f.roughness = v[0]; break;
+                case AnimatedProperty::Emissive: std::copy(v, v + 3, f.emissive.begin()); break;
+                case AnimatedProperty::EmissiveStrength: f.emissiveStrength = v[0]; break;
+                case AnimatedProperty::NormalScale: f.normalScale = v[0]; break;
+                case AnimatedProperty::OcclusionStrength: f.occlusionStrength = v[0]; break;
+                case AnimatedProperty::AlphaCutoff: f.alphaCutoff = v[0]; break;
+                case AnimatedProperty::Ior: f.ior = v[0], f.hasIor = true; break;
+                case AnimatedProperty::SpecularFactor: f.specularFactor = v[0], f.hasSpecular = true; break;
+                case AnimatedProperty::SpecularColor: std::copy(v, v + 3, f.specularColor.begin()), f.hasSpecular = true; break;
+                case AnimatedProperty::Clearcoat: f.clearcoat = v[0], f.hasClearcoat = true; break;
+                case AnimatedProperty::ClearcoatRoughness: f.clearcoatRoughness = v[0], f.hasClearcoat = true; break;
+                case AnimatedProperty::ClearcoatNormalScale: f.clearcoatNormalScale = v[0], f.hasClearcoat = true; break;
+                default: break;
+                }
+                break;
+            }
+            case PropertyOwner::Light:
+                if (lightValues.empty())
+                    for (const LightSource& l : lights) lightValues.push_back({l.colour, l.intensity, l.range, l.innerCone, l.outerCone});
+                for (std::size_t k = 0; k < lights.size(); ++k) { // every placement of that light
+                    if (lights[k].light != ch.target) continue;
+                    LightValues& l = lightValues[k];
+                    if (ch.property == AnimatedProperty::LightColor) std::copy(v, v + 3, l.colour.begin());
+                    else if (ch.property == AnimatedProperty::LightIntensity) l.intensity = v[0];
+                    else if (ch.property == AnimatedProperty::LightRange) l.range = v[0];
+                    else if (ch.property == AnimatedProperty::SpotInnerCone) l.inner = v[0];
+                    else l.outer = v[0];
+                }
+                break;
+            case PropertyOwner::Camera:
+                if (cameraValues.empty()) cameraValues = cameras;
+                for (CameraSource& cam : cameraValues) {
+                    if (cam.camera != ch.target) continue;
+                    if (ch.property == AnimatedProperty::CameraYfov) cam.yfov = v[0];
+                    else if (ch.property == AnimatedProperty::CameraZnear) cam.znear = v[0];
+                    else cam.zfar = v[0];
+                }
+                break;
+            }
+        }
+    }
+    for (std::size_t m = 0; m < factors.size(); ++m) {
+        if (!materialAnimated[m]) continue;
+        Material material;
+        material.fromFile = true;
+        applyFactors(factors[m], material);
+        out.materials.push_back(int(m));
+        out.values.push_back(std::move(material));
+    }
+    for (std::size_t k = 0; k < lightValues.size(); ++k) {
+        const LightSource& s = lights[k];
+        const LightValues& l = lightValues[k];
+        const double intensity = std::isfinite(l.intensity) ? std::clamp(l.intensity, 0.0, 1e9) : s.intensity;
+        const double range = std::isfinite(l.range) ? std::max(l.range, 0.0) : s.range;
+        Color colour{0, 0, 0, 1};
+        float* rgb[3] = {&colour.r, &colour.g, &colour.b};
+        for (std::size_t c = 0; c < 3; ++c) *rgb[c] = float(std::clamp(l.colour[c], 0.0, 1.0) * intensity);
+        Light light = s.placed;
+        light.colour = colour;
+        if (light.type != LightType::Directional) light.range = float(range);
+        if (light.type == LightType::Spot) {
+            const double outer = std::clamp(l.outer, 1e-6, kPiD / 2.0);
+            const double inner = std::clamp(l.inner, 0.0, outer);
+            light = Light::spot(light.position, light.spotDirection, colour, float(inner), float(outer), float(range));
+        }
+        out.lights.push_back(light);
+    }
+    for (std::size_t k = 0; k < cameraValues.size(); ++k) {
+        const CameraSource& rest = cameras[k];
+        CameraSource c = cameraValues[k];
+        if (!(c.yfov > 0.0 && c.yfov < kPiD)) c.yfov = rest.yfov;
+        if (!(c.znear > 0.0) || !std::isfinite(c.znear)) c.znear = rest.znear;
+        if (!(c.zfar == 0.0 || c.zfar > c.znear) || !std::isfinite(c.zfar)) c.zfar = rest.zfar > c.znear ? rest.zfar : 0.0;
+        out.cameras.push_back({c.yfov * 180.0 / kPiD, c.znear, c.zfar});
+    }
+    return out;
 }
 
 } // namespace sr

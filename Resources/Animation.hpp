@@ -10,6 +10,9 @@
 #include "Math/DoubleMath.hpp"
 #include "Math/Vec.hpp"
 #include "Raster/Geometry/Mesh.hpp"
+#include "Raster/Shade/Shading.hpp" // Light
+#include "Resources/MaterialFactors.hpp"
+#include "Resources/Model.hpp" // Material, for PosedProperties
 
 namespace sr {
 
@@ -48,10 +51,36 @@ struct AnimationChannel {
     int sampler = 0; // index into its clip's samplers
 };
 
+// A KHR_animation_pointer target besides a node's transform and weights: a material's factor
+// ("/materials/{m}/pbrMetallicRoughness/baseColorFactor", ...), a KHR_lights_punctual light's
+// property ("/extensions/KHR_lights_punctual/lights/{l}/intensity", ...) or a perspective
+// camera's ("/cameras/{c}/perspective/yfov", ...).
+enum class AnimatedProperty : std::uint8_t {
+    BaseColor, Metallic, Roughness, Emissive, EmissiveStrength, NormalScale, OcclusionStrength, AlphaCutoff,
+    Ior, SpecularFactor, SpecularColor, Clearcoat, ClearcoatRoughness, ClearcoatNormalScale,
+    LightColor, LightIntensity, LightRange, SpotInnerCone, SpotOuterCone,
+    CameraYfov, CameraZnear, CameraZfar,
+};
+enum class PropertyOwner { Material, Light, Camera };
+PropertyOwner ownerOf(AnimatedProperty p);
+int componentsOf(AnimatedProperty p); // the values per key: 4 (base colour), 3 (colours), else 1
+
+// The property a KHR_animation_pointer JSON pointer names, and the index of its material, light
+// (the file's KHR_lights_punctual.lights) or camera; false for any other pointer (a node's,
+// a texture transform's, an extension SoftRaster does not read).
+bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int& target);
+
+struct PropertyChannel {
+    AnimatedProperty property = AnimatedProperty::BaseColor;
+    int target = 0;  // the material, light or camera (the file's numbering)
+    int sampler = 0; // index into its clip's samplers
+};
+
 struct AnimationClip {
     std::string name;
     std::vector<AnimationSampler> samplers;
     std::vector<AnimationChannel> channels;
+    std::vector<PropertyChannel> properties;
     double duration = 0.0; // the last key time of its samplers
 };
 
@@ -88,6 +117,31 @@ struct AnimatedBlock {
     std::vector<std::array<float, 8>> weights;         // WEIGHTS_0 and _1, normalised to sum 1
 };
 
+// A light of the scene (Model::lights, node order) as its file gives it, for animated lights: its
+// KHR_lights_punctual light and that light's colour, intensity, range and cone angles (radians).
+struct LightSource {
+    int light = 0;
+    Light placed; // the light as the loader placed it (position, direction, type)
+    std::array<double, 3> colour{1, 1, 1};
+    double intensity = 1.0, range = 0.0, innerCone = 0.0, outerCone = 0.7853981633974483;
+};
+// A camera of the scene (Model::cameras, node order) as its file gives it, for animated cameras.
+struct CameraSource {
+    int camera = 0;
+    double yfov = 0.0, znear = 0.0, zfar = 0.0; // radians; zfar 0: infinite
+};
+
+// The animated materials, lights and cameras at one time (ModelAnimation::poseProperties).
+struct PosedProperties {
+    std::vector<int> materials;         // each material a clip animates (the file's numbering)
+    std::vector<Material> values;       // its colours, opacity and pbr input at that time (applyFactors)
+    std::vector<Light> lights;          // every light of the scene (Model::lights); empty: none animated
+    struct Camera {
+        double yfovDegrees, znear, zfar; // zfar 0: infinite
+    };
+    std::vector<Camera> cameras;        // every camera of the scene (Model::cameras); empty: none animated
+};
+
 // Everything a glTF file animates, kept beside the model's mesh (Model::animation): null for a
 // file without animations, skins or morph targets, so such a scene runs and allocates nothing for
 // animation.
@@ -96,6 +150,11 @@ struct ModelAnimation {
     std::vector<AnimationClip> clips;
     std::vector<AnimationSkin> skins;
     std::vector<AnimatedBlock> blocks;
+    // What property channels read: every material's numbers (the file's order; only when some
+    // clip animates a material), every scene light's and perspective camera's source.
+    std::vector<MaterialFactors> materials;
+    std::vector<LightSource> lights;
+    std::vector<CameraSource> cameras;
 
     // Sets each block's `moves`: a channel of some clip on its node or an ancestor, on one of its
     // skin's joints or their ancestors, or on its node's weights. Once, after loading.
@@ -117,6 +176,16 @@ struct ModelAnimation {
     // left as it is: `mesh` must hold the rest pose there. `restOnly`: no clip, the rest
     // transforms and weights, every block written.
     void pose(double t, int clip, Mesh& mesh, bool restOnly = false) const;
+
+    // Whether some clip animates a material, light or camera (a property channel).
+    bool animatesProperties() const;
+    bool animatesMaterial(int material) const;
+    // The animated materials, lights and cameras at time t (clips as in pose; a later channel on
+    // the same property wins). A value outside its property's range is treated as the loader
+    // treats it in a file: clamped (factors, angles), a light's intensity and range at least 0,
+    // a spot's inner cone kept below its outer; a camera's yfov outside (0, pi), znear <= 0 or a
+    // zfar not beyond znear keep the file's value.
+    PosedProperties poseProperties(double t, int clip) const;
 };
 
 } // namespace sr

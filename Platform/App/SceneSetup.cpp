@@ -22,6 +22,18 @@
 namespace sr::app {
 namespace {
 
+// A draw's colours, opacity and pbr input from its file material (under MaterialRule::Mtl).
+void setDrawColours(SceneDraw& d, const Material& m) {
+    // The reference's rule: a material with a map_Kd and a black Kd is "the texture alone".
+    const bool black = m.kd.r == 0.0f && m.kd.g == 0.0f && m.kd.b == 0.0f;
+    d.kd = m.hasMap && black ? Color{1.0f, 1.0f, 1.0f, 1.0f} : m.kd;
+    d.tint = d.kd;
+    d.specular = Specular{m.ks, m.shininess};
+    d.alpha = m.alpha;
+    d.texelAlpha = m.texelAlpha;
+    d.pbr = m.pbr;
+}
+
 // Splits a model into at most two compact meshes: the vertices of its textured ranges and those
 // of its untextured ones. Every draw of one mesh runs the same vertex program, so renderScene
 // transforms each mesh once per frame whatever the number of materials (its draws share the
@@ -31,8 +43,10 @@ namespace {
 // Each range is one draw with its material's values under `rule` (SceneOptions.hpp, MaterialRule),
 // its opacity included (a range of opacity 0 is not drawn); a range without a material from the
 // file (or under Fixed) gets kd = `kd`, the texel alone, ks 0.5, 32, opaque.
-// `origins`, when not null, gets for each scene mesh the model vertex of each of its vertices.
-Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std::vector<std::uint32_t>>* origins = nullptr) {
+// `origins`, when not null, gets for each scene mesh the model vertex of each of its vertices;
+// `drawMaterials`, when not null, each draw's file material (-1: none, or not the file's rule).
+Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std::vector<std::uint32_t>>* origins = nullptr,
+                     std::vector<int>* drawMaterials = nullptr) {
     Scene scene;
     for (const Image& img : model.textures)
         scene.textures.push_back(Texture::fromRgba8(img.width, img.height, img.rgba.data()));
@@ -94,22 +108,19 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
             d.wrap = m->wrap;
             d.filter = m->filter;
         }
-        if (rule == MaterialRule::Mtl && m && m->fromFile) {
-            // The reference's rule: a material with a map_Kd and a black Kd is "the texture alone".
-            const bool black = m->kd.r == 0.0f && m->kd.g == 0.0f && m->kd.b == 0.0f;
-            d.kd = m->hasMap && black ? Color{1.0f, 1.0f, 1.0f, 1.0f} : m->kd;
-            d.tint = d.kd;
-            d.specular = Specular{m->ks, m->shininess};
-            d.alpha = m->alpha;
-            d.texelAlpha = m->texelAlpha;
-            d.pbr = m->pbr;
+        const bool fromFile = rule == MaterialRule::Mtl && m && m->fromFile;
+        if (fromFile) {
+            setDrawColours(d, *m);
             d.addressing = m->addressing;
             if (model.hasUvs) {
                 for (const MapSlot s : kAllMapSlots) d.maps[s] = readsAlpha(s) ? alphaTexture(m->maps[s]) : m->maps[s];
             }
-            if (!(d.alpha > 0.0f)) continue; // fully transparent (glTF MASK below its cutoff): nothing to draw
+            // Fully transparent (glTF MASK below its cutoff): nothing to draw, unless an animation
+            // may make it visible (renderScene skips it while it is not).
+            if (!(d.alpha > 0.0f) && !(model.animation && model.animation->animatesMaterial(range.material))) continue;
         }
         scene.draws.push_back(d);
+        if (drawMaterials) drawMaterials->push_back(fromFile ? range.material : -1);
     }
     // Lines and points: the flat colour of their material (kd; lines carry no normal), else kd.
     for (LineSet& l : model.lineSets) {
@@ -244,7 +255,9 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
             out.posedModel.tangents = m.mesh.tangents;
         }
         const int clips = m.animation ? int(m.animation->clips.size()) : 0;
-        out.scene = sceneFromModel(std::move(m), options.kd, options.materials, out.animation ? &out.meshOrigins : nullptr);
+        const bool properties = m.animation && m.animation->animatesProperties();
+        out.scene = sceneFromModel(std::move(m), options.kd, options.materials, out.animation ? &out.meshOrigins : nullptr,
+                                   properties ? &out.drawMaterials : nullptr);
         if (options.animation && *options.animation >= clips)
             return Result<LoadedScene>::failure(options.obj + ": --animation " + std::to_string(*options.animation) + ": it has " +
                                                 std::to_string(clips) + " animation(s)" + (clips == 0 ? "" : " (numbered from 0)"));
@@ -397,6 +410,19 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
 
 void poseScene(LoadedScene& scene, double t, int clip) {
     if (!scene.animation) return;
+    if (scene.animation->animatesProperties()) {
+        const PosedProperties posed = scene.animation->poseProperties(t, clip);
+        for (std::size_t k = 0; k < posed.materials.size(); ++k)
+            for (std::size_t d = 0; d < scene.drawMaterials.size() && d < scene.scene.draws.size(); ++d)
+                if (scene.drawMaterials[d] == posed.materials[k]) setDrawColours(scene.scene.draws[d], posed.values[k]);
+        if (posed.lights.size() == scene.lights.size()) scene.lights = posed.lights;
+        for (std::size_t k = 0; k < posed.cameras.size() && k < scene.cameras.size(); ++k) {
+            CameraSetup& c = scene.cameras[k];
+            c.fovDegrees = posed.cameras[k].yfovDegrees;
+            c.nearZ = posed.cameras[k].znear;
+            c.farZ = posed.cameras[k].zfar > 0.0 ? posed.cameras[k].zfar : std::numeric_limits<double>::infinity();
+        }
+    }
     Mesh& model = scene.posedModel;
     scene.animation->pose(t, clip, model);
     for (std::size_t m = 0; m < scene.scene.meshes.size() && m < scene.meshOrigins.size(); ++m) {

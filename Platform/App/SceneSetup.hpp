@@ -49,11 +49,15 @@ struct LoadedScene {
     std::shared_ptr<const ModelAnimation> animation;
     Mesh posedModel;                                  // the model's vertices, posed (its numbering)
     std::vector<std::vector<std::uint32_t>> meshOrigins; // [mesh][k]: the model vertex of scene vertex k
+    // With animated material properties (KHR_animation_pointer): each draw's file material (-1: none).
+    std::vector<int> drawMaterials;
 };
 
 // Poses an animated scene at time t (seconds): clip `clip` alone, or every clip (clip < 0), as
-// ModelAnimation::pose says; the scene's meshes take the posed positions, normals and tangents.
-// Nothing for a scene without animation.
+// ModelAnimation::pose says; the scene's meshes take the posed positions, normals and tangents,
+// and where KHR_animation_pointer animates them, the draws their materials' colours and pbr
+// input, `lights` and `cameras` their properties (ModelAnimation::poseProperties): a frame view
+// made afterwards sees them. Nothing for a scene without animation.
 void poseScene(LoadedScene& scene, double t, int clip);
 
 // Loads options.obj (or builds the default scene when empty). Errors name the file.

@@ -96,6 +96,7 @@ int runBench(const std::vector<std::string>& args, Streams io) {
         if (animating) {
             app::poseScene(p.scene, now, clip);
             now += a.timeStep;
+            if (!p.scene.lights.empty()) p.view.lighting.lights = p.scene.lights; // animated lights (KHR_animation_pointer)
         }
         app::renderFrame(p.context, p.scene, p.view, settings);
     };

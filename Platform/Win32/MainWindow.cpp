@@ -103,7 +103,10 @@ void MainWindow::draw() {
     if (frame_.empty())
         return;
     context_.stats = {};
-    if (controller_.animated()) app::poseScene(scene_, controller_.animationTime(), controller_.animationClip());
+    if (controller_.animated()) {
+        app::poseScene(scene_, controller_.animationTime(), controller_.animationClip());
+        if (scene_.animation && scene_.animation->animatesProperties()) controller_.setLights(scene_.lights); // animated lights
+    }
     app::renderFrame(context_, scene_, controller_.frameView(frame_.width(), frame_.height()), controller_.settings());
     if (controller_.depthView())
         app::depthToGrey(frame_);

@@ -88,7 +88,7 @@ void drawTransparent(RenderContext& ctx, const Scene& scene, const FrameView& vi
     for (std::size_t i = 0; i < scene.draws.size(); ++i) {
         const SceneDraw& d = scene.draws[i];
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
-        if (!drawsBlended(materialOf(scene, d, textureOverride), mesh)) continue;
+        if (!(d.alpha > 0.0f) || !drawsBlended(materialOf(scene, d, textureOverride), mesh)) continue;
         for (std::uint32_t k = 0; k + 2 < d.indexCount; k += 3) {
             const std::uint32_t* t = mesh.indices.data() + d.firstIndex + k;
             const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0f;
@@ -141,6 +141,7 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         assert(d.mesh >= 0 && std::size_t(d.mesh) < scene.meshes.size());
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
         assert(std::size_t(d.firstIndex) + d.indexCount <= mesh.indices.size());
+        if (!(d.alpha > 0.0f)) continue; // fully transparent (an animated glTF MASK below its cutoff, for one)
         const SurfaceMaterial material = materialOf(scene, d, textureOverride);
         if (drawsBlended(material, mesh)) {
             anyTransparent = true;

@@ -98,9 +98,32 @@ Status addAnimation(ModelAnimation& a, const gltf::Document& g, gltf::Accessors&
             const std::string name = what + " channel " + std::to_string(c);
             int targetNode = gc.target_node;
             std::string targetPath = gc.target_path;
+            AnimatedProperty property{};
+            int target = 0;
+            if (targetPath == "pointer" && propertyPointer(gc.pointer, property, target)) {
+                const PropertyOwner owner = ownerOf(property);
+                const std::size_t count = owner == PropertyOwner::Material ? g.materials.size()
+                                          : owner == PropertyOwner::Light  ? g.lights.size()
+                                                                           : g.cameras.size();
+                if (std::size_t(target) >= count)
+                    return Status::failure(name + ": KHR_animation_pointer '" + gc.pointer + "' names a " +
+                                           (owner == PropertyOwner::Material ? "material" : owner == PropertyOwner::Light ? "light" : "camera") +
+                                           " that does not exist");
+                if (gc.sampler < 0 || std::size_t(gc.sampler) >= ga.samplers.size())
+                    return Status::failure(name + ": sampler " + std::to_string(gc.sampler) + " does not exist");
+                const int n = componentsOf(property);
+                int& have = components[std::size_t(gc.sampler)];
+                if (have != 0 && have != n) return Status::failure(name + ": sampler " + std::to_string(gc.sampler) + " drives targets of different sizes");
+                have = n;
+                clip.properties.push_back({property, target, gc.sampler});
+                if (owner == PropertyOwner::Material && a.materials.empty())
+                    for (const gltf::Material& gm : g.materials) a.materials.push_back(factorsOf(gm));
+                continue;
+            }
             if (targetPath == "pointer" && !nodePointer(gc.pointer, targetNode, targetPath)) {
                 warnings.push_back(path + ": " + name + ": KHR_animation_pointer '" + gc.pointer +
-                                   "' is not animated (node translations, rotations, scales and weights are)");
+                                   "' is not animated (node transforms and weights, material factors, light and camera properties are; "
+                                   "texture transforms are not)");
                 continue;
             }
             if (targetNode < 0) continue; // no target: ignored (glTF: an extension may define one)

@@ -47,7 +47,7 @@ const std::set<std::string>& supportedExtensions() {
         "EXT_mesh_gpu_instancing", "KHR_texture_basisu", "EXT_texture_avif", "KHR_materials_unlit",
         "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
         "KHR_materials_pbrSpecularGlossiness",
-        "KHR_animation_pointer"}; // node transforms and weights; other targets are named in a warning
+        "KHR_animation_pointer"}; // nodes, material factors, lights, cameras; other targets are named in a warning
     return kSupported;
 }
 

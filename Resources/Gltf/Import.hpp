@@ -11,6 +11,7 @@
 #include "Resources/Animation.hpp"
 #include "Resources/Gltf/Accessors.hpp"
 #include "Resources/Gltf/Document.hpp"
+#include "Resources/MaterialFactors.hpp"
 #include "Resources/Model.hpp"
 
 namespace sr::gltfimport {
@@ -51,7 +52,9 @@ Result<int> nodeLight(const gltf::Node& node, std::size_t lightCount);
 // empty when the node is not instanced.
 Result<std::vector<Mat4d>> instanceMatrices(Builder& b, const gltf::Node& node, int nodeIndex);
 
-// Materials.cpp: the metallic-roughness material and its Blinn-Phong mapping (GltfLoader.hpp).
+// Materials.cpp: the metallic-roughness material and its Blinn-Phong mapping (GltfLoader.hpp):
+// the material's numbers as the file gives them, and the Material they make (applyFactors).
+MaterialFactors factorsOf(const gltf::Material& gm);
 Material materialFrom(const gltf::Material& gm);
 
 // The reference of a material's map in a slot: its texture, uv set and transform.

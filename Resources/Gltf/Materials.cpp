@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "Resources/Gltf/Import.hpp"
+#include "Resources/MaterialFactors.hpp"
 
 namespace sr::gltfimport {
 
@@ -38,51 +39,97 @@ const gltf::TextureInfo& textureInfoOf(const gltf::Material& gm, MapSlot slot) {
     return none;
 }
 
-// The metallic-roughness to Blinn-Phong mapping of GltfLoader.hpp.
-Material materialFrom(const gltf::Material& gm) {
+MaterialFactors factorsOf(const gltf::Material& gm) {
     const auto& pbr = gm.pbrMetallicRoughness;
+    MaterialFactors f;
+    for (std::size_t c = 0; c < 4 && c < pbr.baseColorFactor.size(); ++c) f.baseColor[c] = pbr.baseColorFactor[c];
+    f.metallic = pbr.metallicFactor;
+    f.roughness = pbr.roughnessFactor;
+    for (std::size_t c = 0; c < 3 && c < gm.emissiveFactor.size(); ++c) f.emissive[c] = gm.emissiveFactor[c];
+    if (const auto ext = gm.extensions.find("KHR_materials_emissive_strength"); ext != gm.extensions.end()) {
+        const auto v = ext->find("emissiveStrength");
+        if (v != ext->end() && v->is_number()) f.emissiveStrength = v->get<double>();
+    }
+    f.normalScale = gm.normalTexture.scale;
+    f.occlusionStrength = gm.occlusionTexture.strength;
+    f.alphaMode = gm.alphaMode == "BLEND" ? MaterialFactors::Alpha::Blend
+                  : gm.alphaMode == "MASK" ? MaterialFactors::Alpha::Mask
+                                           : MaterialFactors::Alpha::Opaque;
+    f.alphaCutoff = gm.alphaCutoff;
+    f.unlit = gm.extensions.contains("KHR_materials_unlit");
+    const auto iorExt = gm.extensions.find("KHR_materials_ior"), specExt = gm.extensions.find("KHR_materials_specular");
+    f.hasIor = iorExt != gm.extensions.end();
+    f.hasSpecular = specExt != gm.extensions.end();
+    if (f.hasIor) f.ior = extensionNumber(*iorExt, "ior", 1.5);
+    if (f.hasSpecular) {
+        f.specularFactor = extensionNumber(*specExt, "specularFactor", 1.0);
+        if (specExt->is_object() && specExt->contains("specularColorFactor")) {
+            const gltf::Json& t = (*specExt)["specularColorFactor"];
+            for (std::size_t c = 0; c < 3; ++c)
+                if (t.is_array() && t.size() == 3 && t[c].is_number()) f.specularColor[c] = t[c].get<double>();
+        }
+    }
+    const auto& sg = gm.specularGlossiness;
+    f.specularGlossiness = sg.present;
+    f.glossMap = sg.present && gm.glossinessTexture.index >= 0;
+    f.glossiness = sg.glossinessFactor;
+    for (std::size_t c = 0; c < 3; ++c) f.sgSpecular[c] = c < sg.specularFactor.size() ? sg.specularFactor[c] : 1.0;
+    if (const auto ext = gm.extensions.find("KHR_materials_clearcoat"); ext != gm.extensions.end()) {
+        f.hasClearcoat = true;
+        f.clearcoat = extensionNumber(*ext, "clearcoatFactor", 0.0);
+        f.clearcoatRoughness = extensionNumber(*ext, "clearcoatRoughnessFactor", 0.0);
+        f.clearcoatNormalScale = gm.clearcoatNormalTexture.scale;
+    }
+    return f;
+}
+
+Material materialFrom(const gltf::Material& gm) {
     Material m;
     m.name = gm.name;
     m.fromFile = true;
-    double metal = std::clamp(pbr.metallicFactor, 0.0, 1.0), rough = std::clamp(pbr.roughnessFactor, 0.0, 1.0);
-    double base[3] = {1, 1, 1};
-    for (std::size_t c = 0; c < 3 && c < pbr.baseColorFactor.size(); ++c) base[c] = std::clamp(pbr.baseColorFactor[c], 0.0, 1.0);
+    m.doubleSided = gm.doubleSided;
+    applyFactors(factorsOf(gm), m);
+    return m;
+}
+
+} // namespace sr::gltfimport
+
+namespace sr {
+
+// The metallic-roughness to Blinn-Phong mapping of GltfLoader.hpp.
+void applyFactors(const MaterialFactors& in, Material& m) {
+    const auto number = [](double v, double fallback) { return std::isfinite(v) && v >= 0.0 ? v : fallback; };
+    double metal = std::clamp(in.metallic, 0.0, 1.0), rough = std::clamp(in.roughness, 0.0, 1.0);
+    double base[3];
+    for (std::size_t c = 0; c < 3; ++c) base[c] = std::clamp(in.baseColor[c], 0.0, 1.0);
     // The dielectric's F0 and specular weight: KHR_materials_ior (ior >= 1, or 0: F0 = 1) and
     // KHR_materials_specular (specularFactor in [0, 1], specularColorFactor >= 0); without them
     // 0.04 and 1 exactly.
     double f0[3] = {0.04, 0.04, 0.04}, f0Unclamped[3] = {0.04, 0.04, 0.04}, weight = 1.0;
-    const auto iorExt = gm.extensions.find("KHR_materials_ior"), specExt = gm.extensions.find("KHR_materials_specular");
-    const bool hasIor = iorExt != gm.extensions.end(), hasSpec = specExt != gm.extensions.end();
-    if (hasIor || hasSpec) {
-        double ior = hasIor ? extensionNumber(*iorExt, "ior", 1.5) : 1.5;
+    if (in.hasIor || in.hasSpecular) {
+        double ior = in.hasIor ? number(in.ior, 1.5) : 1.5;
         if (ior > 0.0 && ior < 1.0) ior = 1.5; // outside the extension's range: its default
         const double r = (ior - 1.0) / (ior + 1.0);
-        for (int c = 0; c < 3; ++c) {
-            double tint = 1.0;
-            if (hasSpec && specExt->is_object() && specExt->contains("specularColorFactor")) {
-                const gltf::Json& t = (*specExt)["specularColorFactor"];
-                if (t.is_array() && t.size() == 3 && t[std::size_t(c)].is_number() && std::isfinite(t[std::size_t(c)].get<double>()))
-                    tint = std::max(t[std::size_t(c)].get<double>(), 0.0);
-            }
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double tint = in.hasSpecular && std::isfinite(in.specularColor[c]) ? std::max(in.specularColor[c], 0.0) : 1.0;
             f0[c] = std::min(r * r * tint, 1.0);
             f0Unclamped[c] = r * r * tint;
         }
-        if (hasSpec) weight = std::min(extensionNumber(*specExt, "specularFactor", 1.0), 1.0);
+        if (in.hasSpecular) weight = std::min(number(in.specularFactor, 1.0), 1.0);
     }
     // KHR_materials_pbrSpecularGlossiness (its appendix): a dielectric with F0 = specular (RGB),
     // roughness 1 - glossiness and c_diff = diffuse x (1 - max(F0)). The diffuse is the base
     // colour here (Document.cpp); without a specularGlossinessTexture the factor 1 - max(F0) is
     // folded into it, with one the program applies it per pixel (kLobeSpecularGlossiness).
-    const auto& sg = gm.specularGlossiness;
-    const bool glossMap = sg.present && gm.glossinessTexture.index >= 0;
+    const bool glossMap = in.specularGlossiness && in.glossMap;
     double glossiness = 1.0, diffuseScale = 1.0;
-    if (sg.present) {
-        glossiness = std::isfinite(sg.glossinessFactor) ? std::clamp(sg.glossinessFactor, 0.0, 1.0) : 1.0;
+    if (in.specularGlossiness) {
+        glossiness = std::isfinite(in.glossiness) ? std::clamp(in.glossiness, 0.0, 1.0) : 1.0;
         metal = 0.0;
         rough = 1.0 - glossiness;
         double largest = 0.0;
         for (std::size_t c = 0; c < 3; ++c) {
-            const double v = c < sg.specularFactor.size() && std::isfinite(sg.specularFactor[c]) ? sg.specularFactor[c] : 1.0;
+            const double v = std::isfinite(in.sgSpecular[c]) ? in.sgSpecular[c] : 1.0;
             f0[c] = f0Unclamped[c] = std::clamp(v, 0.0, 1.0);
             largest = std::max(largest, f0[c]);
         }
@@ -107,40 +154,40 @@ Material materialFrom(const gltf::Material& gm) {
     f.specularWeight = float(weight);
     f.specularGlossiness = glossMap;
     f.glossiness = float(glossiness);
-    double emissive[3] = {0, 0, 0};
-    for (std::size_t c = 0; c < 3 && c < gm.emissiveFactor.size(); ++c) emissive[c] = std::clamp(gm.emissiveFactor[c], 0.0, 1.0);
-    double strength = 1.0;
-    if (const auto ext = gm.extensions.find("KHR_materials_emissive_strength"); ext != gm.extensions.end()) {
-        const auto v = ext->find("emissiveStrength");
-        if (v != ext->end() && v->is_number()) strength = std::max(v->get<double>(), 0.0);
-    }
+    double emissive[3];
+    for (std::size_t c = 0; c < 3; ++c) emissive[c] = std::clamp(in.emissive[c], 0.0, 1.0);
+    const double strength = std::max(in.emissiveStrength, 0.0);
     f.emissive = Vec3{float(emissive[0] * strength), float(emissive[1] * strength), float(emissive[2] * strength)};
-    f.normalScale = std::isfinite(gm.normalTexture.scale) ? float(gm.normalTexture.scale) : 1.0f;
-    f.occlusionStrength = float(std::clamp(gm.occlusionTexture.strength, 0.0, 1.0));
-    f.unlit = gm.extensions.contains("KHR_materials_unlit");
+    f.normalScale = std::isfinite(in.normalScale) ? float(in.normalScale) : 1.0f;
+    f.occlusionStrength = float(std::clamp(in.occlusionStrength, 0.0, 1.0));
+    f.unlit = in.unlit;
     // KHR_materials_clearcoat: the layer's weight and roughness in [0, 1], its normal map's scale.
-    if (const auto ext = gm.extensions.find("KHR_materials_clearcoat"); ext != gm.extensions.end()) {
-        f.clearcoat = float(std::min(extensionNumber(*ext, "clearcoatFactor", 0.0), 1.0));
-        f.clearcoatRoughness = float(std::min(extensionNumber(*ext, "clearcoatRoughnessFactor", 0.0), 1.0));
-        f.clearcoatNormalScale = std::isfinite(gm.clearcoatNormalTexture.scale) ? float(gm.clearcoatNormalTexture.scale) : 1.0f;
+    if (in.hasClearcoat) {
+        f.clearcoat = float(std::min(number(in.clearcoat, 0.0), 1.0));
+        f.clearcoatRoughness = float(std::min(number(in.clearcoatRoughness, 0.0), 1.0));
+        f.clearcoatNormalScale = std::isfinite(in.clearcoatNormalScale) ? float(in.clearcoatNormalScale) : 1.0f;
     }
     // Alpha modes. With the factor's alpha alone (untextured, or a texture without alpha): BLEND
     // blends with it, MASK keeps the surface when it reaches alphaCutoff and drops it otherwise,
     // OPAQUE ignores it. With a base colour texture, texelAlpha holds the per-fragment rule (the
     // factor times the texel's alpha), used when the texture has alpha.
-    const double a = pbr.baseColorFactor.size() > 3 ? std::clamp(pbr.baseColorFactor[3], 0.0, 1.0) : 1.0;
-    m.doubleSided = gm.doubleSided;
-    if (gm.alphaMode == "BLEND") {
+    const double a = std::clamp(in.baseColor[3], 0.0, 1.0);
+    m.alpha = 1.0f;
+    m.texelAlpha = TexelAlpha{};
+    if (in.alphaMode == MaterialFactors::Alpha::Blend) {
         m.alpha = float(a);
         m.texelAlpha = {AlphaMode::Blend, float(a), 0.5f};
-    } else if (gm.alphaMode == "MASK") {
-        m.alpha = a >= gm.alphaCutoff ? 1.0f : 0.0f;
-        m.texelAlpha = {AlphaMode::Mask, float(a), float(gm.alphaCutoff)};
+    } else if (in.alphaMode == MaterialFactors::Alpha::Mask) {
+        m.alpha = a >= in.alphaCutoff ? 1.0f : 0.0f;
+        m.texelAlpha = {AlphaMode::Mask, float(a), float(in.alphaCutoff)};
     }
     f.baseColor.a = float(a);
     m.pbr = f;
-    return m;
 }
+
+} // namespace sr
+
+namespace sr::gltfimport {
 
 // A glTF sampler as SoftRaster's wrap modes and filter. Wrap, along u (wrapS) and v (wrapT):
 // REPEAT (the default), CLAMP_TO_EDGE, MIRRORED_REPEAT. Filter, from minFilter: NEAREST ->

@@ -59,6 +59,7 @@ Status addCamera(Builder& b, const gltf::Camera& c, const Mat4d& world, int inde
     cam.znear = p.znear;
     cam.zfar = p.zfar;
     b.model.cameras.push_back(cam);
+    if (b.animation) b.animation->cameras.push_back({index, p.yfov, p.znear, p.zfar});
     return success();
 }
 
@@ -98,6 +99,9 @@ Status addLight(Builder& b, const gltf::Light& l, const Mat4d& world, int index)
     } else {
         return Status::failure(what + ": type '" + l.type + "' is not directional, point or spot");
     }
+    if (b.animation)
+        b.animation->lights.push_back({index, b.model.lights.back(), {rgb[0], rgb[1], rgb[2]}, l.intensity, l.range, l.spot.innerConeAngle,
+                                       l.spot.outerConeAngle});
     return success();
 }
 

@@ -418,3 +418,67 @@ TEST_CASE("a glTF scene drawn pbr in front of a sky is lit by it unless --no-ibl
 }
 #endif
 
+
+TEST_CASE("KHR_animation_pointer: a posed scene draws its material's animated colour and opacity, its lights and camera at that time",
+          "[platform][animation][pointer]") {
+    gltftest::Asset a;
+    // A quad facing +Z (an unlit MASK material, cutoff 0.5), a point light and a camera.
+    const int pos = a.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3");
+    const int input = a.floats({0, 1}, "SCALAR");
+    const int colours = a.floats({1, 0, 0, 0, 0, 0, 1, 1}, "VEC4"); // red, alpha 0 -> blue, alpha 1
+    const int ramp = a.floats({0, 10}, "SCALAR");
+    const int fov = a.floats({0.5f, 1.0f}, "SCALAR");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"material\":0}]}]";
+    a.materials = R"([{"alphaMode":"MASK","doubleSided":true,"extensions":{"KHR_materials_unlit":{}}}])";
+    a.nodes = R"([{"mesh":0},{"translation":[0,0,3],"extensions":{"KHR_lights_punctual":{"light":0}}},{"camera":0,"translation":[0,0,4]}])";
+    a.scenes = R"([{"nodes":[0,1,2]}])";
+    const auto channel = [](int sampler, const std::string& pointer) {
+        return R"({"sampler":)" + std::to_string(sampler) + R"(,"target":{"path":"pointer","extensions":{"KHR_animation_pointer":{"pointer":")" +
+               pointer + "\"}}}}";
+    };
+    a.extra = R"(,"extensionsUsed":["KHR_animation_pointer","KHR_lights_punctual","KHR_materials_unlit"],)"
+              R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":1}]}},)"
+              R"("cameras":[{"type":"perspective","perspective":{"yfov":0.5,"znear":0.1}}],)"
+              R"("animations":[{"samplers":[{"input":)" + std::to_string(input) + R"(,"output":)" + std::to_string(colours) +
+              R"(},{"input":)" + std::to_string(input) + R"(,"output":)" + std::to_string(ramp) + R"(},{"input":)" +
+              std::to_string(input) + R"(,"output":)" + std::to_string(fov) + R"(}],"channels":[)" +
+              channel(0, "/materials/0/pbrMetallicRoughness/baseColorFactor") + "," +
+              channel(1, "/extensions/KHR_lights_punctual/lights/0/intensity") + "," + channel(2, "/cameras/0/perspective/yfov") + "]}]";
+    SceneOptions o;
+    o.obj = objtest::writeText(objtest::freshDir("pointer-scene"), "pointer.gltf", a.embedded());
+    o.camera = 0;
+    auto loaded = loadScene(o);
+    REQUIRE(loaded.ok());
+    LoadedScene s = std::move(loaded).value();
+    REQUIRE_FALSE(applySceneDefaults(o, s).has_value());
+    // Alpha 0 at rest (below the cutoff): the draw is kept, for the animation to show it.
+    REQUIRE(s.scene.draws.size() == 1);
+    REQUIRE(s.drawMaterials == std::vector<int>{0});
+    FrameBuffer fb(32, 32);
+    RenderContext ctx(fb);
+    const auto centre = [&](double t) {
+        poseScene(s, t, -1);
+        const FrameView view = makeFrameView(resolveCamera(o, s), 32, 32, o.light, s.lights, s.physical);
+        renderFrame(ctx, s, view, makeRenderSettings(o));
+        return fb.pixel(16, 16);
+    };
+    const Pixel hidden = centre(0.0);
+    CHECK(s.scene.draws[0].alpha == 0.0f);
+    const Pixel late = centre(0.75); // alpha 0.75: drawn; base (0.25, 0, 0.75)
+    const Pixel background = fb.pixel(0, 0); // outside the quad at 0.75 s's field of view
+    CHECK(hidden == background);              // at 0 s, hidden: the background
+    CHECK(s.scene.draws[0].alpha == 1.0f);
+    REQUIRE(s.scene.draws[0].pbr);
+    CHECK(s.scene.draws[0].pbr->baseColor.b == Approx(0.75));
+    CHECK(late != background);
+    CHECK(pixelB(late) > pixelR(late));
+    CHECK(pixelR(late) > 0);
+    const Pixel early = centre(0.5); // alpha 0.5 reaches the cutoff: drawn, red and blue even
+    CHECK(pixelB(early) == pixelR(early));
+    CHECK(pixelB(early) < pixelB(late));
+    // The light's intensity and the camera's field of view at 0.5 s.
+    REQUIRE(s.lights.size() == 1);
+    CHECK(s.lights[0].colour.r == Approx(5.0));
+    CHECK(makeFrameView(resolveCamera(o, s), 32, 32, o.light, s.lights, s.physical).lighting.lights[0].colour.g == Approx(5.0));
+    CHECK(resolveCamera(o, s).fovDegrees == Approx(0.75 * 180.0 / 3.14159265358979323846));
+}

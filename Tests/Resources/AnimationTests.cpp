@@ -296,7 +296,7 @@ TEST_CASE("an animation sampler's output as a sparse accessor over zeros drives 
     checkVec(m.mesh.positions[0], 1, 0, 0);
 }
 
-TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as the core path does; other targets are named in a warning",
+TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as the core path does; a texture transform is named in a warning",
           "[resources][animation][pointer]") {
     const std::string dir = freshDir("gltf-pointer");
     Asset a;
@@ -314,17 +314,187 @@ TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as th
     a.extra = ",\"extensionsUsed\":[\"KHR_animation_pointer\"],\"extensionsRequired\":[\"KHR_animation_pointer\"],"
               "\"animations\":[{\"samplers\":[{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(moves) +
               "},{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(colours) + "}],\"channels\":[" +
-              pointerChannel(0, "/nodes/0/translation") + "," + pointerChannel(1, "/materials/0/pbrMetallicRoughness/baseColorFactor") + "]}]";
+              pointerChannel(0, "/nodes/0/translation") + "," + pointerChannel(1, "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/offset") + "]}]";
     auto r = loadGltf(writeText(dir, "pointer.gltf", a.embedded()));
     INFO((r ? std::string() : r.error()));
     REQUIRE(r.ok());
     Model m = std::move(r).value();
     REQUIRE(m.animation);
     REQUIRE(m.warnings.size() == 1);
-    CHECK(m.warnings[0].find("KHR_animation_pointer '/materials/0/pbrMetallicRoughness/baseColorFactor' is not animated") != std::string::npos);
+    CHECK(m.warnings[0].find("KHR_animation_pointer '/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/offset' "
+                             "is not animated") != std::string::npos);
     m.animation->pose(0.5, -1, m.mesh);
     checkVec(m.mesh.positions[0], 1, 0, 0);
     checkVec(m.mesh.positions[1], 2, 0, 0);
     m.animation->pose(0.25, -1, m.mesh);
     checkVec(m.mesh.positions[2], 0.5, 1, 0);
+}
+
+namespace {
+
+std::string pointerChannel(int sampler, const std::string& pointer) {
+    return "{\"sampler\":" + std::to_string(sampler) + ",\"target\":{\"path\":\"pointer\",\"extensions\":{\"KHR_animation_pointer\":{\"pointer\":\"" +
+           pointer + "\"}}}}";
+}
+
+// A triangle with material 0 (animated), material 1 (MASK, its alpha animated), a point and a
+// spot light and a camera: samplers over keys 0 and 1 s, each channel given by pointer.
+Asset propertyAsset(const std::string& channels, const std::string& material0 = "{}") {
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int input = a.floats({0, 1}, "SCALAR");
+    const int colours = a.floats({1, 0, 0, 1, 0, 0, 1, 1}, "VEC4");  // sampler 0: red -> blue
+    const int ramp = a.floats({0, 1}, "SCALAR");                      // sampler 1: 0 -> 1
+    const int intensity = a.floats({0, 10}, "SCALAR");                // sampler 2: 0 -> 10
+    const int cone = a.floats({0.5f, 1.0f}, "SCALAR");                // sampler 3: 0.5 -> 1
+    const int rgb = a.floats({1, 0.5f, 0, 1, 0.5f, 0}, "VEC3");       // sampler 4: (1, 0.5, 0)
+    const int negative = a.floats({-1, -1}, "SCALAR");               // sampler 5: -1
+    const int fade = a.floats({1, 1, 1, 0, 1, 1, 1, 1}, "VEC4");      // sampler 6: white, alpha 0 -> 1
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"material\":0}," +
+               "{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"material\":1}]}]";
+    a.nodes = "[{\"mesh\":0},{\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}},\"translation\":[0,0,2]},"
+              "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}},\"translation\":[0,0,3]},{\"camera\":0,\"translation\":[0,0,5]}]";
+    a.scenes = "[{\"nodes\":[0,1,2,3]}]";
+    a.materials = "[" + material0 + ",{\"alphaMode\":\"MASK\",\"alphaCutoff\":0.5}]";
+    std::string samplers;
+    for (const int out : {colours, ramp, intensity, cone, rgb, negative, fade})
+        samplers += std::string(samplers.empty() ? "" : ",") + "{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(out) + "}";
+    a.extra = ",\"extensionsUsed\":[\"KHR_animation_pointer\",\"KHR_lights_punctual\"],"
+              "\"extensions\":{\"KHR_lights_punctual\":{\"lights\":[{\"type\":\"point\",\"intensity\":3},"
+              "{\"type\":\"spot\",\"color\":[0,1,0],\"spot\":{\"innerConeAngle\":0.1,\"outerConeAngle\":0.4}}]}},"
+              "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.5,\"znear\":0.1,\"zfar\":100}}],"
+              "\"animations\":[{\"samplers\":[" + samplers + "],\"channels\":[" + channels + "]}]";
+    return a;
+}
+
+} // namespace
+
+TEST_CASE("KHR_animation_pointer: material factors posed at a time are the material a file with those values loads",
+          "[resources][animation][pointer]") {
+    const std::string dir = freshDir("gltf-pointer-material");
+    const std::string channels = pointerChannel(0, "/materials/0/pbrMetallicRoughness/baseColorFactor") + "," +
+                                 pointerChannel(1, "/materials/0/pbrMetallicRoughness/metallicFactor") + "," +
+                                 pointerChannel(1, "/materials/0/pbrMetallicRoughness/roughnessFactor") + "," +
+                                 pointerChannel(4, "/materials/0/emissiveFactor") + "," +
+                                 pointerChannel(2, "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength") + "," +
+                                 pointerChannel(3, "/materials/0/extensions/KHR_materials_ior/ior") + "," +
+                                 pointerChannel(1, "/materials/0/extensions/KHR_materials_clearcoat/clearcoatFactor") + "," +
+                                 pointerChannel(6, "/materials/1/pbrMetallicRoughness/baseColorFactor");
+    auto r = loadGltf(writeText(dir, "animated.gltf", propertyAsset(channels, "{\"extensions\":{\"KHR_materials_clearcoat\":{}}}").embedded()));
+    INFO((r ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model m = std::move(r).value();
+    REQUIRE(m.animation);
+    CHECK(m.warnings.empty());
+    CHECK(m.animation->animatesProperties());
+    CHECK(m.animation->animatesMaterial(0));
+    CHECK(m.animation->animatesMaterial(1));
+    // At 0.25 s: base (0.75, 0, 0.25, 1), metallic = roughness = 0.25, emissive (1, 0.5, 0) x 2.5,
+    // ior 0.625 (below 1: the extension's default 1.5, as a file's), clearcoat 0.25.
+    const PosedProperties posed = m.animation->poseProperties(0.25, -1);
+    REQUIRE(posed.materials.size() == 2);
+    CHECK(posed.materials[0] == 0);
+    CHECK(posed.materials[1] == 1);
+    // The same numbers written in a file, loaded.
+    Asset still;
+    const int pos = still.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    still.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"material\":0}]}]";
+    still.nodes = "[{\"mesh\":0}]";
+    still.materials = "[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.75,0,0.25,1],\"metallicFactor\":0.25,\"roughnessFactor\":0.25},"
+                      "\"emissiveFactor\":[1,0.5,0],\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":2.5},"
+                      "\"KHR_materials_ior\":{\"ior\":0.625},\"KHR_materials_clearcoat\":{\"clearcoatFactor\":0.25}}}]";
+    auto s = loadGltf(writeText(dir, "still.gltf", still.embedded()));
+    INFO((s ? std::string() : s.error()));
+    REQUIRE(s.ok());
+    const Material& want = s.value().materials[0];
+    const Material& got = posed.values[0];
+    REQUIRE(got.pbr);
+    REQUIRE(want.pbr);
+    CHECK(got.pbr->baseColor.r == Approx(0.75));
+    CHECK(got.pbr->baseColor.b == Approx(0.25));
+    CHECK(got.pbr->metallic == Approx(0.25));
+    CHECK(got.pbr->emissive.x == Approx(2.5));
+    CHECK(got.pbr->emissive.y == Approx(1.25));
+    CHECK(got.pbr->clearcoat == Approx(0.25));
+    CHECK(got.kd.r == Approx(0.75 * 0.75)); // base x (1 - metallic)
+    const auto same = [](const Color& a, const Color& b) { return a.r == b.r && a.g == b.g && a.b == b.b && a.a == b.a; };
+    CHECK(same(got.kd, want.kd));
+    CHECK(same(got.ks, want.ks));
+    CHECK(got.shininess == want.shininess);
+    CHECK(same(got.pbr->baseColor, want.pbr->baseColor));
+    CHECK(got.pbr->metallic == want.pbr->metallic);
+    CHECK(got.pbr->roughness == want.pbr->roughness);
+    CHECK(got.pbr->emissive == want.pbr->emissive);
+    CHECK(got.pbr->dielectricF0 == want.pbr->dielectricF0);
+    CHECK(got.pbr->clearcoat == want.pbr->clearcoat);
+    CHECK(got.alpha == want.alpha);
+    // Material 1 (MASK, cutoff 0.5): its alpha 0.25 is below the cutoff (dropped), 0.75 above.
+    CHECK(posed.values[1].alpha == 0.0f);
+    CHECK(posed.values[1].texelAlpha.mode == AlphaMode::Mask);
+    CHECK(m.animation->poseProperties(0.75, -1).values[1].alpha == 1.0f);
+    // Looped as the node channels are: 1.25 s is 0.25 s.
+    CHECK(m.animation->poseProperties(1.25, -1).values[0].pbr->metallic == got.pbr->metallic);
+    // Nothing animates a light or a camera here: none is posed.
+    CHECK(posed.lights.empty());
+    CHECK(posed.cameras.empty());
+}
+
+TEST_CASE("KHR_animation_pointer: light colour, intensity, range and spot cones, camera yfov; values out of range treated as a file's",
+          "[resources][animation][pointer]") {
+    const std::string dir = freshDir("gltf-pointer-lights");
+    const std::string channels = pointerChannel(2, "/extensions/KHR_lights_punctual/lights/0/intensity") + "," +
+                                 pointerChannel(4, "/extensions/KHR_lights_punctual/lights/0/color") + "," +
+                                 pointerChannel(2, "/extensions/KHR_lights_punctual/lights/0/range") + "," +
+                                 pointerChannel(3, "/extensions/KHR_lights_punctual/lights/1/spot/outerConeAngle") + "," +
+                                 pointerChannel(3, "/cameras/0/perspective/yfov") + "," + pointerChannel(5, "/cameras/0/perspective/znear");
+    auto r = loadGltf(writeText(dir, "lights.gltf", propertyAsset(channels).embedded()));
+    INFO((r ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model m = std::move(r).value();
+    REQUIRE(m.animation);
+    REQUIRE(m.lights.size() == 2);
+    CHECK_FALSE(m.animation->animatesMaterial(0));
+    const PosedProperties posed = m.animation->poseProperties(0.5, -1);
+    CHECK(posed.materials.empty());
+    REQUIRE(posed.lights.size() == 2);
+    // The point light: intensity 5 (was 3), colour (1, 0.5, 0), range 5; its place kept.
+    const Light& point = posed.lights[0];
+    CHECK(point.type == LightType::Point);
+    CHECK(point.colour.r == Approx(5.0));
+    CHECK(point.colour.g == Approx(2.5));
+    CHECK(point.colour.b == 0.0f);
+    CHECK(point.range == Approx(5.0));
+    CHECK(point.position.z == Approx(2.0));
+    // The spot: outer cone 0.75 rad, inner 0.1 as the file says, green x 1.
+    const Light& spot = posed.lights[1];
+    const Light want = Light::spot(Vec3(0, 0, 3), Vec3(0, 0, -1), Color{0, 1, 0, 1}, 0.1f, 0.75f);
+    CHECK(spot.type == LightType::Spot);
+    CHECK(spot.coneScale == want.coneScale);
+    CHECK(spot.coneOffset == want.coneOffset);
+    CHECK(spot.coneScale != m.lights[1].coneScale);
+    CHECK(spot.colour.g == 1.0f);
+    // The camera: yfov 0.75 rad; znear animated to -1 is no znear: the file's 0.1 kept.
+    REQUIRE(posed.cameras.size() == 1);
+    CHECK(posed.cameras[0].yfovDegrees == Approx(0.75 * 180.0 / kPiD));
+    CHECK(posed.cameras[0].znear == Approx(0.1));
+    CHECK(posed.cameras[0].zfar == Approx(100.0));
+    // At 0 s the intensity key is 0: the light is black (not the file's 3).
+    CHECK(m.animation->poseProperties(0.0, -1).lights[0].colour.r == 0.0f);
+}
+
+TEST_CASE("KHR_animation_pointer: a pointer to a material, light or camera that does not exist, or a sampler of the wrong size, is an error",
+          "[resources][animation][pointer][errors]") {
+    const std::string dir = freshDir("gltf-pointer-bad");
+    const auto fails = [&](const std::string& channels, const std::string& text) {
+        auto r = loadGltf(writeText(dir, "bad.gltf", propertyAsset(channels).embedded()));
+        REQUIRE_FALSE(r.ok());
+        INFO(r.error());
+        CHECK(r.error().find("bad.gltf") != std::string::npos);
+        CHECK(r.error().find(text) != std::string::npos);
+    };
+    fails(pointerChannel(1, "/materials/7/pbrMetallicRoughness/metallicFactor"), "names a material that does not exist");
+    fails(pointerChannel(2, "/extensions/KHR_lights_punctual/lights/2/intensity"), "names a light that does not exist");
+    fails(pointerChannel(3, "/cameras/1/perspective/yfov"), "names a camera that does not exist");
+    // Sampler 1 holds one value per key; a colour needs four.
+    fails(pointerChannel(1, "/materials/0/pbrMetallicRoughness/baseColorFactor"), "expected 8 values (4 per key)");
 }
