@@ -275,11 +275,51 @@ int componentsOf(AnimatedProperty p) {
     case AnimatedProperty::Emissive:
     case AnimatedProperty::SpecularColor:
     case AnimatedProperty::LightColor: return 3;
+    case AnimatedProperty::TextureOffset:
+    case AnimatedProperty::TextureScale: return 2;
     default: return 1;
     }
 }
 
-bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int& target) {
+namespace {
+
+// "<texture reference>/extensions/KHR_texture_transform/<offset | rotation | scale>" under a
+// material: the reference (0 the base colour texture, 1 + its MapSlot) and the property.
+bool transformPointer(const std::string& rest, AnimatedProperty& property, int& reference) {
+    static const std::pair<const char*, int> kReferences[] = {
+        {"pbrMetallicRoughness/baseColorTexture", 0},
+        {"pbrMetallicRoughness/metallicRoughnessTexture", 1 + int(MapSlot::MetallicRoughness)},
+        {"emissiveTexture", 1 + int(MapSlot::Emissive)},
+        {"normalTexture", 1 + int(MapSlot::Normal)},
+        {"occlusionTexture", 1 + int(MapSlot::Occlusion)},
+        {"extensions/KHR_materials_specular/specularTexture", 1 + int(MapSlot::Specular)},
+        {"extensions/KHR_materials_specular/specularColorTexture", 1 + int(MapSlot::SpecularColour)},
+        {"extensions/KHR_materials_clearcoat/clearcoatTexture", 1 + int(MapSlot::Clearcoat)},
+        {"extensions/KHR_materials_clearcoat/clearcoatRoughnessTexture", 1 + int(MapSlot::ClearcoatRoughness)},
+        {"extensions/KHR_materials_clearcoat/clearcoatNormalTexture", 1 + int(MapSlot::ClearcoatNormal)},
+    };
+    static const std::pair<const char*, AnimatedProperty> kValues[] = {{"offset", AnimatedProperty::TextureOffset},
+                                                                       {"rotation", AnimatedProperty::TextureRotation},
+                                                                       {"scale", AnimatedProperty::TextureScale}};
+    static const std::string kExtension = "/extensions/KHR_texture_transform/";
+    for (const auto& [name, slot] : kReferences) {
+        const std::string prefix = name + kExtension;
+        if (rest.compare(0, prefix.size(), prefix) != 0) continue;
+        for (const auto& [value, p] : kValues)
+            if (rest.compare(prefix.size(), std::string::npos, value) == 0) {
+                property = p;
+                reference = slot;
+                return true;
+            }
+        return false;
+    }
+    return false;
+}
+
+} // namespace
+
+bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int& target, int& reference) {
+    reference = 0;
     struct Owner {
         const char* prefix;
         std::initializer_list<std::pair<const char*, AnimatedProperty>> paths;
@@ -317,6 +357,10 @@ bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int
         while (i < pointer.size() && pointer[i] >= '0' && pointer[i] <= '9' && index <= 2147483647) index = index * 10 + (pointer[i++] - '0');
         if (i == n || i >= pointer.size() || pointer[i] != '/' || index > 2147483647) return false;
         const std::string rest = pointer.substr(i + 1);
+        if (std::char_traits<char>::compare(owner.prefix, "/materials/", n) == 0 && transformPointer(rest, property, reference)) {
+            target = int(index);
+            return true;
+        }
         for (const auto& [path, p] : owner.paths)
             if (rest == path) {
                 property = p;
@@ -341,11 +385,18 @@ bool ModelAnimation::animatesMaterial(int material) const {
     return false;
 }
 
+bool ModelAnimation::animatesTransforms(int material) const {
+    for (const AnimationClip& c : clips)
+        for (const PropertyChannel& ch : c.properties)
+            if (isTextureTransform(ch.property) && ch.target == material) return true;
+    return false;
+}
+
 PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
     PosedProperties out;
     // The file's numbers, then the channels over them.
     std::vector<MaterialFactors> factors;
-    std::vector<std::uint8_t> materialAnimated(materials.size(), 0);
+    std::vector<std::uint8_t> materialAnimated(materials.size(), 0), transformAnimated(materials.size(), 0);
     struct LightValues {
         std::array<double, 3> colour;
         double intensity, range, inner, outer;
@@ -365,6 +416,7 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
                 if (target >= materials.size()) break;
                 if (factors.empty()) factors = materials;
                 materialAnimated[target] = 1;
+                if (isTextureTransform(ch.property)) transformAnimated[target] = 1;
                 MaterialFactors& f = factors[target];
                 switch (ch.property) {
                 case AnimatedProperty::BaseColor: std::copy(v, v + 4, f.baseColor.begin()); break;
@@ -381,6 +433,9 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
                 case AnimatedProperty::Clearcoat: f.clearcoat = v[0], f.hasClearcoat = true; break;
                 case AnimatedProperty::ClearcoatRoughness: f.clearcoatRoughness = v[0], f.hasClearcoat = true; break;
                 case AnimatedProperty::ClearcoatNormalScale: f.clearcoatNormalScale = v[0], f.hasClearcoat = true; break;
+                case AnimatedProperty::TextureOffset: std::copy(v, v + 2, f.transforms[std::size_t(ch.reference)].offset.begin()); break;
+                case AnimatedProperty::TextureRotation: f.transforms[std::size_t(ch.reference)].rotation = v[0]; break;
+                case AnimatedProperty::TextureScale: std::copy(v, v + 2, f.transforms[std::size_t(ch.reference)].scale.begin()); break;
                 default: break;
                 }
                 break;
@@ -417,6 +472,16 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
         applyFactors(factors[m], material);
         out.materials.push_back(int(m));
         out.values.push_back(std::move(material));
+        if (!transformAnimated[m]) continue;
+        PosedProperties::Transforms posed;
+        posed.material = int(m);
+        for (std::size_t k = 0; k < posed.m.size(); ++k) {
+            float matrix[2][3];
+            factors[m].transforms[k].storedMatrix(matrix);
+            for (int r = 0; r < 2; ++r)
+                for (int c = 0; c < 3; ++c) posed.m[k][std::size_t(r)][std::size_t(c)] = std::isfinite(matrix[r][c]) ? matrix[r][c] : 0.0f;
+        }
+        out.transforms.push_back(posed);
     }
     for (std::size_t k = 0; k < lightValues.size(); ++k) {
         const LightSource& s = lights[k];

@@ -58,22 +58,28 @@ struct AnimationChannel {
 enum class AnimatedProperty : std::uint8_t {
     BaseColor, Metallic, Roughness, Emissive, EmissiveStrength, NormalScale, OcclusionStrength, AlphaCutoff,
     Ior, SpecularFactor, SpecularColor, Clearcoat, ClearcoatRoughness, ClearcoatNormalScale,
+    TextureOffset, TextureRotation, TextureScale, // a texture reference's KHR_texture_transform
     LightColor, LightIntensity, LightRange, SpotInnerCone, SpotOuterCone,
     CameraYfov, CameraZnear, CameraZfar,
 };
 enum class PropertyOwner { Material, Light, Camera };
 PropertyOwner ownerOf(AnimatedProperty p);
-int componentsOf(AnimatedProperty p); // the values per key: 4 (base colour), 3 (colours), else 1
+int componentsOf(AnimatedProperty p); // the values per key: 4 (base colour), 3 (colours), 2 (uv offset, scale), else 1
+constexpr bool isTextureTransform(AnimatedProperty p) {
+    return p == AnimatedProperty::TextureOffset || p == AnimatedProperty::TextureRotation || p == AnimatedProperty::TextureScale;
+}
 
-// The property a KHR_animation_pointer JSON pointer names, and the index of its material, light
-// (the file's KHR_lights_punctual.lights) or camera; false for any other pointer (a node's,
-// a texture transform's, an extension SoftRaster does not read).
-bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int& target);
+// The property a KHR_animation_pointer JSON pointer names, the index of its material, light
+// (the file's KHR_lights_punctual.lights) or camera, and for a texture transform its reference
+// (`reference`: 0 the base colour texture, 1 + a MapSlot); false for any other pointer (a
+// node's, an extension SoftRaster does not read).
+bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int& target, int& reference);
 
 struct PropertyChannel {
     AnimatedProperty property = AnimatedProperty::BaseColor;
-    int target = 0;  // the material, light or camera (the file's numbering)
-    int sampler = 0; // index into its clip's samplers
+    int target = 0;    // the material, light or camera (the file's numbering)
+    int reference = 0; // a texture transform's texture reference (propertyPointer)
+    int sampler = 0;   // index into its clip's samplers
 };
 
 struct AnimationClip {
@@ -140,6 +146,13 @@ struct PosedProperties {
         double yfovDegrees, znear, zfar; // zfar 0: infinite
     };
     std::vector<Camera> cameras;        // every camera of the scene (Model::cameras); empty: none animated
+    // Each material whose texture transforms a clip animates: every reference's transform at that
+    // time on stored uvs (MapAddress::m; the base colour texture's, then each MapSlot's).
+    struct Transforms {
+        int material = 0;
+        std::array<std::array<std::array<float, 3>, 2>, 1 + kMapSlots> m;
+    };
+    std::vector<Transforms> transforms;
 };
 
 // Everything a glTF file animates, kept beside the model's mesh (Model::animation): null for a
@@ -180,6 +193,8 @@ struct ModelAnimation {
     // Whether some clip animates a material, light or camera (a property channel).
     bool animatesProperties() const;
     bool animatesMaterial(int material) const;
+    // Whether some clip animates one of the material's texture transforms.
+    bool animatesTransforms(int material) const;
     // The animated materials, lights and cameras at time t (clips as in pose; a later channel on
     // the same property wins). A value outside its property's range is treated as the loader
     // treats it in a file: clamped (factors, angles), a light's intensity and range at least 0,

@@ -3,9 +3,23 @@
 
 #include <array>
 
+#include "Raster/Shade/MaterialMaps.hpp" // kMapSlots
+
 namespace sr {
 
 struct Material; // Resources/Model.hpp
+
+// KHR_texture_transform of one texture reference: offset, rotation (radians) and scale.
+struct TextureTransform {
+    std::array<double, 2> offset{0, 0};
+    double rotation = 0.0;
+    std::array<double, 2> scale{1, 1};
+    // uv' = m (u, v, 1) in glTF's uv space (v down the image): translation x rotation x scale,
+    // the extension's order, with its rotation matrix [[c, s], [-s, c]].
+    void matrix(double m[2][3]) const;
+    // The same map restated on stored uvs (u, 1 - v) (MapAddress::m).
+    void storedMatrix(float m[2][3]) const;
+};
 
 // The numbers of a glTF material (its core factors and those of the extensions SoftRaster
 // reads), unclamped, as written in the file or as an animation sets them. applyFactors turns
@@ -31,6 +45,9 @@ struct MaterialFactors {
     // KHR_materials_clearcoat, where the material has it.
     bool hasClearcoat = false;
     double clearcoat = 0.0, clearcoatRoughness = 0.0, clearcoatNormalScale = 1.0;
+    // Each texture reference's KHR_texture_transform: the base colour texture's, then each
+    // MapSlot's (identity where there is none).
+    std::array<TextureTransform, 1 + kMapSlots> transforms;
 };
 
 // Sets m's colours (kd, ks, shininess), opacity (alpha, texelAlpha) and pbr input from f; every

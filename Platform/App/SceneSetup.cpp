@@ -408,6 +408,34 @@ RenderSettings makeRenderSettings(const SceneOptions& o) {
     return s;
 }
 
+namespace {
+
+// A draw whose material's texture transforms move: each map's address takes its transform at
+// this time, and the uvs the draw reads where its maps share one address (and the shading
+// models that read the base colour texture alone) are its first map's set through it again.
+void moveTransforms(Scene& scene, SceneDraw& d, const PosedProperties::Transforms& moved) {
+    if (!d.addressing) return;
+    MapAddressing& a = *d.addressing;
+    const auto set = [&](MapAddress& address, std::size_t k) {
+        for (int r = 0; r < 2; ++r)
+            for (int c = 0; c < 3; ++c) address.m[r][c] = moved.m[k][std::size_t(r)][std::size_t(c)];
+    };
+    set(a.base, 0);
+    for (const MapSlot s : kAllMapSlots) set(a[s], 1 + std::size_t(s));
+    const MapAddress* first = d.texture >= 0 ? &a.base : nullptr;
+    for (const MapSlot s : kAllMapSlots)
+        if (!first && d.maps.has(s)) first = &a[s];
+    Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
+    if (!first || !mesh.hasUvs() || !mesh.hasUvSets()) return;
+    const std::vector<Vec2>& raw = mesh.uvSets[std::size_t(first->uvSet)];
+    for (std::uint32_t i = d.firstIndex; i < d.firstIndex + d.indexCount; ++i) {
+        const std::uint32_t v = mesh.indices[i];
+        mesh.uvs[v] = first->apply(raw[v]);
+    }
+}
+
+} // namespace
+
 void poseScene(LoadedScene& scene, double t, int clip) {
     if (!scene.animation) return;
     if (scene.animation->animatesProperties()) {
@@ -415,6 +443,9 @@ void poseScene(LoadedScene& scene, double t, int clip) {
         for (std::size_t k = 0; k < posed.materials.size(); ++k)
             for (std::size_t d = 0; d < scene.drawMaterials.size() && d < scene.scene.draws.size(); ++d)
                 if (scene.drawMaterials[d] == posed.materials[k]) setDrawColours(scene.scene.draws[d], posed.values[k]);
+        for (const PosedProperties::Transforms& moved : posed.transforms)
+            for (std::size_t d = 0; d < scene.drawMaterials.size() && d < scene.scene.draws.size(); ++d)
+                if (scene.drawMaterials[d] == moved.material) moveTransforms(scene.scene, scene.scene.draws[d], moved);
         if (posed.lights.size() == scene.lights.size()) scene.lights = posed.lights;
         for (std::size_t k = 0; k < posed.cameras.size() && k < scene.cameras.size(); ++k) {
             CameraSetup& c = scene.cameras[k];

@@ -99,8 +99,8 @@ Status addAnimation(ModelAnimation& a, const gltf::Document& g, gltf::Accessors&
             int targetNode = gc.target_node;
             std::string targetPath = gc.target_path;
             AnimatedProperty property{};
-            int target = 0;
-            if (targetPath == "pointer" && propertyPointer(gc.pointer, property, target)) {
+            int target = 0, reference = 0;
+            if (targetPath == "pointer" && propertyPointer(gc.pointer, property, target, reference)) {
                 const PropertyOwner owner = ownerOf(property);
                 const std::size_t count = owner == PropertyOwner::Material ? g.materials.size()
                                           : owner == PropertyOwner::Light  ? g.lights.size()
@@ -115,15 +115,15 @@ Status addAnimation(ModelAnimation& a, const gltf::Document& g, gltf::Accessors&
                 int& have = components[std::size_t(gc.sampler)];
                 if (have != 0 && have != n) return Status::failure(name + ": sampler " + std::to_string(gc.sampler) + " drives targets of different sizes");
                 have = n;
-                clip.properties.push_back({property, target, gc.sampler});
+                clip.properties.push_back({property, target, reference, gc.sampler});
                 if (owner == PropertyOwner::Material && a.materials.empty())
                     for (const gltf::Material& gm : g.materials) a.materials.push_back(factorsOf(gm));
                 continue;
             }
             if (targetPath == "pointer" && !nodePointer(gc.pointer, targetNode, targetPath)) {
                 warnings.push_back(path + ": " + name + ": KHR_animation_pointer '" + gc.pointer +
-                                   "' is not animated (node transforms and weights, material factors, light and camera properties are; "
-                                   "texture transforms are not)");
+                                   "' is not animated (node transforms and weights, material factors and texture transforms, "
+                                   "light and camera properties are)");
                 continue;
             }
             if (targetNode < 0) continue; // no target: ignored (glTF: an extension may define one)

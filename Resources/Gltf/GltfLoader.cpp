@@ -148,6 +148,16 @@ Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const 
         b.animation = std::make_shared<ModelAnimation>();
         b.animation->nodes.resize(g.nodes.size());
     }
+    // Materials whose texture transforms a clip moves, known before their primitives are read.
+    b.animatedTransforms.assign(g.materials.size(), 0);
+    for (const gltf::Animation& ga : g.animations)
+        for (const gltf::AnimationChannel& gc : ga.channels) {
+            AnimatedProperty property{};
+            int material = 0, reference = 0;
+            if (gc.target_path == "pointer" && propertyPointer(gc.pointer, property, material, reference) && isTextureTransform(property) &&
+                std::size_t(material) < g.materials.size())
+                b.animatedTransforms[std::size_t(material)] = 1;
+        }
     // Depth-first over the scene's node trees; a node met twice makes the graph not a tree.
     std::vector<std::uint8_t> seen(g.nodes.size(), 0);
     struct Item {
@@ -234,7 +244,7 @@ Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const 
     for (std::size_t i = 0; i < g.materials.size(); ++i) {
         model.materials.push_back(materialFrom(g.materials[i]));
         std::string problem;
-        materialAddressing(g, g.materials[i], &problem);
+        materialAddressing(g, g.materials[i], &problem, b.transformsMove(int(i)));
         if (!problem.empty()) model.warnings.push_back(path + ": material " + std::to_string(i) + ": " + problem);
     }
     const Status textures = addTextures(b, options, dir);

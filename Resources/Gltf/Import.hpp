@@ -36,6 +36,12 @@ struct Builder {
     std::size_t lineElements = 0, lineVertices = 0; // in model.lineSets, for the limits
     std::size_t triangles = 0; // in trianglesOf (the mesh's indices are filled at the end)
     bool anyComputedNormal = false, anyFileNormal = false;
+    // [material]: an animation moves one of its texture transforms (KHR_animation_pointer): its
+    // maps are drawn at their own addresses from the raw uv sets (materialAddressing's `force`).
+    std::vector<std::uint8_t> animatedTransforms;
+    bool transformsMove(int material) const {
+        return material >= 0 && std::size_t(material) < animatedTransforms.size() && animatedTransforms[std::size_t(material)] != 0;
+    }
 };
 
 // Nodes.cpp: the node's local transform (glTF: matrix, column-major, or T * R * S).
@@ -81,7 +87,8 @@ struct UvSource {
 };
 UvSource materialUvSource(const gltf::Material& gm);
 SamplerModes materialSampler(const gltf::Document& g, const gltf::Material& gm);
-std::optional<MapAddressing> materialAddressing(const gltf::Document& g, const gltf::Material& gm, std::string* problem);
+// `force`: an address for each map even where they share one (a material whose transforms move).
+std::optional<MapAddressing> materialAddressing(const gltf::Document& g, const gltf::Material& gm, std::string* problem, bool force = false);
 
 // Tangents.cpp: per-vertex tangents of vertices [base, end) from their triangles, along the
 // mesh's uvs or `uvs` (vertex base + k reads (*uvs)[k]: a normal map's own).

@@ -19,6 +19,32 @@ double extensionNumber(const gltf::Json& ext, const char* key, double fallback) 
     return v != ext.end() && v->is_number() && std::isfinite(v->get<double>()) && v->get<double>() >= 0.0 ? v->get<double>() : fallback;
 }
 
+// A texture reference's KHR_texture_transform values (a value missing or not a number: its default).
+TextureTransform transformOf(const gltf::Json& v) {
+    TextureTransform t;
+    const auto number = [&](const gltf::Json& x, double fallback) {
+        return x.is_number() && std::isfinite(x.get<double>()) ? x.get<double>() : fallback;
+    };
+    const auto pair = [&](const char* key) { return v.contains(key) && v[key].is_array() && v[key].size() == 2; };
+    for (std::size_t k = 0; k < 2; ++k) {
+        if (pair("offset")) t.offset[k] = number(v["offset"][k], 0.0);
+        if (pair("scale")) t.scale[k] = number(v["scale"][k], 1.0);
+    }
+    if (v.contains("rotation")) t.rotation = number(v["rotation"], 0.0);
+    return t;
+}
+
+// A matrix on glTF's uvs restated on stored uvs (u, 1 - v): with s = u and t = 1 - v,
+// s' = m00 s - m01 t + (m01 + m02), t' = -m10 s + m11 t + (1 - m11 - m12).
+void restate(const double (&m)[2][3], float out[2][3]) {
+    out[0][0] = float(m[0][0]);
+    out[0][1] = float(-m[0][1]);
+    out[0][2] = float(m[0][1] + m[0][2]);
+    out[1][0] = float(-m[1][0]);
+    out[1][1] = float(m[1][1]);
+    out[1][2] = float(1.0 - m[1][1] - m[1][2]);
+}
+
 } // namespace
 
 const gltf::TextureInfo& textureInfoOf(const gltf::Material& gm, MapSlot slot) {
@@ -74,6 +100,11 @@ MaterialFactors factorsOf(const gltf::Material& gm) {
     f.glossMap = sg.present && gm.glossinessTexture.index >= 0;
     f.glossiness = sg.glossinessFactor;
     for (std::size_t c = 0; c < 3; ++c) f.sgSpecular[c] = c < sg.specularFactor.size() ? sg.specularFactor[c] : 1.0;
+    for (std::size_t k = 0; k < f.transforms.size(); ++k) {
+        const gltf::TextureInfo& info = k == 0 ? pbr.baseColorTexture : textureInfoOf(gm, kAllMapSlots[k - 1]);
+        if (const auto ext = info.extensions.find("KHR_texture_transform"); ext != info.extensions.end() && ext->is_object())
+            f.transforms[k] = transformOf(*ext);
+    }
     if (const auto ext = gm.extensions.find("KHR_materials_clearcoat"); ext != gm.extensions.end()) {
         f.hasClearcoat = true;
         f.clearcoat = extensionNumber(*ext, "clearcoatFactor", 0.0);
@@ -95,6 +126,22 @@ Material materialFrom(const gltf::Material& gm) {
 } // namespace sr::gltfimport
 
 namespace sr {
+
+void TextureTransform::matrix(double m[2][3]) const {
+    const double c = std::cos(rotation), s = std::sin(rotation);
+    m[0][0] = c * scale[0];
+    m[0][1] = s * scale[1];
+    m[0][2] = offset[0];
+    m[1][0] = -s * scale[0];
+    m[1][1] = c * scale[1];
+    m[1][2] = offset[1];
+}
+
+void TextureTransform::storedMatrix(float out[2][3]) const {
+    double m[2][3];
+    matrix(m);
+    gltfimport::restate(m, out);
+}
 
 // The metallic-roughness to Blinn-Phong mapping of GltfLoader.hpp.
 void applyFactors(const MaterialFactors& in, Material& m) {
@@ -225,30 +272,13 @@ bool UvTransform::operator==(const UvTransform& o) const {
     return true;
 }
 
+
 UvTransform uvTransformOf(const gltf::Json& extensions) {
     UvTransform t;
     const auto ext = extensions.find("KHR_texture_transform");
     if (ext == extensions.end() || !ext->is_object()) return t;
     t.found = true;
-    const gltf::Json& v = *ext;
-    const auto number = [&](const gltf::Json& x, double fallback) {
-        return x.is_number() && std::isfinite(x.get<double>()) ? x.get<double>() : fallback;
-    };
-    double offset[2] = {0, 0}, scale[2] = {1, 1}, rotation = 0;
-    const auto pair = [&](const char* key) { return v.contains(key) && v[key].is_array() && v[key].size() == 2; };
-    for (std::size_t k = 0; k < 2; ++k) {
-        if (pair("offset")) offset[k] = number(v["offset"][k], 0.0);
-        if (pair("scale")) scale[k] = number(v["scale"][k], 1.0);
-    }
-    if (v.contains("rotation")) rotation = number(v["rotation"], 0.0);
-    const double c = std::cos(rotation), s = std::sin(rotation);
-    // T R S with R = [[c, s], [-s, c]] (the extension's rotation matrix).
-    t.m[0][0] = c * scale[0];
-    t.m[0][1] = s * scale[1];
-    t.m[0][2] = offset[0];
-    t.m[1][0] = -s * scale[0];
-    t.m[1][1] = c * scale[1];
-    t.m[1][2] = offset[1];
+    transformOf(*ext).matrix(t.m);
     return t;
 }
 
@@ -294,17 +324,8 @@ std::array<std::pair<const gltf::TextureInfo*, const char*>, 1 + kMapSlots> refe
     return maps;
 }
 
-// KHR_texture_transform's matrix (on glTF's uvs) restated on stored uvs (u, 1 - v): with s = u
-// and t = 1 - v, s' = m00 s - m01 t + (m01 + m02), t' = -m10 s + m11 t + (1 - m11 - m12).
-void storedTransform(const UvTransform& t, float out[2][3]) {
-    const double(&m)[2][3] = t.m;
-    out[0][0] = float(m[0][0]);
-    out[0][1] = float(-m[0][1]);
-    out[0][2] = float(m[0][1] + m[0][2]);
-    out[1][0] = float(-m[1][0]);
-    out[1][1] = float(m[1][1]);
-    out[1][2] = float(1.0 - m[1][1] - m[1][2]);
-}
+// KHR_texture_transform's matrix (on glTF's uvs) restated on stored uvs (u, 1 - v).
+void storedTransform(const UvTransform& t, float out[2][3]) { restate(t.m, out); }
 
 } // namespace
 
@@ -330,7 +351,7 @@ SamplerModes materialSampler(const gltf::Document& g, const gltf::Material& gm) 
 // with one sampler: otherwise none (materialUvSource's uvs and the sampler serve them all). Only
 // TEXCOORD_0 and _1 are read per map: a map on a later set is named in `problem` and reads
 // TEXCOORD_0.
-std::optional<MapAddressing> materialAddressing(const gltf::Document& g, const gltf::Material& gm, std::string* problem) {
+std::optional<MapAddressing> materialAddressing(const gltf::Document& g, const gltf::Material& gm, std::string* problem, bool force) {
     const auto maps = referencesOf(gm);
     std::optional<Reference> first;
     bool shared = true;
@@ -344,7 +365,7 @@ std::optional<MapAddressing> materialAddressing(const gltf::Document& g, const g
             shared = false;
         }
     }
-    if (!first || shared) return std::nullopt;
+    if (!first || (shared && !force)) return std::nullopt;
     MapAddressing out;
     for (std::size_t k = 0; k < maps.size(); ++k) {
         const auto& [info, name] = maps[k];

@@ -110,7 +110,7 @@ Status addTextures(Builder& b, const LoadOptions& options, const std::string& di
                     mat.wrap = modes.wrap;
                     mat.filter = modes.filter;
                 }
-                mat.addressing = materialAddressing(g, gm, nullptr);
+                mat.addressing = materialAddressing(g, gm, nullptr, b.transformsMove(int(i)));
             }
             for (int image : imageOfSlot) {
                 const gltf::Image& img = g.images[std::size_t(image)];

@@ -482,3 +482,53 @@ TEST_CASE("KHR_animation_pointer: a posed scene draws its material's animated co
     CHECK(makeFrameView(resolveCamera(o, s), 32, 32, o.light, s.lights, s.physical).lighting.lights[0].colour.g == Approx(5.0));
     CHECK(resolveCamera(o, s).fovDegrees == Approx(0.75 * 180.0 / 3.14159265358979323846));
 }
+
+TEST_CASE("KHR_animation_pointer: a texture transform's animated offset moves the texture across a posed draw", "[platform][animation][pointer]") {
+    gltftest::Asset a;
+    // A quad filling the view (uv u from 0 at the left to 1 at the right), an unlit material
+    // whose base colour texture is 2 x 1 texels, red | green, nearest and clamped; its offset
+    // goes from (0, 0) to (1, 0) over a second (looped: at 1 s it is back at (0, 0)).
+    const int pos = a.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 1, 1, 1, 1, 0, 0, 1, 1, 0, 0, 0}, "VEC2");
+    const int input = a.floats({0, 1}, "SCALAR");
+    const int offsets = a.floats({0, 0, 1, 0}, "VEC2");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" + std::to_string(uv) +
+               "},\"material\":0}]}]";
+    a.materials = R"([{"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"offset":[0,0]}}}},)"
+                  R"("extensions":{"KHR_materials_unlit":{}}}])";
+    a.nodes = R"([{"mesh":0}])";
+    const std::string ppm = std::string("P6\n2 1\n255\n") + std::string("\xff\x00\x00\x00\xff\x00", 6);
+    a.extra = R"(,"textures":[{"source":0,"sampler":0}],"samplers":[{"magFilter":9728,"minFilter":9728,"wrapS":33071,"wrapT":33071}],)"
+              R"("images":[{"uri":"data:image/x-portable-pixmap;base64,)" + gltftest::base64(std::vector<unsigned char>(ppm.begin(), ppm.end())) +
+              R"("}],"extensionsUsed":["KHR_animation_pointer","KHR_texture_transform","KHR_materials_unlit"],"animations":[{"samplers":[{"input":)" +
+              std::to_string(input) + R"(,"output":)" + std::to_string(offsets) +
+              R"(}],"channels":[{"sampler":0,"target":{"path":"pointer","extensions":{"KHR_animation_pointer":{"pointer":)"
+              R"("/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/offset"}}}}]}])";
+    SceneOptions o;
+    o.obj = objtest::writeText(objtest::freshDir("pointer-transform"), "scroll.gltf", a.embedded());
+    o.eye = Vec3{0, 0, 1};
+    o.target = Vec3{0, 0, 0};
+    o.fovDegrees = 90.0;
+    auto loaded = loadScene(o);
+    REQUIRE(loaded.ok());
+    LoadedScene s = std::move(loaded).value();
+    REQUIRE_FALSE(applySceneDefaults(o, s).has_value());
+    FrameBuffer fb(32, 32);
+    RenderContext ctx(fb);
+    const auto render = [&] {
+        renderFrame(ctx, s, makeFrameView(resolveCamera(o, s), 32, 32, o.light, s.lights, s.physical), makeRenderSettings(o));
+        return std::vector<Pixel>(fb.colorData(), fb.colorData() + 32 * 32);
+    };
+    const std::vector<Pixel> still = render();
+    // Left quarter: u = 0.25, red; with the offset 0.5 it reads u = 0.75, green.
+    CHECK(pixelR(still[16 * 32 + 8]) == 255);
+    CHECK(pixelG(still[16 * 32 + 8]) == 0);
+    poseScene(s, 0.5, -1);
+    const std::vector<Pixel> moved = render();
+    CHECK(pixelR(moved[16 * 32 + 8]) == 0);
+    CHECK(pixelG(moved[16 * 32 + 8]) == 255);
+    CHECK(pixelG(moved[16 * 32 + 24]) == 255); // the right quarter: clamped to the green texel
+    // At 0 s the file's own offset: the image the unposed scene drew, pixel for pixel.
+    poseScene(s, 0.0, -1);
+    CHECK(render() == still);
+}

@@ -296,7 +296,7 @@ TEST_CASE("an animation sampler's output as a sparse accessor over zeros drives 
     checkVec(m.mesh.positions[0], 1, 0, 0);
 }
 
-TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as the core path does; a texture transform is named in a warning",
+TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as the core path does; a property SoftRaster does not read is named in a warning",
           "[resources][animation][pointer]") {
     const std::string dir = freshDir("gltf-pointer");
     Asset a;
@@ -314,15 +314,15 @@ TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as th
     a.extra = ",\"extensionsUsed\":[\"KHR_animation_pointer\"],\"extensionsRequired\":[\"KHR_animation_pointer\"],"
               "\"animations\":[{\"samplers\":[{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(moves) +
               "},{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(colours) + "}],\"channels\":[" +
-              pointerChannel(0, "/nodes/0/translation") + "," + pointerChannel(1, "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/offset") + "]}]";
+              pointerChannel(0, "/nodes/0/translation") + "," + pointerChannel(1, "/materials/0/extensions/KHR_materials_sheen/sheenColorFactor") + "]}]";
     auto r = loadGltf(writeText(dir, "pointer.gltf", a.embedded()));
     INFO((r ? std::string() : r.error()));
     REQUIRE(r.ok());
     Model m = std::move(r).value();
     REQUIRE(m.animation);
     REQUIRE(m.warnings.size() == 1);
-    CHECK(m.warnings[0].find("KHR_animation_pointer '/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/offset' "
-                             "is not animated") != std::string::npos);
+    CHECK(m.warnings[0].find("KHR_animation_pointer '/materials/0/extensions/KHR_materials_sheen/sheenColorFactor' is not animated") !=
+          std::string::npos);
     m.animation->pose(0.5, -1, m.mesh);
     checkVec(m.mesh.positions[0], 1, 0, 0);
     checkVec(m.mesh.positions[1], 2, 0, 0);
@@ -497,4 +497,80 @@ TEST_CASE("KHR_animation_pointer: a pointer to a material, light or camera that 
     fails(pointerChannel(3, "/cameras/1/perspective/yfov"), "names a camera that does not exist");
     // Sampler 1 holds one value per key; a colour needs four.
     fails(pointerChannel(1, "/materials/0/pbrMetallicRoughness/baseColorFactor"), "expected 8 values (4 per key)");
+}
+
+TEST_CASE("KHR_animation_pointer: an animated texture transform draws the material's maps at their own addresses, posed as a file's values",
+          "[resources][animation][pointer]") {
+    const std::string dir = freshDir("gltf-pointer-transform");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int uv = a.floats({0, 0, 1, 0, 0, 1}, "VEC2");
+    const int input = a.floats({0, 1}, "SCALAR");
+    const int offsets = a.floats({0, 0, 1, 0.5f}, "VEC2");
+    const int angles = a.floats({0, 1}, "SCALAR");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" + std::to_string(uv) +
+               "},\"material\":0},{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" + std::to_string(uv) +
+               "},\"material\":1},{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"TEXCOORD_0\":" + std::to_string(uv) +
+               "},\"material\":2}]}]";
+    a.nodes = "[{\"mesh\":0}]";
+    // Material 0: base colour scaled by 2 (its offset animated), emissive untransformed (its
+    // rotation animated); material 1: one map, its rotation animated; material 2: one map, still.
+    a.materials = R"([{"pbrMetallicRoughness":{"baseColorTexture":{"index":0,"extensions":{"KHR_texture_transform":{"scale":[2,2]}}}},)"
+                  R"("emissiveTexture":{"index":0}},{"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}},)"
+                  R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}}}])";
+    const std::string ppm = "P6\n1 1\n255\n\x40\x40\x40";
+    const std::string base = "/materials/0/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/";
+    a.extra = R"(,"textures":[{"source":0}],"images":[{"uri":"data:image/x-portable-pixmap;base64,)" +
+              gltftest::base64(std::vector<unsigned char>(ppm.begin(), ppm.end())) + R"("}],)" +
+              R"("extensionsUsed":["KHR_animation_pointer","KHR_texture_transform"],"animations":[{"samplers":[{"input":)" +
+              std::to_string(input) + R"(,"output":)" + std::to_string(offsets) + R"(},{"input":)" + std::to_string(input) +
+              R"(,"output":)" + std::to_string(angles) + R"(}],"channels":[)" + pointerChannel(0, base + "offset") + "," +
+              pointerChannel(1, "/materials/0/emissiveTexture/extensions/KHR_texture_transform/rotation") + "," +
+              pointerChannel(1, "/materials/1/pbrMetallicRoughness/baseColorTexture/extensions/KHR_texture_transform/rotation") + "]}]";
+    auto r = loadGltf(writeText(dir, "transform.gltf", a.embedded()));
+    INFO((r ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model m = std::move(r).value();
+    CHECK(m.warnings.empty());
+    REQUIRE(m.animation);
+    CHECK(m.animation->animatesTransforms(0));
+    CHECK(m.animation->animatesTransforms(1));
+    CHECK_FALSE(m.animation->animatesTransforms(2));
+    // Material 1's one map shares its address with itself, but it moves: it has one all the
+    // same (the raw sets are kept); material 2's does not.
+    CHECK(m.materials[0].addressing.has_value());
+    CHECK(m.materials[1].addressing.has_value());
+    CHECK_FALSE(m.materials[2].addressing.has_value());
+    CHECK(m.mesh.hasUvSets());
+    // At 0.5 s: the base colour's offset (0.5, 0.25) over its scale 2, on stored uvs (u, 1 - v):
+    // [[2, 0, 0.5], [0, 2, 1 - 2 - 0.25]]; the emissive map turned by 0.5 rad about the origin:
+    // [[c, -s, s], [s, c, 1 - c]] with c = cos 0.5, s = sin 0.5.
+    const PosedProperties posed = m.animation->poseProperties(0.5, -1);
+    REQUIRE(posed.transforms.size() == 2);
+    CHECK(posed.transforms[0].material == 0);
+    CHECK(posed.transforms[1].material == 1);
+    const auto& b = posed.transforms[0].m[0];
+    CHECK(b[0][0] == 2.0f);
+    CHECK(b[0][1] == Approx(0.0).margin(1e-7));
+    CHECK(b[0][2] == Approx(0.5));
+    CHECK(b[1][0] == Approx(0.0).margin(1e-7));
+    CHECK(b[1][1] == 2.0f);
+    CHECK(b[1][2] == Approx(-1.25));
+    const auto& e = posed.transforms[0].m[1 + std::size_t(MapSlot::Emissive)];
+    const double c = std::cos(0.5), s = std::sin(0.5);
+    CHECK(e[0][0] == Approx(c));
+    CHECK(e[0][1] == Approx(-s));
+    CHECK(e[0][2] == Approx(s));
+    CHECK(e[1][0] == Approx(s));
+    CHECK(e[1][1] == Approx(c));
+    CHECK(e[1][2] == Approx(1.0 - c));
+    // At 0 s every transform is the file's: the matrices materialAddressing made at load.
+    const PosedProperties rest = m.animation->poseProperties(0.0, -1);
+    const MapAddressing& loaded = *m.materials[0].addressing;
+    for (int row = 0; row < 2; ++row)
+        for (int col = 0; col < 3; ++col) {
+            CHECK(rest.transforms[0].m[0][std::size_t(row)][std::size_t(col)] == loaded.base.m[row][col]);
+            CHECK(rest.transforms[0].m[1 + std::size_t(MapSlot::Emissive)][std::size_t(row)][std::size_t(col)] ==
+                  loaded[MapSlot::Emissive].m[row][col]);
+        }
 }
