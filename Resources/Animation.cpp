@@ -229,7 +229,7 @@ void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
                         for (int c = 0; c < 4; ++c) m.m[r][c] += double(wk) * j.m[r][c];
                 }
             } else {
-                m = world[std::size_t(b.node)];
+                m = b.instanced ? world[std::size_t(b.node)] * b.instance : world[std::size_t(b.node)];
             }
             const std::size_t at = std::size_t(b.first) + i;
             mesh.positions[at] = toFloat(transformPoint(m, objectPositions[i]));

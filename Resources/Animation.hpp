@@ -113,6 +113,10 @@ struct AnimatedBlock {
     int skin = -1;      // index into ModelAnimation::skins, or -1
     std::uint32_t first = 0, count = 0;
     bool mirrored = false;   // the rest transform mirrors: its triangles were stored reversed
+    // One instance of an EXT_mesh_gpu_instancing node: its instance transform, applied before the
+    // node's world transform (not for a skinned block).
+    bool instanced = false;
+    Mat4d instance;
     bool moves = true;        // some clip moves it (markMovingBlocks); false: pose leaves it at rest
     bool flatNormals = false; // no NORMAL: each vertex belongs to one triangle (first + 3t ..), the face normal
     std::vector<Vec3> positions, normals;         // object space, one per vertex (normals: when !flatNormals)
@@ -181,7 +185,8 @@ struct ModelAnimation {
     // them in file order, a later channel on the same target winning, or clip `clip` alone;
     // `clip` beyond the clips: none), each clip at t modulo its duration (looped, as viewers and
     // three.js play them; t = duration shows its first key), over the rest transforms, then each block's morph targets
-    // (position and normal deltas weighted), its node's world transform, or for a skinned block
+    // (position and normal deltas weighted), its node's world transform (times its instance's
+    // transform for an instanced block), or for a skinned block
     // sum_j w_j (world(joint j) x inverseBind_j) as the specification says (the mesh node's own
     // transform ignored), normals by the inverse transpose (renormalised), tangents by the
     // matrix (their morph deltas added first). A block that no clip

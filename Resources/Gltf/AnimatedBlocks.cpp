@@ -15,6 +15,10 @@ Status addAnimatedBlock(Builder& b, const gltf::Primitive& prim, const View& pos
     block.first = first;
     block.count = std::uint32_t(vertices);
     block.mirrored = mirrored;
+    if (b.instance) {
+        block.instanced = true;
+        block.instance = *b.instance;
+    }
     block.flatNormals = !normals;
     const auto vec3 = [](const View& v, std::size_t i) { return Vec3{readFloat(v, i, 0), readFloat(v, i, 1), readFloat(v, i, 2)}; };
     const auto finite3 = [](Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };

@@ -193,13 +193,15 @@ Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const 
                 return R::failure(path + ": node " + std::to_string(item.node) + ": mesh " + std::to_string(node.mesh) + " does not exist");
             const auto instances = instanceMatrices(b, node, item.node);
             if (!instances) return R::failure(path + ": " + instances.error());
-            if (!instances.value().empty() && b.animation)
-                return R::failure(path + ": node " + std::to_string(item.node) +
-                                  ": EXT_mesh_gpu_instancing in an animated file is not supported");
+            // Instances of a skinned mesh: the skin places every vertex by its joints (the node's
+            // own transform ignored), and the extension leaves open where an instance would go.
+            if (!instances.value().empty() && node.skin >= 0)
+                return R::failure(path + ": node " + std::to_string(item.node) + ": EXT_mesh_gpu_instancing on a skinned mesh is not supported");
             const std::size_t copies = std::max<std::size_t>(instances.value().size(), 1);
             const gltf::Mesh& gm = g.meshes[std::size_t(node.mesh)];
             for (std::size_t k = 0; k < copies; ++k) {
                 const Mat4d placed = instances.value().empty() ? world : world * instances.value()[k];
+                b.instance = instances.value().empty() ? nullptr : &instances.value()[k];
                 for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
                     const std::string what = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p);
                     const int material = variantMaterial(gm.primitives[p], variant);
@@ -210,6 +212,7 @@ Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const 
                     if (!s) return R::failure(path + ": " + s.error());
                 }
             }
+            b.instance = nullptr;
         }
         if (node.camera >= 0) {
             if (std::size_t(node.camera) >= g.cameras.size())

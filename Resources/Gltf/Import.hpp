@@ -31,6 +31,7 @@ struct Builder {
     std::shared_ptr<ModelAnimation> animation;
     const gltf::Node* node = nullptr; // the node whose primitives are being added
     int nodeIndex = -1;
+    const Mat4d* instance = nullptr;  // its EXT_mesh_gpu_instancing instance being added, if any
     std::vector<std::vector<std::uint32_t>> trianglesOf; // [material + 1] -> indices
     std::vector<int> firstUse;                           // materials (+1) in order of first use
     std::size_t lineElements = 0, lineVertices = 0; // in model.lineSets, for the limits

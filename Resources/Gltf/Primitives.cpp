@@ -111,11 +111,12 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
     // The uv set the material's maps read (materialUvSource), with its transform; where its maps
     // have addresses of their own (materialAddressing), also the raw sets TEXCOORD_0 and _1.
     UvSource uvSource;
-    bool addressed = false;
+    std::optional<MapAddressing> addressing;
     if (prim.material >= 0 && std::size_t(prim.material) < g.materials.size()) {
         uvSource = materialUvSource(g.materials[std::size_t(prim.material)]);
-        addressed = materialAddressing(g, g.materials[std::size_t(prim.material)], nullptr, b.transformsMove(prim.material)).has_value();
+        addressing = materialAddressing(g, g.materials[std::size_t(prim.material)], nullptr, b.transformsMove(prim.material));
     }
+    const bool addressed = addressing.has_value();
     const auto uvSet = [&](int set) -> Result<std::optional<View>> {
         const std::string uvName = "TEXCOORD_" + std::to_string(set);
         const int ti = attribute(uvName.c_str());
@@ -337,7 +338,6 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
             std::vector<Vec2> mapUvs;
             if (addressed) {
                 const gltf::Material& gm = g.materials[std::size_t(prim.material)];
-                const auto addressing = materialAddressing(g, gm, nullptr, b.transformsMove(prim.material));
                 const MapSlot slot = textureInfoOf(gm, MapSlot::Normal).index >= 0 ? MapSlot::Normal : MapSlot::ClearcoatNormal;
                 const MapAddress& a = (*addressing)[slot];
                 for (std::size_t k = base; k < mesh.positions.size(); ++k) mapUvs.push_back(a.apply(mesh.uvSets[a.uvSet][k]));

@@ -21,6 +21,7 @@
 
 #include "GltfTestUtil.hpp"
 #include "ObjTestUtil.hpp"
+#include "Resources/Animation.hpp"
 #include "Resources/FileIO.hpp"
 #include "Resources/Gltf/Document.hpp"
 #include "Resources/Gltf/GltfLoader.hpp"
@@ -518,6 +519,50 @@ TEST_CASE("EXT_mesh_gpu_instancing: each instance's T R S placed before the node
     REQUIRE_FALSE(e.ok());
     CHECK(contains(e.error(), "counts.gltf"));
     CHECK(contains(e.error(), "EXT_mesh_gpu_instancing"));
+}
+
+TEST_CASE("EXT_mesh_gpu_instancing in an animated file: each instance follows its node's animation; a skinned instanced mesh is refused",
+          "[resources][gltf][instancing][animation]") {
+    const std::string dir = freshDir("gltf-instancing-animated");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int nrm = a.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+    const int t = a.floats({10, 0, 0, 0, 20, 0}, "VEC3");
+    const int s = a.floats({1, 1, 1, 2, 2, 2}, "VEC3");
+    const int input = a.floats({0, 1}, "SCALAR");
+    const int moves = a.floats({0, 0, 5, 0, 4, 5}, "VEC3"); // the node from (0, 0, 5) to (0, 4, 5)
+    a.meshes = "[{\"primitives\":[" + primitive("\"POSITION\":" + std::to_string(pos) + ",\"NORMAL\":" + std::to_string(nrm)) + "]}]";
+    a.nodes = "[{\"mesh\":0,\"translation\":[0,0,5],\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":{\"TRANSLATION\":" +
+              std::to_string(t) + ",\"SCALE\":" + std::to_string(s) + "}}}}]";
+    const std::string animation = ",\"animations\":[{\"samplers\":[{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(moves) +
+                                  "}],\"channels\":[{\"sampler\":0,\"target\":{\"node\":0,\"path\":\"translation\"}}]}]";
+    a.extra = ",\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"],\"extensionsRequired\":[\"EXT_mesh_gpu_instancing\"]" + animation;
+    auto m = loadText(dir, "animated.gltf", a.embedded());
+    INFO((m ? std::string() : m.error()));
+    REQUIRE(m.ok());
+    Model model = std::move(m).value();
+    REQUIRE(model.animation);
+    REQUIRE(model.mesh.vertexCount() == 6);
+    // At rest (the first key): instance 0 at (10, 0, 5), instance 1 scaled by 2 at (0, 20, 5).
+    checkVec(model.mesh.positions[1], 11, 0, 5);
+    checkVec(model.mesh.positions[4], 2, 20, 5);
+    // At 0.5 s the node is at (0, 2, 5): each instance moves with it, its own transform kept.
+    model.animation->pose(0.5, -1, model.mesh);
+    checkVec(model.mesh.positions[0], 10, 2, 5);
+    checkVec(model.mesh.positions[1], 11, 2, 5);
+    checkVec(model.mesh.positions[3], 0, 22, 5);
+    checkVec(model.mesh.positions[4], 2, 22, 5);
+    checkVec(model.mesh.positions[5], 0, 24, 5);
+    // A skinned mesh with instances: refused, naming the file and the extension.
+    Asset skinned = a;
+    skinned.nodes = "[{\"mesh\":0,\"skin\":0,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":{\"TRANSLATION\":" + std::to_string(t) +
+                    "}}}},{}]";
+    skinned.scenes = "[{\"nodes\":[0,1]}]";
+    skinned.extra += ",\"skins\":[{\"joints\":[1]}]";
+    auto e = loadText(dir, "skinned.gltf", skinned.embedded());
+    REQUIRE_FALSE(e.ok());
+    CHECK(contains(e.error(), "skinned.gltf"));
+    CHECK(contains(e.error(), "EXT_mesh_gpu_instancing on a skinned mesh is not supported"));
 }
 
 TEST_CASE("KHR_materials_variants: a variant changes exactly its primitives' materials", "[resources][gltf][variants]") {
