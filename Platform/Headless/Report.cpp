@@ -26,7 +26,50 @@ struct Setting {
     RenderSettings settings;
     bool truth = false;                   // the ground truth (SSAA 16 with the most accurate rest)
     std::optional<app::Quality> preset;  // the --quality preset this combination is, if any
+    unsigned dropped = 0;                 // PbrLobe bits drawn without: the materials as if they had not those extensions
 };
+
+// The material extensions a rung may drop, each with its name in the report.
+constexpr std::pair<unsigned, const char*> kDroppable[] = {{kLobeClearcoat, "clearcoat"}, {kLobeDielectricSpecular, "specular"}};
+
+// The droppable extensions the scene's draws use (PbrLobe bits).
+unsigned sceneLobes(const Scene& scene) {
+    unsigned lobes = 0;
+    for (const SceneDraw& d : scene.draws) {
+        if (!d.pbr) continue;
+        if (d.pbr->clearcoat > 0.0f) lobes |= kLobeClearcoat;
+        if (hasDielectricSpecular(*d.pbr) || d.maps.has(MapSlot::Specular) || d.maps.has(MapSlot::SpecularColour))
+            lobes |= kLobeDielectricSpecular;
+    }
+    return lobes;
+}
+
+// The draws as if their materials had not the extensions in `dropped`: no coat (its factor 0,
+// its maps gone), the dielectric of appendix B (F0 0.04, weight 1, no specular maps).
+std::vector<SceneDraw> withoutLobes(std::vector<SceneDraw> draws, unsigned dropped) {
+    for (SceneDraw& d : draws) {
+        if (!d.pbr) continue;
+        if (dropped & kLobeClearcoat) {
+            d.pbr->clearcoat = 0.0f;
+            for (const MapSlot s : {MapSlot::Clearcoat, MapSlot::ClearcoatRoughness, MapSlot::ClearcoatNormal}) d.maps[s] = -1;
+        }
+        if (dropped & kLobeDielectricSpecular) {
+            d.pbr->dielectricF0 = d.pbr->specularColorF0 = Vec3{0.04f, 0.04f, 0.04f};
+            d.pbr->specularWeight = 1.0f;
+            d.maps[MapSlot::Specular] = d.maps[MapSlot::SpecularColour] = -1;
+        }
+    }
+    return draws;
+}
+
+// "pbr", "pbr without clearcoat", ...: the shading column.
+std::string shadingOf(const Setting& s) {
+    std::string out = app::shadingLabel(s.settings);
+    std::string without;
+    for (const auto& [bit, name] : kDroppable)
+        if (s.dropped & bit) without += std::string(without.empty() ? " without " : " and ") + name;
+    return out + without;
+}
 
 struct Row {
     Setting setting;
@@ -44,8 +87,10 @@ struct Row {
 // one). Nearest, affine and flat are not rungs: they save too little (docs/PERFORMANCE.md:
 // nearest 0.89-1.03x bilinear, affine 0.94-1.02x exact, flat 0.84-0.96x Gouraud).
 // A physical (glTF) scene's truth is its own material model, pbr in linear light; Phong and
-// Gouraud are then rungs of the shading sweep, and pbr on display values (gamma) one more setting.
-std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool physical) {
+// Gouraud are then rungs of the shading sweep, and pbr on display values (gamma) one more setting,
+// and so, at one sample, is pbr without each material extension the scene has (`lobes`:
+// sceneLobes), and without all of them where it has more than one.
+std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool physical, unsigned lobes) {
     base.perspective = PerspectiveMode::Exact;
     base.filter = TextureFilter::Trilinear;
     base.aniso = kMaxAnisotropy;
@@ -79,12 +124,25 @@ std::vector<Setting> settingsToMeasure(RenderSettings base, bool textured, bool 
         gamma.settings.antiAliasing = AntiAliasing::none();
         gamma.settings.colour = ColorMode::Gamma;
         out.push_back(gamma);
+        int kinds = 0;
+        for (const auto& [bit, name] : kDroppable) {
+            if (!(lobes & bit)) continue;
+            ++kinds;
+            Setting without{base, false, {}, bit};
+            without.settings.antiAliasing = AntiAliasing::none();
+            out.push_back(without);
+        }
+        if (kinds > 1) {
+            Setting none{base, false, {}, lobes};
+            none.settings.antiAliasing = AntiAliasing::none();
+            out.push_back(none);
+        }
     }
     // Mark the presets (untextured scenes: the filter does not count).
     for (app::Quality q : {app::Quality::Fast, app::Quality::Balanced, app::Quality::Accurate}) {
         const app::QualitySettings qs = app::qualitySettings(q, physical);
         for (Setting& s : out)
-            if (s.settings.antiAliasing == qs.antiAliasing && s.settings.shading == qs.shading &&
+            if (s.dropped == 0 && s.settings.antiAliasing == qs.antiAliasing && s.settings.shading == qs.shading &&
                 s.settings.colour == base.colour &&
                 s.settings.perspective == qs.perspective &&
                 (!textured || (s.settings.filter == qs.filter && s.settings.aniso == qs.aniso))) {
@@ -102,7 +160,11 @@ std::string fmt(double v, int decimals = 3) {
     return buf;
 }
 
-std::string label(const Setting& s, bool textured) { return app::settingLabel(s.settings, textured); }
+std::string label(const Setting& s, bool textured) {
+    std::string out = app::settingLabel(s.settings, textured);
+    if (s.dropped) out += shadingOf(s).substr(app::shadingLabel(s.settings).size());
+    return out;
+}
 
 // Points on the Pareto front: no other point is both faster and at least as accurate (mean
 // absolute error against the ground truth).
@@ -215,12 +277,24 @@ int runReport(const std::vector<std::string>& args, Streams io) {
     PreparedScene& p = *prepared;
     const bool textured = p.textured;
 
-    const std::vector<Setting> settings = settingsToMeasure(p.settings, textured, p.scene.physical);
+    const std::vector<Setting> settings = settingsToMeasure(p.settings, textured, p.scene.physical, sceneLobes(p.scene.scene));
+    // A rung that drops extensions draws the scene's draws made without them (swapped in for it).
+    std::vector<std::pair<unsigned, std::vector<SceneDraw>>> reduced;
+    for (const Setting& s : settings)
+        if (s.dropped) reduced.emplace_back(s.dropped, withoutLobes(p.scene.scene.draws, s.dropped));
+    const auto render = [&](const Setting& s) {
+        std::vector<SceneDraw>* swapped = nullptr;
+        for (auto& [dropped, draws] : reduced)
+            if (dropped == s.dropped) swapped = &draws;
+        if (swapped) std::swap(p.scene.scene.draws, *swapped);
+        app::renderFrame(p.context, p.scene, p.view, s.settings);
+        if (swapped) std::swap(p.scene.scene.draws, *swapped);
+    };
     // Images first (the error does not depend on timing), the ground truth first of all.
     std::vector<ImageError> errors(settings.size());
     FrameBuffer truth;
     for (std::size_t k = 0; k < settings.size(); ++k) {
-        app::renderFrame(p.context, p.scene, p.view, settings[k].settings);
+        render(settings[k]);
         if (k == 0) truth = p.framebuffer;
         errors[k] = compareImages(truth, p.framebuffer, true);
     }
@@ -236,7 +310,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
                        << (io.progress ? "          " : "\n");
                 io.err.flush();
             }
-            auto frame = [&] { app::renderFrame(p.context, p.scene, p.view, settings[k].settings); };
+            auto frame = [&] { render(settings[k]); };
             perRound[k].push_back(summarise(timeFrames(a.warmup, a.frames, frame)).median);
         }
     if (!a.quiet && io.progress) io.err << "\n";
@@ -271,8 +345,10 @@ int runReport(const std::vector<std::string>& args, Streams io) {
           "combination of anti-aliasing (1 sample; FXAA: 1 sample, its edges filtered; MSAA 4: coverage and depth per "
           "sample, shaded once per pixel; SSAA 4: 2x2 samples, each shaded) x texture filter (bilinear, trilinear) x "
           "shading (Gouraud, Phong, and pbr in glTF) is measured with exact perspective, and MSAA 8 with "
-          "the ground truth's other settings (nearest, affine and flat save too little: they are not measured); the Pareto front (no other combination both faster and at most as wrong) is marked, and so are the "
-          "`--quality` presets.\n\n"
+          "the ground truth's other settings (nearest, affine and flat save too little: they are not measured); a glTF "
+          "scene adds pbr on display values and, at one sample, pbr without each material extension it has (clearcoat, "
+          "specular: its materials as if the file had not the extension); the Pareto front (no other combination both "
+          "faster and at most as wrong) is marked, and so are the `--quality` presets.\n\n"
        << "| ssaa | msaa | fxaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | SSIM | max abs | "
           "differing pixels | Pareto | preset |\n"
        << "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
@@ -284,14 +360,14 @@ int runReport(const std::vector<std::string>& args, Streams io) {
         const std::string preset = r.setting.preset ? app::qualityName(*r.setting.preset) : "";
         csv << st.antiAliasing.ssaaSamples() << "," << st.antiAliasing.msaaSamples() << ","
             << (st.antiAliasing.postFiltered() ? 1 : 0) << "," << filter << ","
-            << app::shadingLabel(st) << "," << perspectiveModeName(st.perspective) << "," << fmt(r.time.median) << ","
+            << shadingOf(r.setting) << "," << perspectiveModeName(st.perspective) << "," << fmt(r.time.median) << ","
             << fmt(r.time.min) << "," << fmt(r.maxMs) << "," << fmt(r.error.meanAbs, 4)
             << "," << fmt(r.error.psnrDb, 2) << "," << fmt(r.error.ssim, 6) << "," << r.error.maxAbs << ","
             << fmt(r.error.differingShare, 5) << ","
             << (front[i] ? 1 : 0) << "," << preset << "," << (r.setting.truth ? 1 : 0) << "\n";
         md << "| " << st.antiAliasing.ssaaSamples() << (r.setting.truth ? " (ground truth)" : "") << " | "
            << st.antiAliasing.msaaSamples() << " | " << (st.antiAliasing.postFiltered() ? "yes" : "") << " | " << filter << " | "
-           << app::shadingLabel(st) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
+           << shadingOf(r.setting) << " | " << perspectiveModeName(st.perspective) << " | " << fmt(r.time.median)
            << " [" << fmt(r.time.min) << ", " << fmt(r.maxMs) << "] | " << fmt(r.error.meanAbs, 4) << " | "
            << fmt(r.error.psnrDb, 2) << " | " << fmt(r.error.ssim, 6) << " | " << r.error.maxAbs << " | "
            << fmt(100.0 * r.error.differingShare, 2)
@@ -307,7 +383,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
           "same for any two images):\n\n";
     for (std::size_t i = 0; i < rows.size(); ++i) {
         if (!front[i] || rows[i].setting.truth) continue;
-        app::renderFrame(p.context, p.scene, p.view, rows[i].setting.settings);
+        render(rows[i].setting);
         const std::string name = "report-map-" + std::to_string(i) + ".png";
         const Status s = writeImage(a.outDir + "/" + name, errorHeatMap(truth, p.framebuffer));
         if (!s) {

@@ -12,6 +12,7 @@
 #include "Raster/Frame/ThreadPool.hpp"
 #include "Resources/FileIO.hpp"
 #include "Resources/Image.hpp"
+#include "Resources/GltfTestUtil.hpp"
 
 using namespace sr;
 using namespace sr::headless;
@@ -756,6 +757,49 @@ TEST_CASE("bench reports the model's load: its time, decoded triangles and texel
     const Run builtIn = run({"bench", "--width", "32", "--height", "32", "--frames", "1", "--warmup", "0", "--quiet"});
     REQUIRE(builtIn.rc == kExitOk);
     CHECK(!hasKey(builtIn.out, "load_ms"));
+}
+
+TEST_CASE("report: a glTF scene's rungs without each material extension it has, measured against the truth with them",
+          "[headless][report][pbr]") {
+    const std::string dir = tempDir("report-extensions");
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    // A quad facing the camera, red, with a clear coat and KHR_materials_ior 2.5.
+    gltftest::Asset a;
+    const int pos = a.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3");
+    const int nrm = a.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + ",\"NORMAL\":" + std::to_string(nrm) +
+               "},\"material\":0}]}]";
+    a.nodes = R"([{"mesh":0}])";
+    a.materials = R"([{"pbrMetallicRoughness":{"baseColorFactor":[0.8,0.1,0.1,1],"metallicFactor":0,"roughnessFactor":0.6},)"
+                  R"("extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":1},"KHR_materials_ior":{"ior":2.5}}}])";
+    a.extra = R"(,"extensionsUsed":["KHR_materials_clearcoat","KHR_materials_ior"])";
+    const std::string text = a.embedded();
+    REQUIRE(writeFileBytes(dir + "/coat.gltf", text.data(), text.size()).ok());
+    const Run r = run({"report", "--model", dir + "/coat.gltf", "--out-dir", dir, "--width", "32", "--height", "24", "--light", "0,0.3,1",
+                       "--frames", "1", "--warmup", "0", "--rounds", "1", "--quiet"});
+    REQUIRE(r.rc == kExitOk);
+    auto csv = readFileBytes(dir + "/report.csv");
+    REQUIRE(csv.ok());
+    const std::string table(csv.value().begin(), csv.value().end());
+    // Untextured, physical: the truth + {1 sample, FXAA, MSAA 4, SSAA 4} x {Gouraud, Phong, pbr}
+    // + MSAA 8 + pbr gamma + pbr without the coat, without the specular and without both.
+    CHECK(std::count(table.begin(), table.end(), '\n') == 1 + 1 + 4 * 3 + 1 + 1 + 3);
+    const auto meanAbs = [&](const std::string& shading) {
+        const std::string key = "\n1,1,0,-," + shading + ",exact,";
+        const auto at = table.find(key);
+        REQUIRE(at != std::string::npos);
+        std::string line = table.substr(at + key.size());
+        for (int i = 0; i < 3; ++i) line = line.substr(line.find(',') + 1); // ms median, min, max
+        return std::stod(line.substr(0, line.find(',')));
+    };
+    const double full = meanAbs("pbr"), noCoat = meanAbs("pbr without clearcoat"), noSpecular = meanAbs("pbr without specular"),
+                 neither = meanAbs("pbr without clearcoat and specular");
+    // Each dropped extension moves the image away from the truth drawn with it (most of the
+    // error of one sample is the quad's aliased edges, the same in every such rung).
+    CHECK(noCoat > full + 0.25);
+    CHECK(noSpecular > full + 0.25);
+    CHECK(neither > full + 0.25);
 }
 
 TEST_CASE("--variant: an unknown name fails listing none for a file without variants; OBJ files have none", "[headless][variants]") {
