@@ -132,8 +132,10 @@ void applyQuality(SceneOptions& options, Quality quality, bool physical = false)
 // Checks the combination (e.g. width/height limits); returns an error line or nullopt.
 std::optional<std::string> validateSceneOptions(const SceneOptions& options);
 
-// The flags' help text (lines end in '\n').
+// The flags' help text (lines end in '\n'), and their names (parseSceneFlag's, in the help's
+// order): one table holds each flag's name, arity, action and help.
 std::string sceneFlagsHelp();
+std::vector<std::string> sceneFlagNames();
 
 // Parses "x,y,z" (three finite numbers) - the reference renderer's vector syntax.
 std::optional<Vec3> parseVec3(const std::string& text);

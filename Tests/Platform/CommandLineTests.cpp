@@ -3,10 +3,14 @@
 #include "TestFramework.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include "Platform/App/CommandLine.hpp"
 #include "Platform/App/Input.hpp"
+#include "Platform/App/SceneOptions.hpp"
 
 using sr::app::parseCommandLine;
 
@@ -288,4 +292,46 @@ TEST_CASE("the demo takes --quality auto with a frame-time budget, not an error 
     CHECK(*r.options.scene.budgetMs == 8.0);
     CHECK(parseCommandLine({"--quality", "auto", "--max-error", "0.01"}).error.find("--max-error is the headless command's") != std::string::npos);
     CHECK(parseCommandLine({"--budget-ms", "5"}).error.find("give it too") != std::string::npos);
+}
+
+TEST_CASE("scene flags: one table names, parses and documents each; every flag in the help is parsed and every parsed flag is in the help",
+          "[platform][flags]") {
+    const std::vector<std::string> names = sr::app::sceneFlagNames();
+    const std::string help = sr::app::sceneFlagsHelp();
+    REQUIRE(names.size() >= 40);
+    // The help's flags: each "--word" token.
+    std::vector<std::string> documented;
+    for (std::size_t at = help.find("--"); at != std::string::npos; at = help.find("--", at + 2)) {
+        std::size_t end = at + 2;
+        while (end < help.size() && (std::isalnum(static_cast<unsigned char>(help[end])) || help[end] == '-')) ++end;
+        documented.push_back(help.substr(at, end - at));
+    }
+    for (const std::string& name : names) {
+        INFO(name);
+        CHECK(std::find(documented.begin(), documented.end(), name) != documented.end());
+        // Recognised: with a value where it takes one, "--flag=value" refused where it takes none.
+        sr::app::SceneOptions o;
+        std::string error;
+        std::size_t i = 0;
+        const std::vector<std::string> alone{name};
+        const sr::app::FlagResult r = sr::app::parseSceneFlag(alone, i, o, error);
+        CHECK(r != sr::app::FlagResult::NotMine);
+        if (r == sr::app::FlagResult::Consumed) { // a switch
+            i = 0;
+            const std::vector<std::string> withValue{name + "=1"};
+            CHECK(sr::app::parseSceneFlag(withValue, i, o, error) == sr::app::FlagResult::Error);
+            CHECK(error == name + " takes no value");
+        } else {
+            CHECK(error == "missing value for " + name);
+        }
+    }
+    for (const std::string& flag : documented) {
+        INFO(flag);
+        CHECK(std::find(names.begin(), names.end(), flag) != names.end());
+    }
+    // Not a scene flag: left to the caller.
+    sr::app::SceneOptions o;
+    std::string error;
+    std::size_t i = 0;
+    CHECK(sr::app::parseSceneFlag({"--frames"}, i, o, error) == sr::app::FlagResult::NotMine);
 }
