@@ -124,6 +124,8 @@ void ModelAnimation::markMovingBlocks() {
         else
             b.moves = b.moves || movable[std::size_t(b.node)];
     }
+    for (LightSource& l : lights) l.moves = l.node >= 0 && std::size_t(l.node) < nodes.size() && movable[std::size_t(l.node)];
+    for (CameraSource& c : cameras) c.moves = c.node >= 0 && std::size_t(c.node) < nodes.size() && movable[std::size_t(c.node)];
 }
 
 double ModelAnimation::duration(int clip) const {
@@ -133,11 +135,11 @@ double ModelAnimation::duration(int clip) const {
     return d;
 }
 
-void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
+void ModelAnimation::nodeWorlds(double t, int clip, bool restOnly, std::vector<Mat4d>& world, std::vector<std::vector<double>>& weights) const {
     // Local transforms and weights: the rest values, then the channels.
     std::vector<std::array<double, 3>> translation(nodes.size()), scale(nodes.size());
     std::vector<std::array<double, 4>> rotation(nodes.size());
-    std::vector<std::vector<double>> weights(nodes.size());
+    weights.assign(nodes.size(), {});
     std::vector<std::uint8_t> animated(nodes.size(), 0);
     for (std::size_t n = 0; n < nodes.size(); ++n) {
         translation[n] = nodes[n].translation;
@@ -166,7 +168,7 @@ void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
         }
     }
     // World transforms, parents first (the loader bounded the depth).
-    std::vector<Mat4d> world(nodes.size());
+    world.assign(nodes.size(), Mat4d{});
     std::vector<std::uint8_t> done(nodes.size(), 0);
     std::vector<int> chain;
     for (std::size_t n = 0; n < nodes.size(); ++n) {
@@ -186,6 +188,12 @@ void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
         }
         chain.clear();
     }
+}
+
+void ModelAnimation::pose(double t, int clip, Mesh& mesh, bool restOnly) const {
+    std::vector<Mat4d> world;
+    std::vector<std::vector<double>> weights;
+    nodeWorlds(t, clip, restOnly, world, weights);
     // Each skin's joint matrices.
     std::vector<std::vector<Mat4d>> jointMatrices(skins.size());
     for (std::size_t s = 0; s < skins.size(); ++s) {
@@ -375,6 +383,10 @@ bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int
 bool ModelAnimation::animatesProperties() const {
     for (const AnimationClip& c : clips)
         if (!c.properties.empty()) return true;
+    for (const LightSource& l : lights)
+        if (l.moves) return true;
+    for (const CameraSource& c : cameras)
+        if (c.moves) return true;
     return false;
 }
 
@@ -465,6 +477,29 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
             }
         }
     }
+    // Lights and cameras whose nodes move: every one posed (the still ones as loaded).
+    const bool lightsMove = std::any_of(lights.begin(), lights.end(), [](const LightSource& l) { return l.moves; });
+    const bool camerasMove = std::any_of(cameras.begin(), cameras.end(), [](const CameraSource& c) { return c.moves; });
+    if (lightsMove && lightValues.empty())
+        for (const LightSource& l : lights) lightValues.push_back({l.colour, l.intensity, l.range, l.innerCone, l.outerCone});
+    if (camerasMove && cameraValues.empty()) cameraValues = cameras;
+    std::vector<Mat4d> world;
+    if (lightsMove || camerasMove) {
+        std::vector<std::vector<double>> weights;
+        nodeWorlds(t, clip, false, world, weights);
+    }
+    // A node's origin, and its axis (0 x, 1 y, 2 z) normalised; false where the transform collapses it.
+    const auto origin = [&](int node) {
+        const Mat4d& w = world[std::size_t(node)];
+        return Vec3(float(w.m[0][3]), float(w.m[1][3]), float(w.m[2][3]));
+    };
+    const auto axis = [&](int node, int a, Vec3& out) {
+        const Mat4d& w = world[std::size_t(node)];
+        const double x = w.m[0][a], y = w.m[1][a], z = w.m[2][a], l = std::sqrt(x * x + y * y + z * z);
+        if (!(l > 0.0) || !std::isfinite(l)) return false;
+        out = Vec3(float(x / l), float(y / l), float(z / l));
+        return true;
+    };
     for (std::size_t m = 0; m < factors.size(); ++m) {
         if (!materialAnimated[m]) continue;
         Material material;
@@ -492,6 +527,14 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
         float* rgb[3] = {&colour.r, &colour.g, &colour.b};
         for (std::size_t c = 0; c < 3; ++c) *rgb[c] = float(std::clamp(l.colour[c], 0.0, 1.0) * intensity);
         Light light = s.placed;
+        if (s.moves) { // shining down its node's -Z from its origin (the loader's addLight)
+            Vec3 z;
+            light.position = origin(s.node);
+            if (axis(s.node, 2, z)) {
+                if (light.type == LightType::Directional) light.toLight = z;
+                else light.spotDirection = -z;
+            }
+        }
         light.colour = colour;
         if (light.type != LightType::Directional) light.range = float(range);
         if (light.type == LightType::Spot) {
@@ -507,7 +550,14 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
         if (!(c.yfov > 0.0 && c.yfov < kPiD)) c.yfov = rest.yfov;
         if (!(c.znear > 0.0) || !std::isfinite(c.znear)) c.znear = rest.znear;
         if (!(c.zfar == 0.0 || c.zfar > c.znear) || !std::isfinite(c.zfar)) c.zfar = rest.zfar > c.znear ? rest.zfar : 0.0;
-        out.cameras.push_back({c.yfov * 180.0 / kPiD, c.znear, c.zfar});
+        PosedProperties::Camera posed{c.yfov * 180.0 / kPiD, c.znear, c.zfar, rest.eye, rest.target, rest.up};
+        Vec3 z, y;
+        if (rest.moves && axis(rest.node, 2, z) && axis(rest.node, 1, y)) { // looking down its node's -Z, +Y up (addCamera)
+            posed.eye = origin(rest.node);
+            posed.target = posed.eye - z;
+            posed.up = y;
+        }
+        out.cameras.push_back(posed);
     }
     return out;
 }

@@ -131,6 +131,8 @@ struct AnimatedBlock {
 // KHR_lights_punctual light and that light's colour, intensity, range and cone angles (radians).
 struct LightSource {
     int light = 0;
+    int node = -1;      // the node that places it
+    bool moves = false; // a clip moves that node or an ancestor (markMovingBlocks)
     Light placed; // the light as the loader placed it (position, direction, type)
     std::array<double, 3> colour{1, 1, 1};
     double intensity = 1.0, range = 0.0, innerCone = 0.0, outerCone = 0.7853981633974483;
@@ -139,17 +141,21 @@ struct LightSource {
 struct CameraSource {
     int camera = 0;
     double yfov = 0.0, znear = 0.0, zfar = 0.0; // radians; zfar 0: infinite
+    int node = -1;      // the node that places it
+    bool moves = false; // a clip moves that node or an ancestor (markMovingBlocks)
+    Vec3 eye, target, up; // as the loader placed it (ModelCamera)
 };
 
 // The animated materials, lights and cameras at one time (ModelAnimation::poseProperties).
 struct PosedProperties {
     std::vector<int> materials;         // each material a clip animates (the file's numbering)
     std::vector<Material> values;       // its colours, opacity and pbr input at that time (applyFactors)
-    std::vector<Light> lights;          // every light of the scene (Model::lights); empty: none animated
+    std::vector<Light> lights;          // every light of the scene (Model::lights); empty: none animated or moved
     struct Camera {
         double yfovDegrees, znear, zfar; // zfar 0: infinite
+        Vec3 eye, target, up;            // where its node is at that time
     };
-    std::vector<Camera> cameras;        // every camera of the scene (Model::cameras); empty: none animated
+    std::vector<Camera> cameras;        // every camera of the scene (Model::cameras); empty: none animated or moved
     // Each material whose texture transforms a clip animates: every reference's transform at that
     // time on stored uvs (MapAddress::m; the base colour texture's, then each MapSlot's).
     struct Transforms {
@@ -174,7 +180,8 @@ struct ModelAnimation {
     std::vector<CameraSource> cameras;
 
     // Sets each block's `moves`: a channel of some clip on its node or an ancestor, on one of its
-    // skin's joints or their ancestors, or on its node's weights. Once, after loading.
+    // skin's joints or their ancestors, or on its node's weights; and each light's and camera's
+    // (a channel on its node or an ancestor). Once, after loading.
     void markMovingBlocks();
 
     // The longest clip's duration (all clips: `clip` < 0), or clip `clip`'s.
@@ -195,17 +202,23 @@ struct ModelAnimation {
     // transforms and weights, every block written.
     void pose(double t, int clip, Mesh& mesh, bool restOnly = false) const;
 
-    // Whether some clip animates a material, light or camera (a property channel).
+    // Whether some clip animates a material, light or camera (a property channel, or the node of
+    // a light or camera).
     bool animatesProperties() const;
     bool animatesMaterial(int material) const;
     // Whether some clip animates one of the material's texture transforms.
     bool animatesTransforms(int material) const;
     // The animated materials, lights and cameras at time t (clips as in pose; a later channel on
-    // the same property wins). A value outside its property's range is treated as the loader
+    // the same property wins; a light or camera whose node moves placed by its node's world
+    // transform at t, as the loader places it). A value outside its property's range is treated as the loader
     // treats it in a file: clamped (factors, angles), a light's intensity and range at least 0,
     // a spot's inner cone kept below its outer; a camera's yfov outside (0, pi), znear <= 0 or a
     // zfar not beyond znear keep the file's value.
     PosedProperties poseProperties(double t, int clip) const;
+
+    // Every node's world transform at time t (the rest transforms with `restOnly`), and its
+    // morph weights: what pose and poseProperties place things by.
+    void nodeWorlds(double t, int clip, bool restOnly, std::vector<Mat4d>& world, std::vector<std::vector<double>>& weights) const;
 };
 
 } // namespace sr

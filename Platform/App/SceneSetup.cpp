@@ -449,6 +449,9 @@ void poseScene(LoadedScene& scene, double t, int clip) {
         if (posed.lights.size() == scene.lights.size()) scene.lights = posed.lights;
         for (std::size_t k = 0; k < posed.cameras.size() && k < scene.cameras.size(); ++k) {
             CameraSetup& c = scene.cameras[k];
+            c.eye = posed.cameras[k].eye;
+            c.target = posed.cameras[k].target;
+            c.up = posed.cameras[k].up;
             c.fovDegrees = posed.cameras[k].yfovDegrees;
             c.nearZ = posed.cameras[k].znear;
             c.farZ = posed.cameras[k].zfar > 0.0 ? posed.cameras[k].zfar : std::numeric_limits<double>::infinity();

@@ -59,7 +59,7 @@ Status addCamera(Builder& b, const gltf::Camera& c, const Mat4d& world, int inde
     cam.znear = p.znear;
     cam.zfar = p.zfar;
     b.model.cameras.push_back(cam);
-    if (b.animation) b.animation->cameras.push_back({index, p.yfov, p.znear, p.zfar});
+    if (b.animation) b.animation->cameras.push_back({index, p.yfov, p.znear, p.zfar, b.nodeIndex, false, cam.eye, cam.target, cam.up});
     return success();
 }
 
@@ -100,8 +100,8 @@ Status addLight(Builder& b, const gltf::Light& l, const Mat4d& world, int index)
         return Status::failure(what + ": type '" + l.type + "' is not directional, point or spot");
     }
     if (b.animation)
-        b.animation->lights.push_back({index, b.model.lights.back(), {rgb[0], rgb[1], rgb[2]}, l.intensity, l.range, l.spot.innerConeAngle,
-                                       l.spot.outerConeAngle});
+        b.animation->lights.push_back({index, b.nodeIndex, false, b.model.lights.back(), {rgb[0], rgb[1], rgb[2]}, l.intensity, l.range,
+                                       l.spot.innerConeAngle, l.spot.outerConeAngle});
     return success();
 }
 

@@ -532,3 +532,34 @@ TEST_CASE("KHR_animation_pointer: a texture transform's animated offset moves th
     poseScene(s, 0.0, -1);
     CHECK(render() == still);
 }
+
+TEST_CASE("--camera N on an animated camera node: the view from where the clip has moved it; its lights too", "[platform][animation]") {
+    gltftest::Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int input = a.floats({0, 1}, "SCALAR");
+    const int moves = a.floats({0, 0, 5, 0, 4, 5}, "VEC3");
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}]}]";
+    a.nodes = R"([{"mesh":0},{"camera":0,"translation":[0,0,5],"children":[2]},)"
+              R"({"translation":[1,0,0],"extensions":{"KHR_lights_punctual":{"light":0}}}])";
+    a.scenes = R"([{"nodes":[0,1]}])";
+    a.extra = R"(,"extensionsUsed":["KHR_lights_punctual"],"extensions":{"KHR_lights_punctual":{"lights":[{"type":"point"}]}},)"
+              R"("cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}}],"animations":[{"samplers":[{"input":)" +
+              std::to_string(input) + R"(,"output":)" + std::to_string(moves) +
+              R"(}],"channels":[{"sampler":0,"target":{"node":1,"path":"translation"}}]}])";
+    SceneOptions o;
+    o.obj = objtest::writeText(objtest::freshDir("moving-camera"), "moving.gltf", a.embedded());
+    o.camera = 0;
+    auto loaded = loadScene(o);
+    REQUIRE(loaded.ok());
+    LoadedScene s = std::move(loaded).value();
+    CHECK(resolveCamera(o, s).eye.y == 0.0f);
+    poseScene(s, 0.5, -1);
+    const CameraSetup c = resolveCamera(o, s);
+    CHECK(c.eye.y == Approx(2.0));
+    CHECK(c.eye.z == Approx(5.0));
+    CHECK(c.target.y == Approx(2.0));
+    CHECK(c.target.z == Approx(4.0));
+    REQUIRE(s.lights.size() == 1);
+    CHECK(s.lights[0].position.x == Approx(1.0));
+    CHECK(s.lights[0].position.y == Approx(2.0));
+}

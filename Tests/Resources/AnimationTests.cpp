@@ -574,3 +574,56 @@ TEST_CASE("KHR_animation_pointer: an animated texture transform draws the materi
                   loaded[MapSlot::Emissive].m[row][col]);
         }
 }
+
+TEST_CASE("lights and cameras on animated nodes move with them; those on still nodes stay as loaded", "[resources][animation][pointer]") {
+    const std::string dir = freshDir("gltf-moving-lights");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int input = a.floats({0, 1}, "SCALAR");
+    const int moves = a.floats({0, 0, 5, 0, 4, 5}, "VEC3");               // (0, 0, 5) -> (0, 4, 5)
+    const float h = float(std::sqrt(0.5));
+    const int turns = a.floats({0, 0, 0, 1, 0, h, 0, h}, "VEC4");         // 0 -> 90 degrees about +Y
+    a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "}}]}]";
+    // Node 1: a camera and its child node 2 a point light, moved; node 3 a directional light,
+    // turned; node 4 a spot light, still.
+    a.nodes = "[{\"mesh\":0},{\"camera\":0,\"translation\":[0,0,5],\"children\":[2]},"
+              "{\"translation\":[1,0,0],\"extensions\":{\"KHR_lights_punctual\":{\"light\":0}}},"
+              "{\"extensions\":{\"KHR_lights_punctual\":{\"light\":1}}},"
+              "{\"translation\":[0,3,0],\"extensions\":{\"KHR_lights_punctual\":{\"light\":2}}}]";
+    a.scenes = "[{\"nodes\":[0,1,3,4]}]";
+    a.extra = ",\"extensionsUsed\":[\"KHR_lights_punctual\"],\"extensions\":{\"KHR_lights_punctual\":{\"lights\":"
+              "[{\"type\":\"point\"},{\"type\":\"directional\"},{\"type\":\"spot\"}]}},"
+              "\"cameras\":[{\"type\":\"perspective\",\"perspective\":{\"yfov\":0.8,\"znear\":0.1}}],"
+              "\"animations\":[{\"samplers\":[{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(moves) +
+              "},{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(turns) +
+              "}],\"channels\":[{\"sampler\":0,\"target\":{\"node\":1,\"path\":\"translation\"}},"
+              "{\"sampler\":1,\"target\":{\"node\":3,\"path\":\"rotation\"}}]}]";
+    auto r = loadGltf(writeText(dir, "moving.gltf", a.embedded()));
+    INFO((r ? std::string() : r.error()));
+    REQUIRE(r.ok());
+    const Model m = std::move(r).value();
+    REQUIRE(m.animation);
+    CHECK(m.animation->animatesProperties());
+    REQUIRE(m.lights.size() == 3);
+    REQUIRE(m.cameras.size() == 1);
+    const PosedProperties posed = m.animation->poseProperties(0.5, -1);
+    REQUIRE(posed.lights.size() == 3);
+    REQUIRE(posed.cameras.size() == 1);
+    // The camera at (0, 2, 5), still looking down -Z; its child light at (1, 2, 5).
+    checkVec(posed.cameras[0].eye, 0, 2, 5);
+    checkVec(posed.cameras[0].target, 0, 2, 4);
+    checkVec(posed.cameras[0].up, 0, 1, 0);
+    CHECK(posed.cameras[0].yfovDegrees == Approx(0.8 * 180.0 / kPiD));
+    checkVec(posed.lights[0].position, 1, 2, 5);
+    // The directional light turned 45 degrees about +Y at 0.5 s: toward (sin 45, 0, cos 45).
+    checkVec(posed.lights[1].toLight, std::sqrt(0.5), 0, std::sqrt(0.5), 1e-5);
+    // The still spot light: exactly as loaded.
+    CHECK(posed.lights[2].position == m.lights[2].position);
+    CHECK(posed.lights[2].spotDirection == m.lights[2].spotDirection);
+    CHECK(posed.lights[2].coneScale == m.lights[2].coneScale);
+    // At 0 s everything is where the loader put it.
+    const PosedProperties rest = m.animation->poseProperties(0.0, -1);
+    checkVec(rest.cameras[0].eye, m.cameras[0].eye.x, m.cameras[0].eye.y, m.cameras[0].eye.z);
+    checkVec(rest.lights[0].position, m.lights[0].position.x, m.lights[0].position.y, m.lights[0].position.z);
+    checkVec(rest.lights[1].toLight, m.lights[1].toLight.x, m.lights[1].toLight.y, m.lights[1].toLight.z);
+}
