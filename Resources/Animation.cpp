@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <initializer_list>
 #include <string>
 #include <utility>
@@ -365,7 +366,7 @@ bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int
         while (i < pointer.size() && pointer[i] >= '0' && pointer[i] <= '9' && index <= 2147483647) index = index * 10 + (pointer[i++] - '0');
         if (i == n || i >= pointer.size() || pointer[i] != '/' || index > 2147483647) return false;
         const std::string rest = pointer.substr(i + 1);
-        if (std::char_traits<char>::compare(owner.prefix, "/materials/", n) == 0 && transformPointer(rest, property, reference)) {
+        if (std::strcmp(owner.prefix, "/materials/") == 0 && transformPointer(rest, property, reference)) {
             target = int(index);
             return true;
         }
