@@ -8,6 +8,8 @@
 #include <ostream>
 #include <sstream>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "Platform/App/AutoQuality.hpp"
 #include "Platform/Headless/CommandArgs.hpp"
