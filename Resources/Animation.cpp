@@ -415,6 +415,11 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
         double intensity, range, inner, outer;
     };
     std::vector<LightValues> lightValues; // per LightSource
+    const auto restLights = [&] {
+        std::vector<LightValues> rest;
+        for (const LightSource& l : lights) rest.push_back({l.colour, l.intensity, l.range, l.innerCone, l.outerCone});
+        return rest;
+    };
     std::vector<CameraSource> cameraValues;
     double v[4];
     for (std::size_t c = 0; c < clips.size(); ++c) {
@@ -454,8 +459,7 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
                 break;
             }
             case PropertyOwner::Light:
-                if (lightValues.empty())
-                    for (const LightSource& l : lights) lightValues.push_back({l.colour, l.intensity, l.range, l.innerCone, l.outerCone});
+                if (lightValues.empty()) lightValues = restLights();
                 for (std::size_t k = 0; k < lights.size(); ++k) { // every placement of that light
                     if (lights[k].light != ch.target) continue;
                     LightValues& l = lightValues[k];
@@ -481,8 +485,7 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
     // Lights and cameras whose nodes move: every one posed (the still ones as loaded).
     const bool lightsMove = std::any_of(lights.begin(), lights.end(), [](const LightSource& l) { return l.moves; });
     const bool camerasMove = std::any_of(cameras.begin(), cameras.end(), [](const CameraSource& c) { return c.moves; });
-    if (lightsMove && lightValues.empty())
-        for (const LightSource& l : lights) lightValues.push_back({l.colour, l.intensity, l.range, l.innerCone, l.outerCone});
+    if (lightsMove && lightValues.empty()) lightValues = restLights();
     if (camerasMove && cameraValues.empty()) cameraValues = cameras;
     std::vector<Mat4d> world;
     if (lightsMove || camerasMove) {

@@ -64,14 +64,16 @@ std::vector<SceneDraw> withoutLobes(std::vector<SceneDraw> draws, unsigned dropp
     return draws;
 }
 
-// "pbr", "pbr without clearcoat", ...: the shading column.
-std::string shadingOf(const Setting& s) {
-    std::string out = app::shadingLabel(s.settings);
+// " without clearcoat", " without clearcoat and specular", ...: what a rung drops ("" for none).
+std::string droppedLabel(unsigned dropped) {
     std::string without;
     for (const auto& [bit, name] : kDroppable)
-        if (s.dropped & bit) without += std::string(without.empty() ? " without " : " and ") + name;
-    return out + without;
+        if (dropped & bit) without += std::string(without.empty() ? " without " : " and ") + name;
+    return without;
 }
+
+// "pbr", "pbr without clearcoat", ...: the shading column.
+std::string shadingOf(const Setting& s) { return app::shadingLabel(s.settings) + droppedLabel(s.dropped); }
 
 struct Row {
     Setting setting;
@@ -162,11 +164,7 @@ std::string fmt(double v, int decimals = 3) {
     return buf;
 }
 
-std::string label(const Setting& s, bool textured) {
-    std::string out = app::settingLabel(s.settings, textured);
-    if (s.dropped) out += shadingOf(s).substr(app::shadingLabel(s.settings).size());
-    return out;
-}
+std::string label(const Setting& s, bool textured) { return app::settingLabel(s.settings, textured) + droppedLabel(s.dropped); }
 
 // Points on the Pareto front: no other point is both faster and at least as accurate (mean
 // absolute error against the ground truth).

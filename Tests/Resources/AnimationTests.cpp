@@ -296,6 +296,15 @@ TEST_CASE("an animation sampler's output as a sparse accessor over zeros drives 
     checkVec(m.mesh.positions[0], 1, 0, 0);
 }
 
+namespace {
+
+std::string pointerChannel(int sampler, const std::string& pointer) {
+    return "{\"sampler\":" + std::to_string(sampler) + ",\"target\":{\"path\":\"pointer\",\"extensions\":{\"KHR_animation_pointer\":{\"pointer\":\"" +
+           pointer + "\"}}}}";
+}
+
+} // namespace
+
 TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as the core path does; a property SoftRaster does not read is named in a warning",
           "[resources][animation][pointer]") {
     const std::string dir = freshDir("gltf-pointer");
@@ -307,10 +316,6 @@ TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as th
     a.meshes = "[{\"primitives\":[{\"attributes\":{\"POSITION\":" + std::to_string(pos) + "},\"material\":0}]}]";
     a.nodes = "[{\"mesh\":0}]";
     a.materials = "[{}]";
-    const auto pointerChannel = [](int sampler, const std::string& pointer) {
-        return "{\"sampler\":" + std::to_string(sampler) + ",\"target\":{\"path\":\"pointer\",\"extensions\":{\"KHR_animation_pointer\":{\"pointer\":\"" +
-               pointer + "\"}}}}";
-    };
     a.extra = ",\"extensionsUsed\":[\"KHR_animation_pointer\"],\"extensionsRequired\":[\"KHR_animation_pointer\"],"
               "\"animations\":[{\"samplers\":[{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(moves) +
               "},{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(colours) + "}],\"channels\":[" +
@@ -331,11 +336,6 @@ TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as th
 }
 
 namespace {
-
-std::string pointerChannel(int sampler, const std::string& pointer) {
-    return "{\"sampler\":" + std::to_string(sampler) + ",\"target\":{\"path\":\"pointer\",\"extensions\":{\"KHR_animation_pointer\":{\"pointer\":\"" +
-           pointer + "\"}}}}";
-}
 
 // A triangle with material 0 (animated), material 1 (MASK, its alpha animated), a point and a
 // spot light and a camera: samplers over keys 0 and 1 s, each channel given by pointer.
