@@ -3,12 +3,14 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "Math/Color.hpp"
+#include "Math/Mat4.hpp"
 #include "Math/Vec.hpp"
 #include "Raster/Fill/Blend.hpp" // TexelAlpha
 #include "Raster/Geometry/Mesh.hpp"
@@ -64,6 +66,12 @@ struct DrawRange {
     std::uint32_t firstIndex = 0, indexCount = 0; // into Mesh::indices (3 per triangle)
     int material = -1;                            // index into Model::materials, or -1
     int texture = -1; // == (material >= 0 && hasUvs ? materials[material].texture : -1), for convenience
+    // glTF EXT_mesh_gpu_instancing: the range's vertices, Mesh::positions[firstVertex ..
+    // firstVertex + vertexCount), are in the mesh's own space and the range is drawn once at each
+    // of these places (mesh to world; Raster/Geometry/Placement.hpp). A range whose places mirror
+    // lists its faces reversed. Empty: the range is in world space, drawn once.
+    std::vector<Mat4> instances;
+    std::uint32_t firstVertex = 0, vertexCount = 0;
 };
 
 // Line segments (index pairs) or points of the file (glTF POINTS / LINES / LINE_LOOP /
@@ -135,6 +143,15 @@ struct LoadOptions {
     std::string variant;         // glTF KHR_materials_variants: the variant to draw (empty: none; unknown: an error)
     LoadLimits limits;
 };
+
+// Every vertex position of the model in world space: the vertices of an instanced range once per
+// place, every other vertex (used or not) as stored.
+void forEachWorldPosition(const Model& model, const std::function<void(Vec3)>& visit);
+
+// The model with its instanced ranges written out: each place's copy of the range's vertices,
+// moved as the vertex stage moves them (Placement: position, normal, tangent), in one world-space
+// range each. The reference the instanced draws are tested against.
+void writeOutInstances(Model& model);
 
 // The default texture given to a material whose map is missing or cannot be decoded: an 8x8
 // magenta/black checkerboard (one texel per square), visible on purpose.

@@ -73,17 +73,18 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
     std::vector<std::uint32_t> remap(src.vertexCount(), kNoVertex);
     std::vector<std::uint32_t> firstIndex(model.ranges.size(), 0);
     std::vector<int> meshOf(model.ranges.size(), -1);
-    for (const bool textured : {true, false}) {
+    // The ranges from..to (exclusive) that `take` accepts, appended to one new mesh.
+    const auto makeMesh = [&](std::size_t from, std::size_t to, const auto& take) {
         Mesh part;
         std::vector<std::uint32_t> partOrigins;
-        for (std::size_t r = 0; r < model.ranges.size(); ++r) {
+        for (std::size_t r = from; r < to; ++r) {
             const DrawRange& range = model.ranges[r];
-            if (usesUvs(range) != textured) continue;
+            if (!take(range)) continue;
             firstIndex[r] = appendRange(part, src, range.firstIndex, range.indexCount, remap, origins ? &partOrigins : nullptr);
             meshOf[r] = int(scene.meshes.size());
         }
-        for (const DrawRange& range : model.ranges)
-            if (usesUvs(range) == textured) clearRange(src, range.firstIndex, range.indexCount, remap);
+        for (std::size_t r = from; r < to; ++r)
+            if (take(model.ranges[r])) clearRange(src, model.ranges[r].firstIndex, model.ranges[r].indexCount, remap);
         // Vertex colours that are all white change no base colour: the mesh drops them (its
         // draws then interpolate none).
         const auto white = [](const Color& c) { return c.r == 1.0f && c.g == 1.0f && c.b == 1.0f && c.a == 1.0f; };
@@ -92,6 +93,20 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
             scene.meshes.push_back(std::move(part));
             if (origins) origins->push_back(std::move(partOrigins));
         }
+    };
+    for (const bool textured : {true, false})
+        makeMesh(0, model.ranges.size(), [&](const DrawRange& range) { return range.instances.empty() && usesUvs(range) == textured; });
+    // An instanced mesh: a mesh of its own (its vertices are in its own space), shared by the
+    // ranges of its vertex block (the faces kept and the faces reversed).
+    for (std::size_t r = 0; r < model.ranges.size();) {
+        std::size_t end = r + 1;
+        if (!model.ranges[r].instances.empty()) {
+            while (end < model.ranges.size() && !model.ranges[end].instances.empty() &&
+                   model.ranges[end].firstVertex == model.ranges[r].firstVertex)
+                ++end;
+            makeMesh(r, end, [](const DrawRange&) { return true; });
+        }
+        r = end;
     }
     for (std::size_t r = 0; r < model.ranges.size(); ++r) {
         const DrawRange& range = model.ranges[r];
@@ -119,8 +134,12 @@ Scene sceneFromModel(Model&& model, Color kd, MaterialRule rule, std::vector<std
             // may make it visible (renderScene skips it while it is not).
             if (!(d.alpha > 0.0f) && !(model.animation && model.animation->animatesMaterial(range.material))) continue;
         }
-        scene.draws.push_back(d);
-        if (drawMaterials) drawMaterials->push_back(fromFile ? range.material : -1);
+        // One draw per place of an instanced range.
+        for (std::size_t k = 0; k < std::max<std::size_t>(range.instances.size(), 1); ++k) {
+            if (!range.instances.empty()) d.placement = Placement::of(range.instances[k]);
+            scene.draws.push_back(d);
+            if (drawMaterials) drawMaterials->push_back(fromFile ? range.material : -1);
+        }
     }
     // Lines and points: the flat colour of their material (kd; lines carry no normal), else kd.
     for (LineSet& l : model.lineSets) {
@@ -215,16 +234,22 @@ Result<LoadedScene> loadScene(const SceneOptions& options) {
         // Bounding sphere: centre of the AABB of every 'v', radius = farthest vertex from it.
         out.centre = (m.boundsMin + m.boundsMax) * 0.5f;
         double r = 0.0;
-        const auto reach = [&](const std::vector<Vec3>& positions) {
-            for (const Vec3& p : positions) {
-                const double dx = double(p.x) - out.centre.x, dy = double(p.y) - out.centre.y, dz = double(p.z) - out.centre.z;
-                r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz));
-            }
+        const auto reach = [&](Vec3 p) {
+            const double dx = double(p.x) - out.centre.x, dy = double(p.y) - out.centre.y, dz = double(p.z) - out.centre.z;
+            r = std::max(r, std::sqrt(dx * dx + dy * dy + dz * dz));
         };
-        reach(m.mesh.positions);
-        for (const LineSet& l : m.lineSets) reach(l.positions); // glTF lines and points
+        forEachWorldPosition(m, reach);
+        for (const LineSet& l : m.lineSets) // glTF lines and points
+            for (const Vec3& p : l.positions) reach(p);
         out.radius = r > 0.0 ? r : 1.0;
-        out.description = options.obj + ": " + std::to_string(m.mesh.triangleCount()) + " triangles, " +
+        // Instanced meshes are stored once and drawn at each place: the triangles drawn, and the
+        // stored ones where they differ.
+        std::size_t drawn = 0;
+        for (const DrawRange& range : m.ranges) drawn += std::size_t(range.indexCount / 3) * std::max<std::size_t>(range.instances.size(), 1);
+        const std::string instanced = drawn != m.mesh.triangleCount() && !m.animation
+                                          ? " (" + std::to_string(m.mesh.triangleCount()) + " stored: instanced)"
+                                          : std::string();
+        out.description = options.obj + ": " + std::to_string(m.animation ? m.mesh.triangleCount() : drawn) + " triangles" + instanced + ", " +
                           std::to_string(m.textures.size()) + " textures, normals " +
                           (m.normalsFromFile ? "from the file" : out.physical ? "flat where the file has none" : "computed (area-weighted)");
         if (m.variant >= 0) out.description += ", material variant '" + m.variants[std::size_t(m.variant)] + "'";

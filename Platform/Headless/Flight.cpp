@@ -63,14 +63,15 @@ Pose nextPose(Random& rnd, const app::LoadedScene& scene) {
     const Vec3 c = scene.centre;
     const double r = scene.radius > 0 && std::isfinite(scene.radius) ? scene.radius : 1.0;
     const auto around = [&](double lo, double hi) { return add(c, mul(rnd.direction(), r * rnd.range(lo, hi))); };
-    // A random triangle of a random non-empty mesh (or none).
+    // A random triangle of a random draw (or none), where the draw puts it.
     const auto triangle = [&](Vec3 out[3]) {
-        const auto& meshes = scene.scene.meshes;
-        if (meshes.empty()) return false;
-        const Mesh& m = meshes[rnd.below(meshes.size())];
-        if (m.indices.size() < 3 || m.positions.empty()) return false;
-        const std::size_t t = rnd.below(m.indices.size() / 3) * 3;
-        for (int k = 0; k < 3; ++k) out[k] = m.positions[m.indices[t + std::size_t(k)] % m.positions.size()];
+        const auto& draws = scene.scene.draws;
+        if (draws.empty()) return false;
+        const SceneDraw& d = draws[rnd.below(draws.size())];
+        const Mesh& m = scene.scene.meshes[std::size_t(d.mesh)];
+        if (d.indexCount < 3 || m.positions.empty()) return false;
+        const std::size_t t = d.firstIndex + rnd.below(d.indexCount / 3) * 3;
+        for (int k = 0; k < 3; ++k) out[k] = drawnPosition(d, m.positions[m.indices[t + std::size_t(k)] % m.positions.size()]);
         return true;
     };
 

@@ -80,8 +80,10 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
     }
     // The programs' vertex() reads the mesh, the view and (Gouraud) the specular constants, which
     // it names in vertexVariant(): draws of one mesh share their vertex stage inside a
-    // VertexReuseScope (renderScene) when those agree.
-    drawProgram<Program::kVaryings>(ctx, state, d.mesh.vertexCount(), d.indices, indexCount, withKernel, &d.mesh);
+    // VertexReuseScope (renderScene) when those agree. A placed draw (an instance) shares none:
+    // its vertices are its place's.
+    drawProgram<Program::kVaryings>(ctx, state, d.mesh.vertexCount(), d.indices, indexCount, withKernel,
+                                    d.placement ? nullptr : &d.mesh);
 }
 
 template <bool kTextured>
@@ -111,6 +113,7 @@ struct DrawInputs final : RenderContext::Kept {
     RenderSettings settings;
     FrameView phongView;
     SurfaceMaterial material;
+    std::optional<Placement> placement;
     std::optional<DrawContext> draw, pbrDraw;
 };
 
@@ -176,7 +179,8 @@ void drawPbr(RenderContext& ctx, DrawInputs& in, std::size_t indexCount) {
 } // namespace
 
 void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& frameSettings, const Mesh& mesh,
-              const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& surface) {
+              const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& surface,
+              const Placement* placement) {
     DrawInputs local;
     DrawInputs& in = ctx.deferral.active ? ctx.keep(std::make_unique<DrawInputs>()) : local;
     in.material = surface;
@@ -221,6 +225,7 @@ void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& f
     d.linear = settings.colour == ColorMode::Linear;
     d.exposureScale = std::exp2(settings.exposure);
     d.material = &material;
+    if (placement) d.placement = &in.placement.emplace(*placement);
     if (pbr) drawPbr(ctx, in, indexCount);
     else if (textured) drawShaded<true>(ctx, d, mode, indexCount);
     else drawShaded<false>(ctx, d, mode, indexCount);

@@ -7,10 +7,12 @@
 #include "Raster/Frame/RenderContext.hpp"
 #include "Raster/Frame/RenderSettings.hpp"
 #include "Raster/Geometry/Mesh.hpp"
+#include "Raster/Geometry/Placement.hpp"
 
 namespace sr {
 
-// Draws the triangles indices[0 .. indexCount) of `mesh` (positions in world space).
+// Draws the triangles indices[0 .. indexCount) of `mesh`: its positions in world space, or with
+// `placement` (not null) in its own space, drawn at that place (one instance: Placement.hpp).
 // "Model only what the scene requires": the shading mode and the material pick one of eight
 // specialised pipelines, each interpolating only what its fragment stage reads:
 //   unlit          depth only (constant kd)          | + uv (2) when textured
@@ -20,7 +22,8 @@ namespace sr {
 // A mesh without normals is drawn with its face normals in the Gouraud and Phong modes
 // (as flat). Texturing needs both a texture and mesh uvs.
 void drawMesh(RenderContext& ctx, const FrameView& view, const RenderSettings& settings, const Mesh& mesh,
-              const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& material);
+              const std::uint32_t* indices, std::size_t indexCount, const SurfaceMaterial& material,
+              const Placement* placement = nullptr);
 
 // The texel alpha a draw of `material` on `mesh` uses: the material's mode when the draw is
 // textured (a texture and mesh uvs) and the texture has alpha below 255, else Off (Blend.hpp).

@@ -77,6 +77,8 @@ void drawOutlineBand(RenderContext& ctx, FrameBuffer& target, Pixel colour, int 
     });
 }
 
+const Placement* placementOf(const SceneDraw& d) { return d.placement ? &*d.placement : nullptr; }
+
 // The transparent draws' triangles, sorted (renderScene).
 void drawTransparent(RenderContext& ctx, const Scene& scene, const FrameView& view, const RenderSettings& settings,
                      const Texture* textureOverride) {
@@ -91,7 +93,9 @@ void drawTransparent(RenderContext& ctx, const Scene& scene, const FrameView& vi
         if (!(d.alpha > 0.0f) || !drawsBlended(materialOf(scene, d, textureOverride), mesh)) continue;
         for (std::uint32_t k = 0; k + 2 < d.indexCount; k += 3) {
             const std::uint32_t* t = mesh.indices.data() + d.firstIndex + k;
-            const Vec3 c = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) / 3.0f;
+            const Vec3 c = (drawnPosition(d, mesh.positions[t[0]]) + drawnPosition(d, mesh.positions[t[1]]) +
+                            drawnPosition(d, mesh.positions[t[2]])) /
+                           3.0f;
             const float w = (view.viewProj * Vec4(c, 1.0f)).w;
             order.push_back({std::isnan(w) ? 0.0f : w, std::uint32_t(i), d.firstIndex + k});
         }
@@ -111,7 +115,7 @@ void drawTransparent(RenderContext& ctx, const Scene& scene, const FrameView& vi
         indices.clear();
         for (; r < order.size() && order[r].draw == draw; ++r)
             indices.insert(indices.end(), mesh.indices.begin() + order[r].first, mesh.indices.begin() + order[r].first + 3);
-        drawMesh(ctx, view, settings, mesh, indices.data(), indices.size(), materialOf(scene, d, textureOverride));
+        drawMesh(ctx, view, settings, mesh, indices.data(), indices.size(), materialOf(scene, d, textureOverride), placementOf(d));
     }
 }
 
@@ -147,7 +151,7 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
             anyTransparent = true;
             continue;
         }
-        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material);
+        drawMesh(ctx, view, settings, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, material, placementOf(d));
     }
     opaque.finish();
     // Lines and points: depth-tested and written, before the transparent surfaces blend over them.
@@ -168,7 +172,7 @@ void renderScene(RenderContext& ctx, const Scene& scene, const FrameView& view, 
         mark.stencil.pass = StencilOp::Replace;
         SurfaceMaterial plain; // untextured: nothing to sample (no colour is written)
         plain.doubleSided = materialOf(scene, d, textureOverride).doubleSided;
-        drawMesh(ctx, view, mark, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, plain);
+        drawMesh(ctx, view, mark, mesh, mesh.indices.data() + d.firstIndex, d.indexCount, plain, placementOf(d));
     }
     // The sky where nothing opaque was drawn, before the transparent surfaces blend over it.
     if (scene.sky.on() && settings.stopAfter == PipelineStop::Fill) {

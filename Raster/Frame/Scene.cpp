@@ -66,10 +66,10 @@ int pickDraw(const Scene& scene, Vec3 origin, Vec3 dir) {
         if (std::size_t(d.firstIndex) + d.indexCount > mesh.indices.size()) continue;
         if (drawsBlended(materialOf(scene, d, nullptr), mesh)) continue;
         const std::uint32_t* idx = mesh.indices.data() + d.firstIndex;
+        const auto at = [&](std::uint32_t v) { return drawnPosition(d, mesh.positions[v]); };
         for (std::uint32_t k = 0; k + 2 < d.indexCount; k += 3) {
             double t = 0.0;
-            if (rayHits(origin, dir, mesh.positions[idx[k]], mesh.positions[idx[k + 1]], mesh.positions[idx[k + 2]], t) &&
-                t < bestT) {
+            if (rayHits(origin, dir, at(idx[k]), at(idx[k + 1]), at(idx[k + 2]), t) && t < bestT) {
                 bestT = t;
                 best = int(i);
             }

@@ -7,6 +7,7 @@
 
 #include "Raster/Frame/MeshRenderer.hpp"
 #include "Raster/Geometry/Mesh.hpp"
+#include "Raster/Geometry/Placement.hpp"
 #include "Raster/Shade/Brdf.hpp" // PbrFactors
 #include "Raster/Shade/MaterialMaps.hpp"
 #include "Raster/Texture/Texture.hpp"
@@ -32,7 +33,13 @@ struct SceneDraw {
     std::optional<PbrFactors> pbr;
     MaterialMaps<int> maps; // (a slot that readsAlpha: the alpha copy)
     std::optional<MapAddressing> addressing; // each map's own uv set, transform and sampler (SurfaceMaterial)
+    // One instance of a mesh stored once in its own space (glTF EXT_mesh_gpu_instancing): where
+    // this draw puts it. Unset: the mesh is in world space.
+    std::optional<Placement> placement;
 };
+
+// Where a draw puts a vertex of its mesh: placed (an instance), or as stored (world space).
+inline Vec3 drawnPosition(const SceneDraw& d, Vec3 p) { return d.placement ? d.placement->position(p) : p; }
 
 // World-space line segments (index pairs) or points, in one flat colour (lines are unlit).
 struct SceneLines {
@@ -43,7 +50,7 @@ struct SceneLines {
 };
 
 // Static geometry is stored in world space, prepared once (no per-frame vertex work besides
-// the transform to clip space).
+// the transform to clip space); an instanced mesh once in its own space, placed by its draws.
 struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Texture> textures;

@@ -48,7 +48,11 @@ struct DepthOnlyProgram {
     static constexpr int kVaryings = 0;
     const Mat4* viewProj;
     const Mesh* mesh;
-    void vertex(std::size_t i, ClipVertex& out) const { out.position = *viewProj * Vec4(mesh->positions[i], 1.0f); }
+    const Placement* placement; // an instance's place (null: the mesh is in world space)
+    void vertex(std::size_t i, ClipVertex& out) const {
+        const Vec3 p = placement ? placement->position(mesh->positions[i]) : mesh->positions[i];
+        out.position = *viewProj * Vec4(p, 1.0f);
+    }
     void triangle(std::size_t, const TriangleSetup&) const {}
     Pixel fragment(const Fragment<0>&) const { return 0; }
     bool fillKernel(const TriangleSetup& t, FrameBuffer& fb, const Scissor& s, std::uint64_t& shaded) const {
@@ -92,7 +96,7 @@ Bounds casterBounds(const Scene& scene) {
         if (d.mesh < 0 || std::size_t(d.mesh) >= scene.meshes.size()) continue;
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
         if (std::size_t(d.firstIndex) + d.indexCount > mesh.indices.size() || d.alpha < 1.0f) continue;
-        for (std::uint32_t k = 0; k < d.indexCount; ++k) b.add(mesh.positions[mesh.indices[d.firstIndex + k]]);
+        for (std::uint32_t k = 0; k < d.indexCount; ++k) b.add(drawnPosition(d, mesh.positions[mesh.indices[d.firstIndex + k]]));
     }
     return b;
 }
@@ -227,7 +231,7 @@ void renderShadowMaps(RenderContext& ctx, const Scene& scene, const FrameView& v
                 if (d.mesh < 0 || std::size_t(d.mesh) >= scene.meshes.size() || d.alpha < 1.0f) continue;
                 const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
                 if (std::size_t(d.firstIndex) + d.indexCount > mesh.indices.size()) continue;
-                DepthOnlyProgram program{&map.viewProj, &mesh};
+                DepthOnlyProgram program{&map.viewProj, &mesh, d.placement ? &*d.placement : nullptr};
                 drawProgram<0>(ctx, state, mesh.vertexCount(), mesh.indices.data() + d.firstIndex, d.indexCount, program);
             }
             ctx.setTarget(screen);

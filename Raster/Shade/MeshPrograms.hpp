@@ -12,6 +12,7 @@
 #include "Raster/Fill/ScanlineFill.hpp"
 #include "Raster/Frame/RenderSettings.hpp"
 #include "Raster/Geometry/Mesh.hpp"
+#include "Raster/Geometry/Placement.hpp"
 #include "Raster/Pipeline.hpp" // DrawState
 #include "Raster/Texture/TextureLod.hpp"
 
@@ -49,7 +50,19 @@ struct DrawContext {
     bool linear = false;
     float exposureScale = 1.0f;                 // 2^settings.exposure (linear only)
     const SurfaceMaterial* material = nullptr;  // the pbr program's maps and factors
+    const Placement* placement = nullptr;       // the mesh drawn as an instance: its place (null: in world space)
 };
+
+// A vertex's world-space position, normal and tangent: the mesh's own, or placed (Placement.hpp).
+inline Vec3 worldPosition(const DrawContext& d, std::size_t i) {
+    return d.placement ? d.placement->position(d.mesh.positions[i]) : d.mesh.positions[i];
+}
+inline Vec3 worldNormal(const DrawContext& d, std::size_t i) {
+    return d.placement ? d.placement->normal(d.mesh.normals[i]) : d.mesh.normals[i];
+}
+inline Vec4 worldTangent(const DrawContext& d, std::size_t i) {
+    return d.placement ? d.placement->tangent(d.mesh.tangents[i]) : d.mesh.tangents[i];
+}
 
 // The stored pixel of a shaded colour: on display values as it is (packBgra8); in linear light
 // tone-mapped and sRGB-encoded (packLinearBgra8).
@@ -168,7 +181,7 @@ inline DrawState drawStateFor(const DrawContext& d) {
 // Writes the clip position and, when textured, the uv into varyings 0-1.
 template <bool kTextured>
 inline void transformVertex(const DrawContext& d, std::size_t i, ClipVertex& out) {
-    out.position = d.view.viewProj * Vec4(d.mesh.positions[i], 1.0f);
+    out.position = d.view.viewProj * Vec4(worldPosition(d, i), 1.0f);
     if constexpr (kTextured) {
         out.varyings[0] = d.mesh.uvs[i].x;
         out.varyings[1] = d.mesh.uvs[i].y;
@@ -241,8 +254,8 @@ struct FlatProgram {
     void ensureLit() const {
         if (lit) return;
         lit = true;
-        const Vec3 p0 = d->mesh.positions[d->indices[3 * tri]], p1 = d->mesh.positions[d->indices[3 * tri + 1]],
-                   p2 = d->mesh.positions[d->indices[3 * tri + 2]];
+        const Vec3 p0 = worldPosition(*d, d->indices[3 * tri]), p1 = worldPosition(*d, d->indices[3 * tri + 1]),
+                   p2 = worldPosition(*d, d->indices[3 * tri + 2]);
         const Vec3 centroid = (p0 + p1 + p2) / 3.0f;
         terms = litTerms(*d, faceNormal(p0, p1, p2), centroid, normalize(d->view.eye - centroid));
         if constexpr (!kTextured) flat = encode(*d, applyTerms(d->kd, d->specular.ks, terms));
@@ -279,8 +292,8 @@ struct GouraudProgram {
     }
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kTextured>(*d, i, out);
-        const Vec3 p = d->mesh.positions[i];
-        const Vec3 n = normalize(d->mesh.normals[i]), v = normalize(d->view.eye - p);
+        const Vec3 p = worldPosition(*d, i);
+        const Vec3 n = normalize(worldNormal(*d, i)), v = normalize(d->view.eye - p);
         if constexpr (kRgb) {
             const RgbTerms t = lightTerms(d->view.lighting, d->specular, n, p, v);
             const float terms[6] = {t.diffuse.r, t.diffuse.g, t.diffuse.b, t.specular.r, t.specular.g, t.specular.b};
@@ -324,9 +337,9 @@ struct PhongProgram {
     explicit PhongProgram(const DrawContext* dc) : d(dc) {}
     void vertex(std::size_t i, ClipVertex& out) const {
         transformVertex<kTextured>(*d, i, out);
-        const Vec3 n = d->mesh.normals[i];
+        const Vec3 n = worldNormal(*d, i);
         if constexpr (kPositions) {
-            const Vec3 p = d->mesh.positions[i];
+            const Vec3 p = worldPosition(*d, i);
             out.varyings[kP] = p.x;
             out.varyings[kP + 1] = p.y;
             out.varyings[kP + 2] = p.z;

@@ -100,11 +100,11 @@ struct PbrProgram {
                 out.varyings[2 * set + 1] = d->mesh.uvSets[set][i].y;
             }
         }
-        const Vec3 p = d->mesh.positions[i], n = d->mesh.normals[i];
+        const Vec3 p = worldPosition(*d, i), n = worldNormal(*d, i);
         const float values[6] = {p.x, p.y, p.z, n.x, n.y, n.z};
         for (int k = 0; k < 6; ++k) out.varyings[kP + k] = values[k];
         if constexpr (kTangents) {
-            const Vec4 t = d->mesh.tangents[i];
+            const Vec4 t = worldTangent(*d, i);
             out.varyings[kT] = t.x;
             out.varyings[kT + 1] = t.y;
             out.varyings[kT + 2] = t.z;

@@ -197,22 +197,38 @@ Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const 
             // own transform ignored), and the extension leaves open where an instance would go.
             if (!instances.value().empty() && node.skin >= 0)
                 return R::failure(path + ": node " + std::to_string(item.node) + ": EXT_mesh_gpu_instancing on a skinned mesh is not supported");
-            const std::size_t copies = std::max<std::size_t>(instances.value().size(), 1);
             const gltf::Mesh& gm = g.meshes[std::size_t(node.mesh)];
-            for (std::size_t k = 0; k < copies; ++k) {
-                const Mat4d placed = instances.value().empty() ? world : world * instances.value()[k];
-                b.instance = instances.value().empty() ? nullptr : &instances.value()[k];
-                for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
-                    const std::string what = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p);
-                    const int material = variantMaterial(gm.primitives[p], variant);
-                    if (material < -1) return R::failure(path + ": " + what + ": KHR_materials_variants: a mapping is malformed");
-                    const Status s = material == gm.primitives[p].material
-                                         ? addPrimitive(b, gm.primitives[p], placed, what, limits)
-                                         : addPrimitive(b, withMaterial(gm.primitives[p], material), placed, what, limits);
+            const auto add = [&](std::size_t p, const Mat4d& placed) {
+                const std::string what = "mesh " + std::to_string(node.mesh) + " primitive " + std::to_string(p);
+                const int material = variantMaterial(gm.primitives[p], variant);
+                if (material < -1) return Status::failure(what + ": KHR_materials_variants: a mapping is malformed");
+                return material == gm.primitives[p].material ? addPrimitive(b, gm.primitives[p], placed, what, limits)
+                                                             : addPrimitive(b, withMaterial(gm.primitives[p], material), placed, what, limits);
+            };
+            // Instances of a static mesh: its triangles stored once in its own space, drawn at
+            // each place (DrawRange::instances). Lines and points, and the instances in an
+            // animated file (each follows its node: AnimatedBlock::instance), are written out.
+            std::vector<Mat4> places;
+            if (!b.animation)
+                for (const Mat4d& instance : instances.value()) places.push_back(toMat4(world * instance));
+            const std::size_t copies = std::max<std::size_t>(instances.value().size(), 1);
+            for (std::size_t p = 0; p < gm.primitives.size(); ++p) {
+                if (!places.empty() && gm.primitives[p].mode >= gltf::kModeTriangles) {
+                    b.placing = true;
+                    const std::size_t first = b.placed.size();
+                    const Status s = add(p, identity);
+                    b.placing = false;
+                    if (!s) return R::failure(path + ": " + s.error());
+                    for (std::size_t k = first; k < b.placed.size(); ++k) b.placed[k].places = places;
+                    continue;
+                }
+                for (std::size_t k = 0; k < copies; ++k) {
+                    b.instance = instances.value().empty() ? nullptr : &instances.value()[k];
+                    const Status s = add(p, instances.value().empty() ? world : world * instances.value()[k]);
+                    b.instance = nullptr;
                     if (!s) return R::failure(path + ": " + s.error());
                 }
             }
-            b.instance = nullptr;
         }
         if (node.camera >= 0) {
             if (std::size_t(node.camera) >= g.cameras.size())
@@ -264,6 +280,28 @@ Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const 
         model.mesh.indices.insert(model.mesh.indices.end(), list.begin(), list.end());
         model.ranges.push_back(r);
     }
+    // The instanced primitives: a range for their places that keep the winding, and one with the
+    // faces reversed for those that mirror, each after the world-space ranges.
+    for (const Builder::PlacedPrimitive& placed : b.placed) {
+        for (const bool mirrors : {false, true}) {
+            DrawRange r;
+            for (const Mat4& place : placed.places)
+                if ((determinant(place) < 0.0f) == mirrors) r.instances.push_back(place);
+            if (r.instances.empty() || placed.triangles.empty()) continue;
+            r.firstIndex = std::uint32_t(model.mesh.indices.size());
+            r.indexCount = std::uint32_t(placed.triangles.size());
+            r.material = placed.material;
+            r.texture = model.hasUvs && r.material >= 0 ? model.materials[std::size_t(r.material)].texture : -1;
+            r.firstVertex = placed.firstVertex;
+            r.vertexCount = placed.vertexCount;
+            for (std::size_t t = 0; t + 2 < placed.triangles.size(); t += 3) {
+                const std::uint32_t* v = placed.triangles.data() + t;
+                if (mirrors) model.mesh.indices.insert(model.mesh.indices.end(), {v[0], v[2], v[1]});
+                else model.mesh.indices.insert(model.mesh.indices.end(), v, v + 3);
+            }
+            model.ranges.push_back(std::move(r));
+        }
+    }
     // Primitives without a material get the specification's default one (every property at its
     // default: white, metallic 1, roughness 1, opaque, single-sided), not an OBJ face's grey.
     int defaultMaterial = -1;
@@ -291,16 +329,16 @@ Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const 
         model.boundsMax = Vec3(1.0f, 1.0f, 1.0f);
         return R(std::move(model));
     }
-    // Bounds of the drawn vertices (world space), triangles', lines' and points'.
-    model.boundsMin = model.boundsMax = !model.mesh.positions.empty() ? model.mesh.positions.front() : model.lineSets.front().positions.front();
-    const auto grow = [&](const std::vector<Vec3>& positions) {
-        for (const Vec3& p : positions) {
-            model.boundsMin = Vec3(std::min(model.boundsMin.x, p.x), std::min(model.boundsMin.y, p.y), std::min(model.boundsMin.z, p.z));
-            model.boundsMax = Vec3(std::max(model.boundsMax.x, p.x), std::max(model.boundsMax.y, p.y), std::max(model.boundsMax.z, p.z));
-        }
+    // Bounds of the drawn vertices (world space), triangles' (each instance's), lines' and points'.
+    bool first = true;
+    const auto grow = [&](Vec3 p) {
+        model.boundsMin = first ? p : Vec3(std::min(model.boundsMin.x, p.x), std::min(model.boundsMin.y, p.y), std::min(model.boundsMin.z, p.z));
+        model.boundsMax = first ? p : Vec3(std::max(model.boundsMax.x, p.x), std::max(model.boundsMax.y, p.y), std::max(model.boundsMax.z, p.z));
+        first = false;
     };
-    grow(model.mesh.positions);
-    for (const LineSet& l : model.lineSets) grow(l.positions);
+    forEachWorldPosition(model, grow);
+    for (const LineSet& l : model.lineSets)
+        for (const Vec3& p : l.positions) grow(p);
     return R(std::move(model));
 }
 

@@ -24,7 +24,9 @@ namespace sr {
 //    rounded once to float); NORMAL by the inverse transpose, renormalised; a node whose
 //    transform mirrors (negative determinant) has its triangles' winding reversed, so front
 //    faces stay counter-clockwise; EXT_mesh_gpu_instancing: each instance's T R S before the
-//    node's transform (the instances' vertices are written out one copy per instance);
+//    node's transform: a static mesh's triangles stored once in its own space, drawn at each
+//    instance's place (DrawRange::instances; those that mirror from the faces reversed); in an
+//    animated file, and for lines and points, written out one copy per instance;
 //  - primitives: TRIANGLES, TRIANGLE_STRIP and TRIANGLE_FAN, indexed (u8/u16/u32) or not;
 //    POSITION, NORMAL (without it, flat normals), TEXCOORD_0 (v is flipped to OBJ's convention,
 //    v = 0 the image's bottom row). POINTS and LINES primitives become line sets;

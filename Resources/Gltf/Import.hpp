@@ -37,6 +37,17 @@ struct Builder {
     std::size_t lineElements = 0, lineVertices = 0; // in model.lineSets, for the limits
     std::size_t triangles = 0; // in trianglesOf (the mesh's indices are filled at the end)
     bool anyComputedNormal = false, anyFileNormal = false;
+    // An instanced node's triangle primitives are added once, in the mesh's own space (`placing`),
+    // each kept here with its material, vertex block and triangles, drawn at the node's places
+    // (DrawRange::instances).
+    struct PlacedPrimitive {
+        int material = -1;
+        std::uint32_t firstVertex = 0, vertexCount = 0;
+        std::vector<std::uint32_t> triangles; // counter-clockwise, into the mesh
+        std::vector<Mat4> places;             // mesh to world, one per instance
+    };
+    bool placing = false;
+    std::vector<PlacedPrimitive> placed;
     // [material]: an animation moves one of its texture transforms (KHR_animation_pointer): its
     // maps are drawn at their own addresses from the raw uv sets (materialAddressing's `force`).
     std::vector<std::uint8_t> animatedTransforms;
@@ -48,6 +59,8 @@ struct Builder {
 // Nodes.cpp: the node's local transform (glTF: matrix, column-major, or T * R * S).
 Mat4d localMatrix(const gltf::Node& n);
 bool finite(const Mat4d& m);
+// The matrix in single precision (Mat4d is row by row, Mat4 column by column).
+Mat4 toMat4(const Mat4d& m);
 // A camera node: eye = the node's origin, forward = its -Z, up = its +Y (glTF "Cameras").
 Status addCamera(Builder& b, const gltf::Camera& c, const Mat4d& world, int index);
 // A KHR_lights_punctual light placed by a node.

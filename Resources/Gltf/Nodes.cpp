@@ -24,6 +24,13 @@ Mat4d localMatrix(const gltf::Node& n) {
     return trsMatrix(t, q, s);
 }
 
+Mat4 toMat4(const Mat4d& m) {
+    Mat4 r;
+    for (int row = 0; row < 4; ++row)
+        for (int col = 0; col < 4; ++col) r.m[col * 4 + row] = float(m.m[row][col]);
+    return r;
+}
+
 bool finite(const Mat4d& m) {
     for (const auto& row : m.m)
         for (double v : row)

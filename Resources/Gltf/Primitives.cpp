@@ -355,8 +355,16 @@ Status addPrimitive(Builder& b, const gltf::Primitive& prim, const Mat4d& world,
     // Triangles into their material's list.
     const int material = prim.material >= 0 && std::size_t(prim.material) < g.materials.size() ? prim.material : -1;
     if (prim.material >= 0 && material < 0) return Status::failure(what + ": material " + std::to_string(prim.material) + " does not exist");
-    auto& list = b.trianglesOf[std::size_t(material + 1)];
     b.triangles += tris.size() / 3;
+    if (b.placing) { // in the mesh's own space: no mirror (det > 0)
+        Builder::PlacedPrimitive& placed = b.placed.emplace_back();
+        placed.material = material;
+        placed.firstVertex = base;
+        placed.vertexCount = std::uint32_t(vertices);
+        for (const std::uint32_t v : tris) placed.triangles.push_back(base + v);
+        return success();
+    }
+    auto& list = b.trianglesOf[std::size_t(material + 1)];
     if (list.empty() && !tris.empty()) b.firstUse.push_back(material + 1);
     for (std::size_t t = 0; t + 2 < tris.size(); t += 3) {
         const std::uint32_t i0 = base + tris[t], i1 = base + tris[t + 1], i2 = base + tris[t + 2];

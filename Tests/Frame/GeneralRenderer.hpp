@@ -110,7 +110,7 @@ inline void drawMeshGeneral(RenderContext& ctx, const FrameView& view, const Ren
 inline void renderSceneGeneral(RenderContext& ctx, const Scene& scene, const FrameView& view,
                                const RenderSettings& settings, const Texture* textureOverride = nullptr) {
     for (const SceneDraw& d : scene.draws) {
-        assert(d.alpha >= 1.0f);
+        assert(d.alpha >= 1.0f && !d.placement);
         const Mesh& mesh = scene.meshes[std::size_t(d.mesh)];
         SurfaceMaterial material;
         material.kd = d.kd;

@@ -502,16 +502,34 @@ TEST_CASE("EXT_mesh_gpu_instancing: each instance's T R S placed before the node
     auto m = loadText(dir, "instanced.gltf", a.embedded());
     INFO((m ? std::string() : m.error()));
     REQUIRE(m.ok());
-    const Mesh& mesh = m.value().mesh;
-    REQUIRE(mesh.vertexCount() == 6);
-    REQUIRE(mesh.indices.size() == 6);
+    // Stored once, in the mesh's own space: one range drawn at the two places.
+    REQUIRE(m.value().mesh.vertexCount() == 3);
+    REQUIRE(m.value().mesh.indices.size() == 3);
+    REQUIRE(m.value().ranges.size() == 1);
+    CHECK(m.value().ranges[0].instances.size() == 2);
+    CHECK(m.value().ranges[0].firstVertex == 0);
+    CHECK(m.value().ranges[0].vertexCount == 3);
+    checkVec(m.value().mesh.positions[1], 1, 0, 0);
+    // The bounds are the places' (instance 1 reaches x = -2, y = 22).
+    checkVec(m.value().boundsMin, -2, 0, 5, 1e-5f);
+    checkVec(m.value().boundsMax, 11, 22, 5, 1e-5f);
+    // Written out (the copies the places stand for), after the three stored vertices.
+    Model written = m.value();
+    writeOutInstances(written);
+    const Mesh& mesh = written.mesh;
+    REQUIRE(mesh.vertexCount() == 9);
+    REQUIRE(written.ranges.size() == 1);
+    REQUIRE(written.ranges[0].indexCount == 6);
+    CHECK(written.ranges[0].instances.empty());
     // Instance 0: translated by (10, 0, 0), then the node's (0, 0, 5).
-    checkVec(mesh.positions[0], 10, 0, 5);
-    checkVec(mesh.positions[1], 11, 0, 5);
+    checkVec(mesh.positions[3], 10, 0, 5);
+    checkVec(mesh.positions[4], 11, 0, 5);
     // Instance 1: (1, 0, 0) -> scaled (2, 0, 0) -> turned (0, 2, 0) -> + (0, 20, 0) + (0, 0, 5).
-    checkVec(mesh.positions[3], 0, 20, 5, 1e-5f);
-    checkVec(mesh.positions[4], 0, 22, 5, 1e-5f);
-    checkVec(mesh.positions[5], -2, 20, 5, 1e-5f);
+    checkVec(mesh.positions[6], 0, 20, 5, 1e-5f);
+    checkVec(mesh.positions[7], 0, 22, 5, 1e-5f);
+    checkVec(mesh.positions[8], -2, 20, 5, 1e-5f);
+    checkVec(mesh.normals[7], 0, 0, 1, 1e-6f);
+    CHECK(std::vector<std::uint32_t>(mesh.indices.begin(), mesh.indices.end()) == std::vector<std::uint32_t>{3, 4, 5, 6, 7, 8});
     // Instances of different counts: refused.
     std::string bad = a.embedded();
     bad.replace(bad.find("\"SCALE\":" + std::to_string(s)), 8 + std::to_string(s).size(), "\"SCALE\":" + std::to_string(pos));
@@ -519,6 +537,53 @@ TEST_CASE("EXT_mesh_gpu_instancing: each instance's T R S placed before the node
     REQUIRE_FALSE(e.ok());
     CHECK(contains(e.error(), "counts.gltf"));
     CHECK(contains(e.error(), "EXT_mesh_gpu_instancing"));
+}
+
+TEST_CASE("EXT_mesh_gpu_instancing: a mirroring instance is drawn from the faces reversed, its normals still outward",
+          "[resources][gltf][instancing]") {
+    const std::string dir = freshDir("gltf-instancing-mirror");
+    Asset a;
+    const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
+    const int nrm = a.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+    // Instance 0 as it is; instance 1 mirrored in z (scale -1) and moved to z = -3; instance 2
+    // scaled unevenly (no mirror).
+    const int t = a.floats({0, 0, 0, 0, 0, -3, 5, 0, 0}, "VEC3");
+    const int s = a.floats({1, 1, 1, 1, 1, -1, 3, 1, 1}, "VEC3");
+    a.meshes = "[{\"primitives\":[" + primitive("\"POSITION\":" + std::to_string(pos) + ",\"NORMAL\":" + std::to_string(nrm)) + "]}]";
+    a.nodes = "[{\"mesh\":0,\"extensions\":{\"EXT_mesh_gpu_instancing\":{\"attributes\":{\"TRANSLATION\":" + std::to_string(t) +
+              ",\"SCALE\":" + std::to_string(s) + "}}}}]";
+    a.extra = ",\"extensionsUsed\":[\"EXT_mesh_gpu_instancing\"]";
+    auto m = loadText(dir, "mirror.gltf", a.embedded());
+    INFO((m ? std::string() : m.error()));
+    REQUIRE(m.ok());
+    // Two ranges over the one stored triangle: the faces kept (instances 0 and 2), reversed (1).
+    REQUIRE(m.value().mesh.vertexCount() == 3);
+    REQUIRE(m.value().ranges.size() == 2);
+    CHECK(m.value().ranges[0].instances.size() == 2);
+    REQUIRE(m.value().ranges[1].instances.size() == 1);
+    CHECK(determinant(m.value().ranges[1].instances[0]) < 0.0f);
+    const std::uint32_t* kept = m.value().mesh.indices.data() + m.value().ranges[0].firstIndex;
+    const std::uint32_t* reversed = m.value().mesh.indices.data() + m.value().ranges[1].firstIndex;
+    CHECK(std::vector<std::uint32_t>(kept, kept + 3) == std::vector<std::uint32_t>{0, 1, 2});
+    CHECK(std::vector<std::uint32_t>(reversed, reversed + 3) == std::vector<std::uint32_t>{0, 2, 1});
+    // Written out: every copy's face (in its index order) turns the way its normal points, the
+    // mirrored one's towards -z.
+    Model written = m.value();
+    writeOutInstances(written);
+    const Mesh& mesh = written.mesh;
+    int checked = 0;
+    for (const DrawRange& r : written.ranges)
+        for (std::uint32_t k = 0; k < r.indexCount; k += 3) {
+            const std::uint32_t* v = mesh.indices.data() + r.firstIndex + k;
+            const Vec3 face = cross(mesh.positions[v[1]] - mesh.positions[v[0]], mesh.positions[v[2]] - mesh.positions[v[0]]);
+            CHECK(dot(face, mesh.normals[v[0]]) > 0.0f);
+            ++checked;
+        }
+    CHECK(checked == 3);
+    checkVec(mesh.normals[mesh.indices[written.ranges[1].firstIndex]], 0, 0, -1, 1e-6f);
+    checkVec(mesh.positions[mesh.indices[written.ranges[1].firstIndex + 1]], 0, 1, -3, 1e-6f); // (0, 1, 0) -> z flipped, moved
+    checkVec(m.value().boundsMin, 0, 0, -3, 1e-6f);
+    checkVec(m.value().boundsMax, 8, 1, 0, 1e-6f);
 }
 
 TEST_CASE("EXT_mesh_gpu_instancing in an animated file: each instance follows its node's animation; a skinned instanced mesh is refused",
