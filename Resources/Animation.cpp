@@ -283,6 +283,7 @@ int componentsOf(AnimatedProperty p) {
     case AnimatedProperty::BaseColor: return 4;
     case AnimatedProperty::Emissive:
     case AnimatedProperty::SpecularColor:
+    case AnimatedProperty::SheenColor:
     case AnimatedProperty::LightColor: return 3;
     case AnimatedProperty::TextureOffset:
     case AnimatedProperty::TextureScale: return 2;
@@ -306,6 +307,8 @@ bool transformPointer(const std::string& rest, AnimatedProperty& property, int& 
         {"extensions/KHR_materials_clearcoat/clearcoatTexture", 1 + int(MapSlot::Clearcoat)},
         {"extensions/KHR_materials_clearcoat/clearcoatRoughnessTexture", 1 + int(MapSlot::ClearcoatRoughness)},
         {"extensions/KHR_materials_clearcoat/clearcoatNormalTexture", 1 + int(MapSlot::ClearcoatNormal)},
+        {"extensions/KHR_materials_sheen/sheenColorTexture", 1 + int(MapSlot::SheenColour)},
+        {"extensions/KHR_materials_sheen/sheenRoughnessTexture", 1 + int(MapSlot::SheenRoughness)},
     };
     static const std::pair<const char*, AnimatedProperty> kValues[] = {{"offset", AnimatedProperty::TextureOffset},
                                                                        {"rotation", AnimatedProperty::TextureRotation},
@@ -349,7 +352,9 @@ bool propertyPointer(const std::string& pointer, AnimatedProperty& property, int
           {"extensions/KHR_materials_specular/specularColorFactor", P::SpecularColor},
           {"extensions/KHR_materials_clearcoat/clearcoatFactor", P::Clearcoat},
           {"extensions/KHR_materials_clearcoat/clearcoatRoughnessFactor", P::ClearcoatRoughness},
-          {"extensions/KHR_materials_clearcoat/clearcoatNormalTexture/scale", P::ClearcoatNormalScale}}},
+          {"extensions/KHR_materials_clearcoat/clearcoatNormalTexture/scale", P::ClearcoatNormalScale},
+          {"extensions/KHR_materials_sheen/sheenColorFactor", P::SheenColor},
+          {"extensions/KHR_materials_sheen/sheenRoughnessFactor", P::SheenRoughness}}},
         {"/extensions/KHR_lights_punctual/lights/",
          {{"color", P::LightColor},
           {"intensity", P::LightIntensity},
@@ -451,6 +456,8 @@ PosedProperties ModelAnimation::poseProperties(double t, int clip) const {
                 case AnimatedProperty::Clearcoat: f.clearcoat = v[0], f.hasClearcoat = true; break;
                 case AnimatedProperty::ClearcoatRoughness: f.clearcoatRoughness = v[0], f.hasClearcoat = true; break;
                 case AnimatedProperty::ClearcoatNormalScale: f.clearcoatNormalScale = v[0], f.hasClearcoat = true; break;
+                case AnimatedProperty::SheenColor: std::copy(v, v + 3, f.sheenColor.begin()), f.hasSheen = true; break;
+                case AnimatedProperty::SheenRoughness: f.sheenRoughness = v[0], f.hasSheen = true; break;
                 case AnimatedProperty::TextureOffset: std::copy(v, v + 2, f.transforms[std::size_t(ch.reference)].offset.begin()); break;
                 case AnimatedProperty::TextureRotation: f.transforms[std::size_t(ch.reference)].rotation = v[0]; break;
                 case AnimatedProperty::TextureScale: std::copy(v, v + 2, f.transforms[std::size_t(ch.reference)].scale.begin()); break;

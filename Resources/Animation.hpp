@@ -57,7 +57,7 @@ struct AnimationChannel {
 // camera's ("/cameras/{c}/perspective/yfov", ...).
 enum class AnimatedProperty : std::uint8_t {
     BaseColor, Metallic, Roughness, Emissive, EmissiveStrength, NormalScale, OcclusionStrength, AlphaCutoff,
-    Ior, SpecularFactor, SpecularColor, Clearcoat, ClearcoatRoughness, ClearcoatNormalScale,
+    Ior, SpecularFactor, SpecularColor, Clearcoat, ClearcoatRoughness, ClearcoatNormalScale, SheenColor, SheenRoughness,
     TextureOffset, TextureRotation, TextureScale, // a texture reference's KHR_texture_transform
     LightColor, LightIntensity, LightRange, SpotInnerCone, SpotOuterCone,
     CameraYfov, CameraZnear, CameraZfar,

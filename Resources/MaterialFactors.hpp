@@ -45,6 +45,10 @@ struct MaterialFactors {
     // KHR_materials_clearcoat, where the material has it.
     bool hasClearcoat = false;
     double clearcoat = 0.0, clearcoatRoughness = 0.0, clearcoatNormalScale = 1.0;
+    // KHR_materials_sheen, where the material has it (colour linear).
+    bool hasSheen = false;
+    std::array<double, 3> sheenColor{0, 0, 0};
+    double sheenRoughness = 0.0;
     // Each texture reference's KHR_texture_transform: the base colour texture's, then each
     // MapSlot's (identity where there is none).
     std::array<TextureTransform, 1 + kMapSlots> transforms;

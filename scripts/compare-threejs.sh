@@ -21,9 +21,9 @@ cube=/usr/share/assimp/models/OBJ/cube_with_vertexcolors.obj
 if [[ $# -eq 0 && -f $cube ]] && command -v assimp >/dev/null; then
   assimp export "$cube" "$out/cube_with_vertexcolors.gltf" -f gltf2 >/dev/null && models+=("$out/cube_with_vertexcolors.gltf")
 fi
-# Sphere sweeps: KHR_materials_ior with _specular, KHR_materials_clearcoat, maps at their own addresses.
+# Sphere sweeps: KHR_materials_ior with _specular, KHR_materials_clearcoat, _sheen, maps at their own addresses.
 if [[ $# -eq 0 ]]; then
-  for set in specular clearcoat addressing; do
+  for set in specular clearcoat sheen addressing; do
     python3 scripts/make-material-spheres.py "$set" "$out/${set}_spheres.gltf" && models+=("$out/${set}_spheres.gltf")
   done
 fi

@@ -5,6 +5,8 @@
 #              factor 0.2, and ior 1.8 with a tinted specularColorFactor;
 #   clearcoat: KHR_materials_clearcoat over a rough red dielectric (coat roughness 0 and 0.3), over
 #              a rough blue metal, and at weight 0.5 over a smooth gold.
+#   sheen:     KHR_materials_sheen: a white sheen of roughness 0.3 and 0.8 over a dark red
+#              dielectric, a blue sheen over a rough white one, a sheen over a rough gold metal;
 #   addressing: maps at their own addresses (TEXCOORD_0 and _1, KHR_texture_transform per map,
 #              wrapS and wrapT apart): an emissive stripe map on TEXCOORD_1 over a checker base;
 #              the checker scaled by its transform over an unscaled roughness map; a checker
@@ -49,6 +51,14 @@ sets = {"specular": [
   {"pbrMetallicRoughness": pbr([0.1, 0.2, 0.6], 1, 0.6), "extensions": coat(1.0, 0.05)},
   {"pbrMetallicRoughness": pbr([1.0, 0.78, 0.34], 1, 0.2), "extensions": coat(0.5, 0.1)},
 ]}
+def sheen(colour, roughness):
+    return {"KHR_materials_sheen": {"sheenColorFactor": colour, "sheenRoughnessFactor": roughness}}
+sets["sheen"] = [
+  {"pbrMetallicRoughness": pbr([0.3, 0.02, 0.02], 0, 0.8), "extensions": sheen([1, 1, 1], 0.3)},
+  {"pbrMetallicRoughness": pbr([0.3, 0.02, 0.02], 0, 0.8), "extensions": sheen([1, 1, 1], 0.8)},
+  {"pbrMetallicRoughness": pbr([0.8, 0.8, 0.8], 0, 0.9), "extensions": sheen([0.1, 0.3, 1.0], 0.5)},
+  {"pbrMetallicRoughness": pbr([1.0, 0.78, 0.34], 1, 0.5), "extensions": sheen([0.6, 0.6, 0.6], 0.4)},
+]
 def png(w, h, texel):  # an RGBA PNG, texel(x, y) -> (r, g, b, a), top row first
     raw = b''.join(b'\0' + bytes(c for x in range(w) for c in texel(x, y)) for y in range(h))
     chunk = lambda t, d: struct.pack('>I', len(d)) + t + d + struct.pack('>I', zlib.crc32(t + d) & 0xffffffff)

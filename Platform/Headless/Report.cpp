@@ -32,7 +32,8 @@ struct Setting {
 };
 
 // The material extensions a rung may drop, each with its name in the report.
-constexpr std::pair<unsigned, const char*> kDroppable[] = {{kLobeClearcoat, "clearcoat"}, {kLobeDielectricSpecular, "specular"}};
+constexpr std::pair<unsigned, const char*> kDroppable[] = {
+    {kLobeClearcoat, "clearcoat"}, {kLobeSheen, "sheen"}, {kLobeDielectricSpecular, "specular"}};
 
 // The droppable extensions the scene's draws use (PbrLobe bits).
 unsigned sceneLobes(const Scene& scene) {
@@ -40,6 +41,7 @@ unsigned sceneLobes(const Scene& scene) {
     for (const SceneDraw& d : scene.draws) {
         if (!d.pbr) continue;
         if (d.pbr->clearcoat > 0.0f) lobes |= kLobeClearcoat;
+        if (d.pbr->sheenColor.x > 0.0f || d.pbr->sheenColor.y > 0.0f || d.pbr->sheenColor.z > 0.0f) lobes |= kLobeSheen;
         if (hasDielectricSpecular(*d.pbr) || d.maps.has(MapSlot::Specular) || d.maps.has(MapSlot::SpecularColour))
             lobes |= kLobeDielectricSpecular;
     }
@@ -47,13 +49,18 @@ unsigned sceneLobes(const Scene& scene) {
 }
 
 // The draws as if their materials had not the extensions in `dropped`: no coat (its factor 0,
-// its maps gone), the dielectric of appendix B (F0 0.04, weight 1, no specular maps).
+// its maps gone), no sheen (black, its maps gone), the dielectric of appendix B (F0 0.04,
+// weight 1, no specular maps).
 std::vector<SceneDraw> withoutLobes(std::vector<SceneDraw> draws, unsigned dropped) {
     for (SceneDraw& d : draws) {
         if (!d.pbr) continue;
         if (dropped & kLobeClearcoat) {
             d.pbr->clearcoat = 0.0f;
             for (const MapSlot s : {MapSlot::Clearcoat, MapSlot::ClearcoatRoughness, MapSlot::ClearcoatNormal}) d.maps[s] = -1;
+        }
+        if (dropped & kLobeSheen) {
+            d.pbr->sheenColor = Vec3{0.0f, 0.0f, 0.0f};
+            d.maps[MapSlot::SheenColour] = d.maps[MapSlot::SheenRoughness] = -1;
         }
         if (dropped & kLobeDielectricSpecular) {
             d.pbr->dielectricF0 = d.pbr->specularColorF0 = Vec3{0.04f, 0.04f, 0.04f};
@@ -347,7 +354,7 @@ int runReport(const std::vector<std::string>& args, Streams io) {
           "shading (Gouraud, Phong, and pbr in glTF) is measured with exact perspective, and MSAA 8 with "
           "the ground truth's other settings (nearest, affine and flat save too little: they are not measured); a glTF "
           "scene adds pbr on display values and, at one sample, pbr without each material extension it has (clearcoat, "
-          "specular: its materials as if the file had not the extension); the Pareto front (no other combination both "
+          "sheen, specular: its materials as if the file had not the extension); the Pareto front (no other combination both "
           "faster and at most as wrong) is marked, and so are the `--quality` presets.\n\n"
        << "| ssaa | msaa | fxaa | filter | shading | persp | ms/frame median [min, max] | mean abs | PSNR dB | SSIM | max abs | "
           "differing pixels | Pareto | preset |\n"

@@ -54,6 +54,14 @@ bool kernelsCoverSpecular(const Specular& s) {
     return !s.on() || (s.shininess <= 1024.0f && s.shininess == float(int(s.shininess)));
 }
 
+// Whether the span kernels cover the draw's material: a pbr material with a part they do not
+// evaluate (kKernelLobes) is filled by the scalar program.
+template <class Program>
+bool kernelsCoverLobes(const DrawContext& d) {
+    if constexpr (Program::kMode == ShadingMode::Pbr) return (programs::pbrLobesOf(*d.material) & ~kKernelLobes) == 0;
+    else return true;
+}
+
 // Whether a program reads each map at its own address (PbrProgram's kAddressed): no span kernel
 // has it, and its uvs are not rebased (a shift by whole periods of the raw set is not one of the
 // transformed uvs).
@@ -70,7 +78,7 @@ void drawWith(RenderContext& ctx, const DrawContext& d, std::size_t indexCount, 
     // Phong kernels test the shadow maps per pixel as the scalar program does (Kernels.inl's
     // shadowVisibility); flat and Gouraud light per triangle / vertex, unshadowed (Shadow.hpp).
     if constexpr (AddressedMaps<Program>::value) {
-    } else if (Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular)) {
+    } else if ((Program::kMode != ShadingMode::Phong || kernelsCoverSpecular(d.specular)) && kernelsCoverLobes<Program>(d)) {
         const KernelKey key{state.depth, state.perspective, d.settings.filter, d.settings.wrap};
         withKernel.kernel = selectFillKernel<Program>(d.settings.isa, key);
         withKernel.runsKernel = selectShadeRunsKernel<Program>(d.settings.isa, key);
@@ -154,10 +162,13 @@ void drawPbr(RenderContext& ctx, DrawInputs& in, std::size_t indexCount) {
     const DrawContext& base = *in.draw;
     const SurfaceMaterial& material = in.material;
     const Mesh& mesh = base.mesh;
-    // KHR_materials_clearcoat's maps are read only where the material has a coat.
-    const bool coat = (programs::pbrLobesOf(material) & kLobeClearcoat) != 0;
+    // KHR_materials_clearcoat's maps are read only where the material has a coat, KHR_materials_sheen's
+    // only where it has a sheen.
+    const unsigned lobes = programs::pbrLobesOf(material);
+    const bool coat = (lobes & kLobeClearcoat) != 0, sheen = (lobes & kLobeSheen) != 0;
     const auto read = [&](MapSlot s) {
-        return material.maps.has(s) && (s != MapSlot::Occlusion || base.view.ibl) && (!isClearcoatSlot(s) || coat);
+        return material.maps.has(s) && (s != MapSlot::Occlusion || base.view.ibl) && (!isClearcoatSlot(s) || coat) &&
+               (!isSheenSlot(s) || sheen);
     };
     const Texture* anyMap = material.texture;
     for (const MapSlot s : kAllMapSlots)

@@ -39,6 +39,10 @@ struct PbrFactors {
     // both into roughness and the base colour.
     bool specularGlossiness = false;
     float glossiness = 1.0f;
+    // KHR_materials_sheen: the sheen's colour (linear; x the sheenColorTexture's RGB; black: none)
+    // and its roughness (x the sheenRoughnessTexture's alpha).
+    Vec3 sheenColor{0.0f, 0.0f, 0.0f};
+    float sheenRoughness = 0.0f;
 };
 
 // The parts of the pbr model a material may add to appendix B's, one bit each: a draw evaluates
@@ -49,7 +53,11 @@ enum PbrLobe : unsigned {
     kLobeDielectricSpecular = 1u, // KHR_materials_ior / _specular values (brdfCosineTerms' kSpecular)
     kLobeClearcoat = 2u,          // KHR_materials_clearcoat (BrdfTerms.inl's coatWeight)
     kLobeSpecularGlossiness = 4u, // KHR_materials_pbrSpecularGlossiness's per-pixel inputs (PbrFactors::specularGlossiness)
+    kLobeSheen = 8u,              // KHR_materials_sheen (sheenCosine, sheenImageBrdf; scalar program only)
 };
+// The bits the span kernels evaluate: a draw whose material has any other is filled by the scalar
+// program (MeshRenderer).
+inline constexpr unsigned kKernelLobes = kLobeDielectricSpecular | kLobeClearcoat | kLobeSpecularGlossiness;
 // The bits the lights' loop reads (the kernels instantiate it for each combination of these).
 inline constexpr unsigned kLightLobes = kLobeDielectricSpecular | kLobeClearcoat;
 
@@ -134,6 +142,51 @@ template <class Visibility = AllVisible>
 inline Vec3 pbrRadiance(const Lighting& lighting, const PbrSurface& s, Vec3 n, Vec3 p, Vec3 v, float multiScatter = 0.0f,
                         const Visibility& visible = {}) {
     return sumOverLights(lighting, n, n, p, visible, [&](Vec3 l) { return brdfCosine(s, n, l, v, multiScatter); });
+}
+
+// KHR_materials_sheen, as three.js r187 draws it (the glTF viewer this project compares with):
+// the Charlie distribution (Estevez and Kulla 2017) with Neubelt's visibility, the spec's
+// cheaper alternative to Charlie's own, and the base layer scaled by 1 - 0.157 max(sheen colour)
+// (a constant directional albedo where the spec tabulates E(N.V, roughness)). The sheen's
+// roughness is clamped to [0.07, 1]; alpha = roughness^2.
+//   D(h) = (2 + 1/alpha) sin(theta_h)^(1/alpha) / (2 pi),  sin^2 at least 1/128
+//   V = clamp(1 / (4 (N.L + N.V - N.L N.V)), 0, 1)
+inline constexpr float kSheenMinRoughness = 0.07f, kSheenAlbedo = 0.157f;
+inline float sheenRoughnessClamped(float r) { return std::min(std::max(r, kSheenMinRoughness), 1.0f); }
+inline float sheenDistribution(float roughness, float nDotH) {
+    const float alpha = roughness * roughness, invAlpha = 1.0f / alpha;
+    const float sin2h = std::max(1.0f - nDotH * nDotH, 0.0078125f);
+    return (2.0f + invAlpha) * std::pow(sin2h, invAlpha * 0.5f) / (2.0f * 3.14159265f);
+}
+inline float sheenVisibility(float nDotL, float nDotV) {
+    return std::min(std::max(1.0f / (4.0f * (nDotL + nDotV - nDotL * nDotV)), 0.0f), 1.0f);
+}
+// The sheen lobe's f(l, v) N.L, per unit of sheen colour (N, L, V unit; N.L, N.V clamped to [0, 1]).
+inline float sheenCosine(float roughness, Vec3 n, Vec3 l, Vec3 v) {
+    const Vec3 h = normalize(l + v);
+    const float nDotL = std::min(std::max(dot(n, l), 0.0f), 1.0f), nDotV = std::min(std::max(dot(n, v), 0.0f), 1.0f);
+    const float nDotH = std::min(std::max(dot(n, h), 0.0f), 1.0f);
+    return sheenDistribution(roughness, nDotH) * sheenVisibility(nDotL, nDotV) * nDotL;
+}
+// The sheen's directional albedo under image light, per unit of sheen colour and of the sky's
+// irradiance E(n) (three.js's IBLSheenBRDF fit, 1/pi included), in [0, 1].
+inline float sheenImageBrdf(float roughness, float nDotV) {
+    const float v = std::min(std::max(nDotV, 0.0f), 1.0f), r2 = roughness * roughness;
+    const bool smooth = roughness < 0.25f;
+    const float a = smooth ? -339.2f * r2 + 161.4f * roughness - 25.9f : -8.48f * r2 + 14.3f * roughness - 9.95f;
+    const float b = smooth ? 44.0f * r2 - 23.7f * roughness + 3.26f : 1.97f * r2 - 3.27f * roughness + 0.72f;
+    const float dg = std::exp(a * v + b) + (smooth ? 0.0f : 0.1f * (roughness - 0.25f));
+    return std::min(std::max(dg * (1.0f / 3.14159265f), 0.0f), 1.0f);
+}
+
+// The sheen's lobe under every light (sheenCosine on the normal n at the sheen's roughness),
+// where the light reaches p and n faces it; `visible` as in pbrRadiance.
+template <class Visibility = AllVisible>
+inline Vec3 sheenRadiance(const Lighting& lighting, float roughness, Vec3 n, Vec3 p, Vec3 v, const Visibility& visible = {}) {
+    return sumOverLights(lighting, n, n, p, visible, [&](Vec3 l) {
+        const float f = sheenCosine(roughness, n, l, v);
+        return Vec3{f, f, f};
+    });
 }
 
 // The clear coat's lobe under every light (KHR_materials_clearcoat; BrdfTerms.inl's

@@ -24,6 +24,8 @@ enum class MapSlot : std::uint8_t {
     Clearcoat,          // KHR_materials_clearcoat's weight: red
     ClearcoatRoughness, // its roughness: green
     ClearcoatNormal,    // its normal map (PbrFactors::clearcoatNormalScale)
+    SheenColour,        // KHR_materials_sheen's sheenColorTexture: RGB, sRGB
+    SheenRoughness,     // its sheenRoughnessTexture: its alpha, copied into RGB (SceneSetup)
     Occlusion,          // red, on the sky's light only
     Count
 };
@@ -32,16 +34,20 @@ inline constexpr std::size_t kMapSlots = std::size_t(MapSlot::Count);
 // Each slot's name in messages ("its clearcoat roughness texture reads ...").
 inline constexpr const char* kMapSlotNames[kMapSlots] = {"metallic-roughness",  "emissive",         "normal",    "specular",
                                                          "specular colour",     "glossiness",       "clearcoat", "clearcoat roughness",
-                                                         "clearcoat normal",    "occlusion"};
+                                                         "clearcoat normal",    "sheen colour",     "sheen roughness",
+                                                         "occlusion"};
 
 // Whether the slot reads its image's alpha: the scene holds a copy with the alpha in RGB (the
 // samplers filter colour), made once per image (SceneSetup).
-constexpr bool readsAlpha(MapSlot s) { return s == MapSlot::Specular || s == MapSlot::Glossiness; }
+constexpr bool readsAlpha(MapSlot s) { return s == MapSlot::Specular || s == MapSlot::Glossiness || s == MapSlot::SheenRoughness; }
 
 // Whether the slot belongs to KHR_materials_clearcoat (read only where the material has a coat).
 constexpr bool isClearcoatSlot(MapSlot s) {
     return s == MapSlot::Clearcoat || s == MapSlot::ClearcoatRoughness || s == MapSlot::ClearcoatNormal;
 }
+
+// Whether the slot belongs to KHR_materials_sheen (read only where the material has a sheen).
+constexpr bool isSheenSlot(MapSlot s) { return s == MapSlot::SheenColour || s == MapSlot::SheenRoughness; }
 
 // "No map" for a slot's value type: -1 for a texture index, null for a pointer.
 template <class T>
@@ -67,7 +73,8 @@ struct MaterialMaps {
 // Every slot, in order: `for (MapSlot s : kAllMapSlots)`.
 inline constexpr std::array<MapSlot, kMapSlots> kAllMapSlots = {
     MapSlot::MetallicRoughness, MapSlot::Emissive,  MapSlot::Normal,             MapSlot::Specular,        MapSlot::SpecularColour,
-    MapSlot::Glossiness,        MapSlot::Clearcoat, MapSlot::ClearcoatRoughness, MapSlot::ClearcoatNormal, MapSlot::Occlusion};
+    MapSlot::Glossiness,        MapSlot::Clearcoat, MapSlot::ClearcoatRoughness, MapSlot::ClearcoatNormal, MapSlot::SheenColour,
+    MapSlot::SheenRoughness,    MapSlot::Occlusion};
 
 // Where a material reads one map (a glTF texture reference with its sampler and
 // KHR_texture_transform): its uv set (TEXCOORD_<uvSet>, Mesh::uvSets), the affine map m from

@@ -44,8 +44,10 @@ inline Vec3 imageLight(const ImageLight& light, const PbrSurface& s, Vec3 n, Vec
 // The parts of the pbr model beyond appendix B's that a glTF material has (PbrLobe bits).
 inline unsigned pbrLobesOf(const SurfaceMaterial& m) {
     const bool specular = hasDielectricSpecular(*m.pbr) || m.maps.has(MapSlot::Specular) || m.maps.has(MapSlot::SpecularColour);
+    const Vec3 sheen = m.pbr->sheenColor;
     return (specular ? kLobeDielectricSpecular : 0u) | (m.pbr->clearcoat > 0.0f ? kLobeClearcoat : 0u) |
-           (m.pbr->specularGlossiness ? kLobeSpecularGlossiness : 0u);
+           (m.pbr->specularGlossiness ? kLobeSpecularGlossiness : 0u) |
+           (sheen.x > 0.0f || sheen.y > 0.0f || sheen.z > 0.0f ? kLobeSheen : 0u);
 }
 
 // The light a sky sends toward v from a clear coat with unit normal nc (IblTerms.inl's iblCoat).
@@ -223,6 +225,28 @@ struct PbrProgram {
             r = r + sky;
         }
         Vec3 out{r.x + emissive.x, r.y + emissive.y, r.z + emissive.z};
+        if (has(kLobeSheen)) { // over the base (and its emission, as three.js does), under the coat
+            Vec3 sheen = k.sheenColor;
+            float sheenRoughness = k.sheenRoughness;
+            if constexpr (kMaps) {
+                if (const Texture* map = m.map(MapSlot::SheenColour)) {
+                    const Color c = sampleMap(MapSlot::SheenColour, *map, true, f);
+                    sheen = {sheen.x * c.r, sheen.y * c.g, sheen.z * c.b};
+                }
+                if (const Texture* map = m.map(MapSlot::SheenRoughness)) // (its alpha, in red)
+                    sheenRoughness *= sampleMap(MapSlot::SheenRoughness, *map, false, f).r;
+            }
+            sheenRoughness = sheenRoughnessClamped(sheenRoughness);
+            Vec3 lobe = d->view.shadows ? sheenRadiance(d->view.lighting, sheenRoughness, n, p, v,
+                                                        [sh = d->view.shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) {
+                                                            return sh->visibility(light, q, normal, l);
+                                                        })
+                                        : sheenRadiance(d->view.lighting, sheenRoughness, n, p, v);
+            if (d->view.ibl) // E(n) = pi x the Lambertian radiance of a white surface
+                lobe = lobe + d->view.ibl->diffuse(n) * (3.14159265f * sheenImageBrdf(sheenRoughness, dot(n, v)) * occlusion);
+            const float keep = 1.0f - kSheenAlbedo * std::max(std::max(sheen.x, sheen.y), sheen.z);
+            out = {out.x * keep + lobe.x * sheen.x, out.y * keep + lobe.y * sheen.y, out.z * keep + lobe.z * sheen.z};
+        }
         if (has(kLobeClearcoat)) {
             Vec3 c = d->view.shadows ? coatRadiance(d->view.lighting, nc, coatRoughness, n, p, v,
                                                     [sh = d->view.shadows](std::size_t light, Vec3 q, Vec3 normal, Vec3 l) {

@@ -454,6 +454,9 @@ Result<Document> parseDocument(const unsigned char* data, std::size_t size, cons
         m.clearcoatTexture = textureInfo(clearcoat, "clearcoatTexture");
         m.clearcoatRoughnessTexture = textureInfo(clearcoat, "clearcoatRoughnessTexture");
         m.clearcoatNormalTexture = textureInfo(clearcoat, "clearcoatNormalTexture");
+        const Json sheen = objectOr(m.extensions, "KHR_materials_sheen");
+        m.sheenColorTexture = textureInfo(sheen, "sheenColorTexture");
+        m.sheenRoughnessTexture = textureInfo(sheen, "sheenRoughnessTexture");
         if (const auto sg = m.extensions.find("KHR_materials_pbrSpecularGlossiness"); sg != m.extensions.end() && sg->is_object()) {
             m.specularGlossiness.present = true;
             m.pbrMetallicRoughness.baseColorFactor = numbers(*sg, "diffuseFactor", {1, 1, 1, 1});

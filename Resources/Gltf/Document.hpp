@@ -46,6 +46,8 @@ struct Material {
     TextureInfo specularTexture, specularColorTexture;
     // KHR_materials_clearcoat's maps (the layer's weight in red, its roughness in green, its normal map).
     TextureInfo clearcoatTexture, clearcoatRoughnessTexture, clearcoatNormalTexture;
+    // KHR_materials_sheen's maps (the sheen's colour in RGB, its roughness in alpha).
+    TextureInfo sheenColorTexture, sheenRoughnessTexture;
     // KHR_materials_pbrSpecularGlossiness, where the material has it, in place of the metallic-
     // roughness block: its diffuse factor and texture are read as the base colour's (into
     // pbrMetallicRoughness), its specularGlossinessTexture as specularColorTexture (RGB) and

@@ -45,7 +45,7 @@ const std::set<std::string>& supportedExtensions() {
         "KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_lights_punctual", "KHR_mesh_quantization",
         "EXT_meshopt_compression", "KHR_meshopt_compression", "KHR_draco_mesh_compression", "EXT_texture_webp",
         "EXT_mesh_gpu_instancing", "KHR_texture_basisu", "EXT_texture_avif", "KHR_materials_unlit",
-        "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat",
+        "KHR_materials_ior", "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen",
         "KHR_materials_pbrSpecularGlossiness",
         "KHR_animation_pointer"}; // nodes, material factors, lights, cameras; other targets are named in a warning
     return kSupported;

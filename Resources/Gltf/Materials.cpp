@@ -59,6 +59,8 @@ const gltf::TextureInfo& textureInfoOf(const gltf::Material& gm, MapSlot slot) {
     case MapSlot::Clearcoat: return gm.clearcoatTexture;
     case MapSlot::ClearcoatRoughness: return gm.clearcoatRoughnessTexture;
     case MapSlot::ClearcoatNormal: return gm.clearcoatNormalTexture;
+    case MapSlot::SheenColour: return gm.sheenColorTexture;
+    case MapSlot::SheenRoughness: return gm.sheenRoughnessTexture;
     case MapSlot::Occlusion: return gm.occlusionTexture;
     case MapSlot::Count: break;
     }
@@ -110,6 +112,15 @@ MaterialFactors factorsOf(const gltf::Material& gm) {
         f.clearcoat = extensionNumber(*ext, "clearcoatFactor", 0.0);
         f.clearcoatRoughness = extensionNumber(*ext, "clearcoatRoughnessFactor", 0.0);
         f.clearcoatNormalScale = gm.clearcoatNormalTexture.scale;
+    }
+    if (const auto ext = gm.extensions.find("KHR_materials_sheen"); ext != gm.extensions.end()) {
+        f.hasSheen = true;
+        f.sheenRoughness = extensionNumber(*ext, "sheenRoughnessFactor", 0.0);
+        if (ext->is_object() && ext->contains("sheenColorFactor")) {
+            const gltf::Json& t = (*ext)["sheenColorFactor"];
+            for (std::size_t c = 0; c < 3; ++c)
+                if (t.is_array() && t.size() == 3 && t[c].is_number()) f.sheenColor[c] = t[c].get<double>();
+        }
     }
     return f;
 }
@@ -213,6 +224,12 @@ void applyFactors(const MaterialFactors& in, Material& m) {
         f.clearcoat = float(std::min(number(in.clearcoat, 0.0), 1.0));
         f.clearcoatRoughness = float(std::min(number(in.clearcoatRoughness, 0.0), 1.0));
         f.clearcoatNormalScale = std::isfinite(in.clearcoatNormalScale) ? float(in.clearcoatNormalScale) : 1.0f;
+    }
+    // KHR_materials_sheen: its colour and roughness in [0, 1] (NaN 0).
+    if (in.hasSheen) {
+        const auto unit = [&](double v) { return float(std::min(number(v, 0.0), 1.0)); };
+        f.sheenColor = Vec3{unit(in.sheenColor[0]), unit(in.sheenColor[1]), unit(in.sheenColor[2])};
+        f.sheenRoughness = unit(in.sheenRoughness);
     }
     // Alpha modes. With the factor's alpha alone (untextured, or a texture without alpha): BLEND
     // blends with it, MASK keeps the surface when it reaches alphaCutoff and drops it otherwise,

@@ -893,6 +893,143 @@ TEST_CASE("KHR_materials_clearcoat in a scene: a coat of weight 0 (factor or map
         }
 }
 
+TEST_CASE("KHR_materials_sheen: the Charlie lobe, Neubelt's visibility and the image-light fit against their closed forms in double",
+          "[render][brdf][pbr][sheen]") {
+    const auto charlie = [](double r, double nh) {
+        const double alpha = r * r, sin2 = std::max(1.0 - nh * nh, 1.0 / 128.0);
+        return (2.0 + 1.0 / alpha) * std::pow(sin2, 0.5 / alpha) / (2.0 * kPiT);
+    };
+    const auto neubelt = [](double nl, double nv) { return std::clamp(1.0 / (4.0 * (nl + nv - nl * nv)), 0.0, 1.0); };
+    for (const double r : {0.07, 0.3, 0.5, 1.0})
+        for (const double nh : {0.0, 0.3, 0.8, 0.999, 1.0}) {
+            INFO("roughness " << r << ", N.H " << nh);
+            CHECK(double(sheenDistribution(float(r), float(nh))) == Approx(charlie(r, nh)).epsilon(1e-4).margin(1e-30)); // (below 1e-30: 0 in float)
+        }
+    // The lobe grows toward grazing halfway vectors (a rim), unlike GGX's peak at N = H.
+    CHECK(sheenDistribution(0.5f, 0.1f) > sheenDistribution(0.5f, 0.9f));
+    for (const double nl : {0.05, 0.4, 1.0})
+        for (const double nv : {0.05, 0.4, 1.0}) CHECK(double(sheenVisibility(float(nl), float(nv))) == Approx(neubelt(nl, nv)).epsilon(1e-5));
+    // f N.L at chosen directions: N = +z, L 60 degrees off in x, V 30 degrees off in -x.
+    const Vec3 n{0, 0, 1}, l = unit(std::sin(kPiT / 3), 0, std::cos(kPiT / 3)), v = unit(-std::sin(kPiT / 6), 0, std::cos(kPiT / 6));
+    const double hx = std::sin(kPiT / 3) - std::sin(kPiT / 6), hz = std::cos(kPiT / 3) + std::cos(kPiT / 6);
+    const double nh = hz / std::sqrt(hx * hx + hz * hz), nl = 0.5, nv = std::cos(kPiT / 6);
+    CHECK(double(sheenCosine(0.4f, n, l, v)) == Approx(charlie(0.4, nh) * neubelt(nl, nv) * nl).epsilon(1e-4));
+    CHECK(sheenCosine(0.4f, n, unit(0, 0, -1), v) == 0.0f); // from behind: nothing
+    // three.js's IBLSheenBRDF fit, on both sides of its roughness 0.25 split.
+    const auto fit = [](double r, double nv) {
+        const double r2 = r * r;
+        const double a = r < 0.25 ? -339.2 * r2 + 161.4 * r - 25.9 : -8.48 * r2 + 14.3 * r - 9.95;
+        const double b = r < 0.25 ? 44.0 * r2 - 23.7 * r + 3.26 : 1.97 * r2 - 3.27 * r + 0.72;
+        return std::clamp((std::exp(a * nv + b) + (r < 0.25 ? 0.0 : 0.1 * (r - 0.25))) / kPiT, 0.0, 1.0);
+    };
+    for (const double r : {0.07, 0.2, 0.3, 0.7, 1.0})
+        for (const double c : {0.0, 0.2, 0.6, 1.0}) {
+            INFO("roughness " << r << ", N.V " << c);
+            CHECK(double(sheenImageBrdf(float(r), float(c))) == Approx(fit(r, c)).epsilon(1e-4).margin(1e-7));
+        }
+    CHECK(sheenRoughnessClamped(0.0f) == 0.07f);
+    CHECK(sheenRoughnessClamped(2.0f) == 1.0f);
+}
+
+TEST_CASE("KHR_materials_sheen in a scene: black is the base exactly, its maps scale it, a sheen lights the rim",
+          "[render][pbr][sheen]") {
+    const auto same = [](const Image& a, const Image& b) { return a.rgba == b.rgba; };
+    const std::vector<std::uint8_t> zeros(4 * 4 * 4, 0), white(4 * 4 * 4, 255);
+    for (const bool sky : {false, true}) {
+        INFO((sky ? "with the sky's light" : "lights only"));
+        PbrScene s = makePbrScene();
+        Sky gradient;
+        gradient.kind = Sky::Kind::Gradient;
+        const ImageLight ibl(gradient);
+        if (sky) s.view.ibl = &ibl;
+        s.scene.textures.push_back(Texture::fromRgba8(4, 4, zeros.data()));
+        s.scene.textures.push_back(Texture::fromRgba8(4, 4, white.data()));
+        const int black = int(s.scene.textures.size()) - 2, whiteMap = black + 1;
+        const Image plain = renderPbr(s, s.settings);
+        // A white sheen of roughness 0.5 on the rough blue sphere and the ground.
+        PbrScene sheen = s;
+        for (int k : {0, 3}) {
+            sheen.scene.draws[std::size_t(k)].pbr->sheenColor = Vec3{1.0f, 1.0f, 1.0f};
+            sheen.scene.draws[std::size_t(k)].pbr->sheenRoughness = 0.5f;
+        }
+        const Image withSheen = renderPbr(sheen, sheen.settings);
+        CHECK_FALSE(same(withSheen, plain));
+        // A black sheenColorTexture takes it away per pixel: the base bit for bit (its scale 1 - 0.157 x 0).
+        PbrScene blackMap = sheen;
+        for (int k : {0, 3}) blackMap.scene.draws[std::size_t(k)].maps[MapSlot::SheenColour] = black;
+        CHECK(same(renderPbr(blackMap, blackMap.settings), plain));
+        // White maps change nothing; a black roughness map (the clamp's 0.07) does.
+        PbrScene whiteMaps = sheen;
+        for (int k : {0, 3}) {
+            whiteMaps.scene.draws[std::size_t(k)].maps[MapSlot::SheenColour] = whiteMap;
+            whiteMaps.scene.draws[std::size_t(k)].maps[MapSlot::SheenRoughness] = whiteMap;
+        }
+        CHECK(same(renderPbr(whiteMaps, whiteMaps.settings), withSheen));
+        PbrScene smooth = sheen;
+        smooth.scene.draws[0].maps[MapSlot::SheenRoughness] = black;
+        CHECK_FALSE(same(renderPbr(smooth, smooth.settings), withSheen));
+        // No sheen colour: its maps are not read, the image is the base's.
+        PbrScene none = s;
+        none.scene.draws[0].maps[MapSlot::SheenColour] = whiteMap;
+        none.scene.draws[0].pbr->sheenRoughness = 0.5f;
+        CHECK(same(renderPbr(none, none.settings), plain));
+    }
+}
+
+TEST_CASE("KHR_materials_sheen at one pixel: the base scaled by 1 - 0.157 max(colour) plus the lobe, against the closed form",
+          "[render][pbr][sheen]") {
+    // A quad facing the camera (N = V = +z at its centre), one directional light of pi lux 60
+    // degrees off; a rough white dielectric with a sheen of colour (0.8, 0.4, 0.2), roughness 0.6.
+    Scene scene;
+    Mesh quad;
+    quad.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
+    quad.normals.assign(4, Vec3{0, 0, 1});
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    scene.meshes.push_back(quad);
+    SceneDraw d;
+    d.indexCount = 6;
+    PbrFactors f;
+    f.baseColor = Color{1.0f, 1.0f, 1.0f, 1.0f};
+    f.metallic = 0.0f;
+    f.roughness = 1.0f;
+    f.sheenColor = Vec3{0.8f, 0.4f, 0.2f};
+    f.sheenRoughness = 0.6f;
+    d.pbr = f;
+    scene.draws.push_back(d);
+    const Vec3 toLight = unit(std::sin(kPiT / 3), 0, std::cos(kPiT / 3));
+    FrameView view;
+    view.eye = {0.0f, 0.0f, 3.0f};
+    view.viewProj = perspective(radians(30.0f), 1.0f, 0.5f, 10.0f) * lookAt(view.eye, {0, 0, 0}, {0, 1, 0});
+    view.lighting = oneDirectional(toLight, kPiF);
+    RenderSettings settings;
+    settings.shading = ShadingMode::Pbr;
+    settings.colour = ColorMode::Linear;
+    FrameBuffer fb(33, 33);
+    RenderContext ctx(fb);
+    renderSceneFrame(ctx, scene, view, settings);
+    const Pixel centre = fb.pixel(16, 16);
+    // The base: f N.L of the white dielectric at N = V, x pi lux; the sheen: D V N.L.
+    PbrSurface s;
+    s.baseColor = {1, 1, 1};
+    s.metallic = 0.0f;
+    s.roughness = 1.0f;
+    const Vec3 n{0, 0, 1}, p{0, 0, 0};
+    const double multi = ibl::brdfMultiScatter(brdfAlbedoTable().ess.data(), 1.0f, 1.0f);
+    const double base = double(brdfCosine(s, n, toLight, n, float(multi)).x) * kPiT;
+    const double hz = (1.0 + std::cos(kPiT / 3)) / std::sqrt(std::pow(std::sin(kPiT / 3), 2) + std::pow(1.0 + std::cos(kPiT / 3), 2));
+    const double alpha = 0.36, sin2 = 1.0 - hz * hz;
+    const double D = (2.0 + 1.0 / alpha) * std::pow(sin2, 0.5 / alpha) / (2.0 * kPiT);
+    const double V = 1.0 / (4.0 * (0.5 + 1.0 - 0.5));
+    const double lobe = D * V * 0.5 * kPiT, keep = 1.0 - 0.157 * 0.8;
+    const double rgb[3] = {base * keep + lobe * 0.8, base * keep + lobe * 0.4, base * keep + lobe * 0.2};
+    const int got[3] = {int(pixelR(centre)), int(pixelG(centre)), int(pixelB(centre))};
+    for (int k = 0; k < 3; ++k) {
+        INFO("channel " << k << ": linear " << rgb[k]);
+        CHECK(std::abs(got[k] - int(std::lround(255.0 * encodeD(std::min(rgb[k], 1.0))))) <= 1);
+    }
+    CHECK(got[0] > got[2]); // the sheen's colour shows
+}
+
 TEST_CASE("KHR_materials_pbrSpecularGlossiness per pixel: a white texture of full alpha draws what its factors folded draw",
           "[render][pbr][specgloss]") {
     // With a specularGlossinessTexture the program takes roughness = 1 - glossiness x alpha and

@@ -764,7 +764,7 @@ TEST_CASE("report: a glTF scene's rungs without each material extension it has, 
     const std::string dir = tempDir("report-extensions");
     std::filesystem::remove_all(dir);
     std::filesystem::create_directories(dir);
-    // A quad facing the camera, red, with a clear coat and KHR_materials_ior 2.5.
+    // A quad facing the camera, red, with a clear coat, a white sheen and KHR_materials_ior 2.5.
     gltftest::Asset a;
     const int pos = a.floats({-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, -1, 0, 1, 1, 0, -1, 1, 0}, "VEC3");
     const int nrm = a.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
@@ -772,8 +772,9 @@ TEST_CASE("report: a glTF scene's rungs without each material extension it has, 
                "},\"material\":0}]}]";
     a.nodes = R"([{"mesh":0}])";
     a.materials = R"([{"pbrMetallicRoughness":{"baseColorFactor":[0.8,0.1,0.1,1],"metallicFactor":0,"roughnessFactor":0.6},)"
-                  R"("extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":1},"KHR_materials_ior":{"ior":2.5}}}])";
-    a.extra = R"(,"extensionsUsed":["KHR_materials_clearcoat","KHR_materials_ior"])";
+                  R"("extensions":{"KHR_materials_clearcoat":{"clearcoatFactor":1},"KHR_materials_ior":{"ior":2.5},)"
+                  R"("KHR_materials_sheen":{"sheenColorFactor":[1,1,1],"sheenRoughnessFactor":0.5}}}])";
+    a.extra = R"(,"extensionsUsed":["KHR_materials_clearcoat","KHR_materials_ior","KHR_materials_sheen"])";
     const std::string text = a.embedded();
     REQUIRE(writeFileBytes(dir + "/coat.gltf", text.data(), text.size()).ok());
     const Run r = run({"report", "--model", dir + "/coat.gltf", "--out-dir", dir, "--width", "32", "--height", "24", "--light", "0,0.3,1",
@@ -783,8 +784,9 @@ TEST_CASE("report: a glTF scene's rungs without each material extension it has, 
     REQUIRE(csv.ok());
     const std::string table(csv.value().begin(), csv.value().end());
     // Untextured, physical: the truth + {1 sample, FXAA, MSAA 4, SSAA 4} x {Gouraud, Phong, pbr}
-    // + MSAA 8 + pbr gamma + pbr without the coat, without the specular and without both.
-    CHECK(std::count(table.begin(), table.end(), '\n') == 1 + 1 + 4 * 3 + 1 + 1 + 3);
+    // + MSAA 8 + pbr gamma + pbr without the coat, without the sheen, without the specular and
+    // without all three.
+    CHECK(std::count(table.begin(), table.end(), '\n') == 1 + 1 + 4 * 3 + 1 + 1 + 4);
     const auto meanAbs = [&](const std::string& shading) {
         const std::string key = "\n1,1,0,-," + shading + ",exact,";
         const auto at = table.find(key);
@@ -794,11 +796,12 @@ TEST_CASE("report: a glTF scene's rungs without each material extension it has, 
         return std::stod(line.substr(0, line.find(',')));
     };
     const double full = meanAbs("pbr"), noCoat = meanAbs("pbr without clearcoat"), noSpecular = meanAbs("pbr without specular"),
-                 neither = meanAbs("pbr without clearcoat and specular");
+                 noSheen = meanAbs("pbr without sheen"), neither = meanAbs("pbr without clearcoat and sheen and specular");
     // Each dropped extension moves the image away from the truth drawn with it (most of the
     // error of one sample is the quad's aliased edges, the same in every such rung).
     CHECK(noCoat > full + 0.25);
     CHECK(noSpecular > full + 0.25);
+    CHECK(noSheen > full + 0.25);
     CHECK(neither > full + 0.25);
 }
 

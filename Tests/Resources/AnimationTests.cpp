@@ -319,14 +319,14 @@ TEST_CASE("KHR_animation_pointer: a node's translation by pointer moves it as th
     a.extra = ",\"extensionsUsed\":[\"KHR_animation_pointer\"],\"extensionsRequired\":[\"KHR_animation_pointer\"],"
               "\"animations\":[{\"samplers\":[{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(moves) +
               "},{\"input\":" + std::to_string(input) + ",\"output\":" + std::to_string(colours) + "}],\"channels\":[" +
-              pointerChannel(0, "/nodes/0/translation") + "," + pointerChannel(1, "/materials/0/extensions/KHR_materials_sheen/sheenColorFactor") + "]}]";
+              pointerChannel(0, "/nodes/0/translation") + "," + pointerChannel(1, "/materials/0/extensions/KHR_materials_transmission/transmissionFactor") + "]}]";
     auto r = loadGltf(writeText(dir, "pointer.gltf", a.embedded()));
     INFO((r ? std::string() : r.error()));
     REQUIRE(r.ok());
     Model m = std::move(r).value();
     REQUIRE(m.animation);
     REQUIRE(m.warnings.size() == 1);
-    CHECK(m.warnings[0].find("KHR_animation_pointer '/materials/0/extensions/KHR_materials_sheen/sheenColorFactor' is not animated") !=
+    CHECK(m.warnings[0].find("KHR_animation_pointer '/materials/0/extensions/KHR_materials_transmission/transmissionFactor' is not animated") !=
           std::string::npos);
     m.animation->pose(0.5, -1, m.mesh);
     checkVec(m.mesh.positions[0], 1, 0, 0);
@@ -379,6 +379,8 @@ TEST_CASE("KHR_animation_pointer: material factors posed at a time are the mater
                                  pointerChannel(2, "/materials/0/extensions/KHR_materials_emissive_strength/emissiveStrength") + "," +
                                  pointerChannel(3, "/materials/0/extensions/KHR_materials_ior/ior") + "," +
                                  pointerChannel(1, "/materials/0/extensions/KHR_materials_clearcoat/clearcoatFactor") + "," +
+                                 pointerChannel(4, "/materials/0/extensions/KHR_materials_sheen/sheenColorFactor") + "," +
+                                 pointerChannel(1, "/materials/0/extensions/KHR_materials_sheen/sheenRoughnessFactor") + "," +
                                  pointerChannel(6, "/materials/1/pbrMetallicRoughness/baseColorFactor");
     auto r = loadGltf(writeText(dir, "animated.gltf", propertyAsset(channels, "{\"extensions\":{\"KHR_materials_clearcoat\":{}}}").embedded()));
     INFO((r ? std::string() : r.error()));
@@ -390,7 +392,8 @@ TEST_CASE("KHR_animation_pointer: material factors posed at a time are the mater
     CHECK(m.animation->animatesMaterial(0));
     CHECK(m.animation->animatesMaterial(1));
     // At 0.25 s: base (0.75, 0, 0.25, 1), metallic = roughness = 0.25, emissive (1, 0.5, 0) x 2.5,
-    // ior 0.625 (below 1: the extension's default 1.5, as a file's), clearcoat 0.25.
+    // ior 0.625 (below 1: the extension's default 1.5, as a file's), clearcoat 0.25, sheen colour
+    // (1, 0.5, 0) and roughness 0.25.
     const PosedProperties posed = m.animation->poseProperties(0.25, -1);
     REQUIRE(posed.materials.size() == 2);
     CHECK(posed.materials[0] == 0);
@@ -402,7 +405,8 @@ TEST_CASE("KHR_animation_pointer: material factors posed at a time are the mater
     still.nodes = "[{\"mesh\":0}]";
     still.materials = "[{\"pbrMetallicRoughness\":{\"baseColorFactor\":[0.75,0,0.25,1],\"metallicFactor\":0.25,\"roughnessFactor\":0.25},"
                       "\"emissiveFactor\":[1,0.5,0],\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":2.5},"
-                      "\"KHR_materials_ior\":{\"ior\":0.625},\"KHR_materials_clearcoat\":{\"clearcoatFactor\":0.25}}}]";
+                      "\"KHR_materials_ior\":{\"ior\":0.625},\"KHR_materials_clearcoat\":{\"clearcoatFactor\":0.25},"
+                      "\"KHR_materials_sheen\":{\"sheenColorFactor\":[1,0.5,0],\"sheenRoughnessFactor\":0.25}}}]";
     auto s = loadGltf(writeText(dir, "still.gltf", still.embedded()));
     INFO((s ? std::string() : s.error()));
     REQUIRE(s.ok());
@@ -427,6 +431,9 @@ TEST_CASE("KHR_animation_pointer: material factors posed at a time are the mater
     CHECK(got.pbr->emissive == want.pbr->emissive);
     CHECK(got.pbr->dielectricF0 == want.pbr->dielectricF0);
     CHECK(got.pbr->clearcoat == want.pbr->clearcoat);
+    CHECK(got.pbr->sheenColor.y == Approx(0.5));
+    CHECK(got.pbr->sheenColor == want.pbr->sheenColor);
+    CHECK(got.pbr->sheenRoughness == want.pbr->sheenRoughness);
     CHECK(got.alpha == want.alpha);
     // Material 1 (MASK, cutoff 0.5): its alpha 0.25 is below the cutoff (dropped), 0.75 above.
     CHECK(posed.values[1].alpha == 0.0f);

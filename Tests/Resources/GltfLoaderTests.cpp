@@ -346,7 +346,7 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     Image one;
     one.width = one.height = 1;
     one.rgba = {10, 20, 30, 255};
-    for (const char* name : {"base.png", "mr.png", "em.png", "nrm.png", "occ.png", "spec.png", "specc.png", "cc.png", "ccr.png", "ccn.png"})
+    for (const char* name : {"base.png", "mr.png", "em.png", "nrm.png", "occ.png", "spec.png", "specc.png", "cc.png", "ccr.png", "ccn.png", "sh.png", "shr.png"})
         REQUIRE(writeImage(dir + "/" + name, one).ok());
     Asset a;
     const int pos = a.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
@@ -361,14 +361,18 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
                   "\"extensions\":{\"KHR_materials_emissive_strength\":{\"emissiveStrength\":4},"
                   "\"KHR_materials_specular\":{\"specularTexture\":{\"index\":5},\"specularColorTexture\":{\"index\":6}},"
                   "\"KHR_materials_clearcoat\":{\"clearcoatFactor\":1,\"clearcoatTexture\":{\"index\":7},"
-                  "\"clearcoatRoughnessTexture\":{\"index\":8},\"clearcoatNormalTexture\":{\"index\":9}}},"
+                  "\"clearcoatRoughnessTexture\":{\"index\":8},\"clearcoatNormalTexture\":{\"index\":9}},"
+                  "\"KHR_materials_sheen\":{\"sheenColorFactor\":[0.5,1.5,0.25],\"sheenRoughnessFactor\":0.75,"
+                  "\"sheenColorTexture\":{\"index\":10},\"sheenRoughnessTexture\":{\"index\":11}}},"
                   "\"normalTexture\":{\"index\":3,\"scale\":0.5},\"occlusionTexture\":{\"index\":4,\"strength\":0.25}},"
                   "{\"name\":\"plain\"}]";
-    a.extra = ",\"extensionsUsed\":[\"KHR_materials_emissive_strength\",\"KHR_materials_specular\",\"KHR_materials_clearcoat\"],"
+    a.extra = ",\"extensionsUsed\":[\"KHR_materials_emissive_strength\",\"KHR_materials_specular\",\"KHR_materials_clearcoat\","
+              "\"KHR_materials_sheen\"],"
               "\"images\":[{\"uri\":\"base.png\"},{\"uri\":\"mr.png\"},{\"uri\":\"em.png\"},{\"uri\":\"nrm.png\"},{\"uri\":\"occ.png\"},"
-              "{\"uri\":\"spec.png\"},{\"uri\":\"specc.png\"},{\"uri\":\"cc.png\"},{\"uri\":\"ccr.png\"},{\"uri\":\"ccn.png\"}],"
+              "{\"uri\":\"spec.png\"},{\"uri\":\"specc.png\"},{\"uri\":\"cc.png\"},{\"uri\":\"ccr.png\"},{\"uri\":\"ccn.png\"},"
+              "{\"uri\":\"sh.png\"},{\"uri\":\"shr.png\"}],"
               "\"textures\":[{\"source\":0},{\"source\":1},{\"source\":2},{\"source\":3},{\"source\":4},"
-              "{\"source\":5},{\"source\":6},{\"source\":7},{\"source\":8},{\"source\":9}]";
+              "{\"source\":5},{\"source\":6},{\"source\":7},{\"source\":8},{\"source\":9},{\"source\":10},{\"source\":11}]";
     auto r = load(dir, "pbr.gltf", a.embedded());
     INFO((r.ok() ? std::string() : r.error()));
     REQUIRE(r.ok());
@@ -386,8 +390,11 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     CHECK(k.pbr->normalScale == 0.5f);
     CHECK(k.pbr->occlusionStrength == 0.25f);
     CHECK_FALSE(k.pbr->unlit);
-    // Ten distinct images: ten textures, each map in the slot of its own image.
-    CHECK(m.textures.size() == 10);
+    // KHR_materials_sheen: its colour clamped to [0, 1], its roughness.
+    checkVec(k.pbr->sheenColor, 0.5f, 1.0f, 0.25f);
+    CHECK(k.pbr->sheenRoughness == 0.75f);
+    // Twelve distinct images: twelve textures, each map in the slot of its own image.
+    CHECK(m.textures.size() == 12);
     REQUIRE(m.texturePaths.size() == m.textures.size());
     const auto imageOf = [&](int texture) {
         return texture >= 0 && std::size_t(texture) < m.texturePaths.size()
@@ -398,7 +405,8 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     const std::pair<MapSlot, const char*> expected[] = {
         {MapSlot::MetallicRoughness, "mr.png"}, {MapSlot::Emissive, "em.png"},       {MapSlot::Normal, "nrm.png"},
         {MapSlot::Occlusion, "occ.png"},        {MapSlot::Specular, "spec.png"},     {MapSlot::SpecularColour, "specc.png"},
-        {MapSlot::Clearcoat, "cc.png"},         {MapSlot::ClearcoatRoughness, "ccr.png"}, {MapSlot::ClearcoatNormal, "ccn.png"}};
+        {MapSlot::Clearcoat, "cc.png"},         {MapSlot::ClearcoatRoughness, "ccr.png"}, {MapSlot::ClearcoatNormal, "ccn.png"},
+        {MapSlot::SheenColour, "sh.png"},       {MapSlot::SheenRoughness, "shr.png"}};
     // Every slot but the glossiness (KHR_materials_pbrSpecularGlossiness replaces the metallic-
     // roughness block: its own test checks that slot).
     static_assert(std::size(expected) == kMapSlots - 1, "every slot is checked");
@@ -413,6 +421,7 @@ TEST_CASE("glTF materials: the metallic-roughness input, emissive strength and t
     CHECK(plain.pbr->metallic == 1.0f);
     CHECK(plain.pbr->roughness == 1.0f);
     checkVec(plain.pbr->emissive, 0, 0, 0);
+    checkVec(plain.pbr->sheenColor, 0, 0, 0); // no sheen
     CHECK(plain.maps[MapSlot::MetallicRoughness] == -1);
     CHECK(plain.maps[MapSlot::Normal] == -1);
 }
