@@ -122,7 +122,7 @@ struct LoadLimits {
     std::size_t maxMtlBytes = std::size_t(16) << 20;       // each .mtl
     std::size_t maxMaterials = 65536;                      // over all .mtl files, or in the glTF file
     std::size_t maxVertices = std::size_t(1) << 24;        // each of v / vn / vt entries; glTF: vertices
-    std::size_t maxTriangles = std::size_t(1) << 24;       // after triangulation
+    std::size_t maxTriangles = std::size_t(1) << 24;       // after triangulation; glTF: as drawn, each instance's counted
     std::size_t maxFaceVertices = 1024;                    // per polygon (ear clipping is O(n^2+))
     std::size_t maxPolygonWork = std::size_t(1) << 28;     // sum of n^2 over polygons with n > 4
     std::size_t maxMemoryBytes = std::size_t(4) << 30;     // estimated peak while loading (upper bound)
@@ -133,6 +133,7 @@ struct LoadLimits {
     std::size_t maxAnimationKeys = std::size_t(1) << 22;   // glTF: key times over all samplers
     std::size_t maxJoints = 1024;                          // glTF: joints per skin
     std::size_t maxMorphTargets = 64;                      // glTF: morph targets per primitive
+    std::size_t maxInstanceDraws = 65536;                  // glTF: draws of instanced meshes (instances x primitives)
 };
 
 // What loadModel, loadObj and loadGltf are asked to do: the texture override, whether to decode

@@ -219,7 +219,16 @@ Result<Model> loadFromMemory(const unsigned char* data, std::size_t size, const 
                     const Status s = add(p, identity);
                     b.placing = false;
                     if (!s) return R::failure(path + ": " + s.error());
-                    for (std::size_t k = first; k < b.placed.size(); ++k) b.placed[k].places = places;
+                    for (std::size_t k = first; k < b.placed.size(); ++k) {
+                        b.placed[k].places = places;
+                        b.instanceDraws += places.size();
+                        b.instancedTriangles += (places.size() - 1) * (b.placed[k].triangles.size() / 3);
+                    }
+                    if (b.instanceDraws > limits.maxInstanceDraws)
+                        return R::failure(path + ": more than " + std::to_string(limits.maxInstanceDraws) +
+                                          " draws of instanced meshes (EXT_mesh_gpu_instancing: instances x primitives)");
+                    if (b.triangles + b.instancedTriangles > limits.maxTriangles)
+                        return R::failure(path + ": more than " + std::to_string(limits.maxTriangles) + " triangles (each instance's counted)");
                     continue;
                 }
                 for (std::size_t k = 0; k < copies; ++k) {

@@ -48,6 +48,8 @@ struct Builder {
     };
     bool placing = false;
     std::vector<PlacedPrimitive> placed;
+    std::size_t instanceDraws = 0;     // places over all placed primitives (LoadLimits::maxInstanceDraws)
+    std::size_t instancedTriangles = 0; // the triangles their places draw beyond the stored ones
     // [material]: an animation moves one of its texture transforms (KHR_animation_pointer): its
     // maps are drawn at their own addresses from the raw uv sets (materialAddressing's `force`).
     std::vector<std::uint8_t> animatedTransforms;

@@ -537,6 +537,20 @@ TEST_CASE("EXT_mesh_gpu_instancing: each instance's T R S placed before the node
     REQUIRE_FALSE(e.ok());
     CHECK(contains(e.error(), "counts.gltf"));
     CHECK(contains(e.error(), "EXT_mesh_gpu_instancing"));
+    // The limits count what is drawn: two draws of one triangle.
+    const std::string file = writeText(dir, "limits.gltf", a.embedded());
+    LoadOptions one;
+    one.limits.maxInstanceDraws = 1;
+    auto draws = loadGltf(file, one);
+    REQUIRE_FALSE(draws.ok());
+    CHECK(contains(draws.error(), "limits.gltf: more than 1 draws of instanced meshes"));
+    LoadOptions oneTriangle;
+    oneTriangle.limits.maxTriangles = 1;
+    auto triangles = loadGltf(file, oneTriangle);
+    REQUIRE_FALSE(triangles.ok());
+    CHECK(contains(triangles.error(), "more than 1 triangles (each instance's counted)"));
+    oneTriangle.limits.maxTriangles = 2;
+    CHECK(loadGltf(file, oneTriangle).ok());
 }
 
 TEST_CASE("EXT_mesh_gpu_instancing: a mirroring instance is drawn from the faces reversed, its normals still outward",
