@@ -178,14 +178,19 @@ inline DrawState drawStateFor(const DrawContext& d) {
     return s;
 }
 
-// Writes the clip position and, when textured, the uv into varyings 0-1.
+// Writes the clip position of vertex i at world position p and, when textured, the uv into
+// varyings 0-1.
 template <bool kTextured>
-inline void transformVertex(const DrawContext& d, std::size_t i, ClipVertex& out) {
-    out.position = d.view.viewProj * Vec4(worldPosition(d, i), 1.0f);
+inline void transformVertex(const DrawContext& d, std::size_t i, Vec3 p, ClipVertex& out) {
+    out.position = d.view.viewProj * Vec4(p, 1.0f);
     if constexpr (kTextured) {
         out.varyings[0] = d.mesh.uvs[i].x;
         out.varyings[1] = d.mesh.uvs[i].y;
     }
+}
+template <bool kTextured>
+inline void transformVertex(const DrawContext& d, std::size_t i, ClipVertex& out) {
+    transformVertex<kTextured>(d, i, worldPosition(d, i), out);
 }
 
 // The four shading programs (drawProgram's Program: vertex, triangle, fragment). Each render
@@ -291,8 +296,8 @@ struct GouraudProgram {
         return d->specular.on() ? (std::uint64_t(1) << 32) | bits : 0;
     }
     void vertex(std::size_t i, ClipVertex& out) const {
-        transformVertex<kTextured>(*d, i, out);
         const Vec3 p = worldPosition(*d, i);
+        transformVertex<kTextured>(*d, i, p, out);
         const Vec3 n = normalize(worldNormal(*d, i)), v = normalize(d->view.eye - p);
         if constexpr (kRgb) {
             const RgbTerms t = lightTerms(d->view.lighting, d->specular, n, p, v);
@@ -336,10 +341,10 @@ struct PhongProgram {
     const TriangleSetup* setup = nullptr;
     explicit PhongProgram(const DrawContext* dc) : d(dc) {}
     void vertex(std::size_t i, ClipVertex& out) const {
-        transformVertex<kTextured>(*d, i, out);
+        const Vec3 p = worldPosition(*d, i);
+        transformVertex<kTextured>(*d, i, p, out);
         const Vec3 n = worldNormal(*d, i);
         if constexpr (kPositions) {
-            const Vec3 p = worldPosition(*d, i);
             out.varyings[kP] = p.x;
             out.varyings[kP + 1] = p.y;
             out.varyings[kP + 2] = p.z;

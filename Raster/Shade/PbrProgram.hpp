@@ -95,14 +95,14 @@ struct PbrProgram {
     bool has(PbrLobe lobe) const { return (lobes & lobe) != 0; }
 
     void vertex(std::size_t i, ClipVertex& out) const {
-        transformVertex<kMaps>(*d, i, out);
+        const Vec3 p = worldPosition(*d, i), n = worldNormal(*d, i);
+        transformVertex<kMaps>(*d, i, p, out);
         if constexpr (kAddressed) {
             for (int set = 0; set < 2; ++set) {
                 out.varyings[2 * set] = d->mesh.uvSets[set][i].x;
                 out.varyings[2 * set + 1] = d->mesh.uvSets[set][i].y;
             }
         }
-        const Vec3 p = worldPosition(*d, i), n = worldNormal(*d, i);
         const float values[6] = {p.x, p.y, p.z, n.x, n.y, n.z};
         for (int k = 0; k < 6; ++k) out.varyings[kP + k] = values[k];
         if constexpr (kTangents) {
