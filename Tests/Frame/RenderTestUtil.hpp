@@ -5,10 +5,19 @@
 #include <vector>
 
 #include "Math/Mat4.hpp"
+#include "Raster/Frame/FrameBuffer.hpp"
 #include "Raster/Geometry/Mesh.hpp"
 #include "Raster/Pipeline.hpp"
 
 namespace sr::test {
+
+// The pixels where two frames differ in colour or in depth.
+inline int differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
+    int n = 0;
+    for (int y = 0; y < a.height(); ++y)
+        for (int x = 0; x < a.width(); ++x) n += a.pixel(x, y) != b.pixel(x, y) || a.depth(x, y) != b.depth(x, y);
+    return n;
+}
 
 // An axis-aligned box [lo, hi] with outward-facing CCW triangles (12 triangles, 8 vertices).
 inline Mesh boxMesh(Vec3 lo, Vec3 hi) {

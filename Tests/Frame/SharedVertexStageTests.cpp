@@ -8,10 +8,12 @@
 
 #include "GeneralRenderer.hpp" // opaqueOnly
 #include "Platform/App/SceneSetup.hpp"
+#include "RenderTestUtil.hpp"
 #include "Resources/Image.hpp"
 #include "Resources/ObjTestUtil.hpp" // Tests/Resources: the OBJ tests' temporary files
 
 using namespace sr;
+using sr::test::differingPixels;
 
 namespace {
 
@@ -54,13 +56,6 @@ Scene meshPerDraw(const Scene& in) {
         d.mesh = int(out.meshes.size()) - 1;
     }
     return out;
-}
-
-int differingPixels(const FrameBuffer& a, const FrameBuffer& b) {
-    int n = 0;
-    for (int y = 0; y < a.height(); ++y)
-        for (int x = 0; x < a.width(); ++x) n += a.pixel(x, y) != b.pixel(x, y) || a.depth(x, y) != b.depth(x, y);
-    return n;
 }
 
 // An n x n quad grid as OBJ text, every quad textured by material a, or by a and b in a
